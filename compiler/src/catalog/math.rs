@@ -1,0 +1,127 @@
+//! Math functions usable in expressions and `implicit` bodies: f64 value and interval partial
+//! derivatives (for inferring an `implicit`'s Lipschitz bound).
+
+use crate::interval::Interval;
+use std::ops::{Add, Div, Mul, Neg};
+
+/// A math function of the expression language.
+pub struct MathFn {
+    /// Name in the language.
+    pub name: &'static str,
+    /// Number of arguments.
+    pub arity: usize,
+    /// One line for the docs.
+    pub doc: &'static str,
+    /// Value in f64.
+    pub eval: fn(&[f64]) -> f64,
+    /// Range of the value over argument intervals.
+    pub range: fn(&[Interval]) -> Interval,
+    /// Ranges of the partial derivatives with respect to each argument.
+    pub partials: fn(&[Interval]) -> Vec<Interval>,
+}
+
+fn unit() -> Interval {
+    Interval::new(-1.0, 1.0)
+}
+
+/// ∂min(a, b)/∂a is 1 where a < b, 0 elsewhere; the hull [0, 1] covers both.
+fn switch() -> Interval {
+    Interval::new(0.0, 1.0)
+}
+
+/// Every math function.
+pub static MATH_FUNCTIONS: &[MathFn] = &[
+    MathFn {
+        name: "abs",
+        arity: 1,
+        doc: "|a|",
+        eval: |a| a[0].abs(),
+        range: |a| a[0].abs(),
+        partials: |_| vec![unit()],
+    },
+    MathFn {
+        name: "sqrt",
+        arity: 1,
+        doc: "√a (a < 0 gives NaN, which is an error in constants)",
+        eval: |a| a[0].sqrt(),
+        range: |a| a[0].map_up(|x| x.max(0.0).sqrt()),
+        partials: |a| {
+            vec![
+                a[0].map_up(|x| x.max(0.0).sqrt())
+                    .recip()
+                    .mul(Interval::point(0.5)),
+            ]
+        },
+    },
+    MathFn {
+        name: "sin",
+        arity: 1,
+        doc: "sine (radians)",
+        eval: |a| a[0].sin(),
+        range: |a| a[0].periodic(f64::sin, 0.0),
+        partials: |a| vec![a[0].periodic(f64::cos, std::f64::consts::FRAC_PI_2)],
+    },
+    MathFn {
+        name: "cos",
+        arity: 1,
+        doc: "cosine (radians)",
+        eval: |a| a[0].cos(),
+        range: |a| a[0].periodic(f64::cos, std::f64::consts::FRAC_PI_2),
+        partials: |a| vec![a[0].periodic(f64::sin, 0.0).neg()],
+    },
+    MathFn {
+        name: "exp",
+        arity: 1,
+        doc: "eᵃ",
+        eval: |a| a[0].exp(),
+        range: |a| a[0].map_up(f64::exp),
+        partials: |a| vec![a[0].map_up(f64::exp)],
+    },
+    MathFn {
+        name: "log",
+        arity: 1,
+        doc: "natural logarithm",
+        eval: |a| a[0].ln(),
+        range: |a| a[0].map_up(|x| x.max(0.0).ln()),
+        partials: |a| vec![a[0].recip()],
+    },
+    MathFn {
+        name: "min",
+        arity: 2,
+        doc: "the smaller of a and b",
+        eval: |a| a[0].min(a[1]),
+        range: |a| Interval::new(a[0].lo.min(a[1].lo), a[0].hi.min(a[1].hi)),
+        partials: |_| vec![switch(), switch()],
+    },
+    MathFn {
+        name: "max",
+        arity: 2,
+        doc: "the larger of a and b",
+        eval: |a| a[0].max(a[1]),
+        range: |a| Interval::new(a[0].lo.max(a[1].lo), a[0].hi.max(a[1].hi)),
+        partials: |_| vec![switch(), switch()],
+    },
+    MathFn {
+        name: "length",
+        arity: 3,
+        doc: "√(a² + b² + c²): the length of a vector (its partials are bounded by 1)",
+        eval: |a| (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt(),
+        range: |a| {
+            let s = a[0].powi(2).add(a[1].powi(2)).add(a[2].powi(2));
+            s.map_up(|x| x.max(0.0).sqrt())
+        },
+        partials: |_| vec![unit(), unit(), unit()],
+    },
+    MathFn {
+        name: "atan2",
+        arity: 2,
+        doc: "the angle of the point (b, a): atan2(a, b)",
+        eval: |a| a[0].atan2(a[1]),
+        range: |_| Interval::new(-std::f64::consts::PI, std::f64::consts::PI),
+        // ∂/∂a = b/(a²+b²), ∂/∂b = −a/(a²+b²): unbounded near the origin.
+        partials: |a| {
+            let r2 = a[0].powi(2).add(a[1].powi(2));
+            vec![a[1].div(r2), a[0].neg().div(r2)]
+        },
+    },
+];

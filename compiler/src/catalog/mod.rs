@@ -1,0 +1,316 @@
+//! The catalog: one entry per primitive, operator and math function — parameters, Lipschitz rule, CPU evaluation.
+//!
+//! The checker, the evaluator, the docs table and the tests all loop over these tables; adding a
+//! primitive means adding one entry (and its formula) in `primitives.rs`.
+
+mod math;
+mod operators;
+mod primitives;
+
+pub use math::{MATH_FUNCTIONS, MathFn};
+pub use operators::OPERATORS;
+pub use primitives::PRIMITIVES;
+
+use glam::DVec3;
+
+/// A checked argument value. Colours and axes are vectors; counts are numbers.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Val {
+    /// A plain number (lengths and angles in radians included).
+    Num(f64),
+    /// A vector, colour (linear 0..1 RGB) or unit axis.
+    Vec3(DVec3),
+    /// The index of a word in a [`Ty::PositiveOr`] list (e.g. `epsilon pixel`).
+    Word(usize),
+}
+
+impl Val {
+    /// The number (0 for non-numbers; the checker guarantees types).
+    pub fn num(self) -> f64 {
+        match self {
+            Val::Num(x) => x,
+            _ => 0.0,
+        }
+    }
+
+    /// The vector (a number is broadcast).
+    pub fn vec(self) -> DVec3 {
+        match self {
+            Val::Vec3(v) => v,
+            Val::Num(x) => DVec3::splat(x),
+            Val::Word(_) => DVec3::ZERO,
+        }
+    }
+}
+
+/// The type of a parameter, with the range the checker enforces.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Ty {
+    /// Any finite number.
+    Number,
+    /// A finite number ≥ 0.
+    Length,
+    /// A finite number > 0.
+    Positive,
+    /// A number in [0, 1].
+    Fraction,
+    /// An angle: a number with a unit (`30deg`, `0.5rad`), stored in radians.
+    Angle,
+    /// A whole number ≥ 1.
+    Count,
+    /// Any finite vector.
+    Vec3,
+    /// A size: one number ≥ 0 for all three axes, or a vector of them.
+    Size,
+    /// A scale factor: one number > 0, or a vector of them.
+    Scale,
+    /// Whole numbers ≥ 0 per axis: one number or a vector of them.
+    Counts,
+    /// A direction: `x`, `y`, `z` or a non-zero vector; normalised.
+    Axis,
+    /// A colour: `#rrggbb`, `#rgb` or a vector of 0..1 components.
+    Color,
+    /// A number > 0, or one of the listed words.
+    PositiveOr(&'static [&'static str]),
+    /// A number in [lo, hi).
+    Range(f64, f64),
+}
+
+impl Ty {
+    /// How the type is named in messages and docs.
+    pub fn describe(self) -> String {
+        match self {
+            Ty::Number => "a number".into(),
+            Ty::Length => "a length (≥ 0)".into(),
+            Ty::Positive => "a number > 0".into(),
+            Ty::Fraction => "a number in [0, 1]".into(),
+            Ty::Angle => "an angle (e.g. `30deg`)".into(),
+            Ty::Count => "a whole number ≥ 1".into(),
+            Ty::Vec3 => "a vector `(x, y, z)`".into(),
+            Ty::Size => "a size (number or vector, ≥ 0)".into(),
+            Ty::Scale => "a scale (number or vector, > 0)".into(),
+            Ty::Counts => "whole numbers ≥ 0 (number or vector)".into(),
+            Ty::Axis => "an axis (`x`, `y`, `z` or a vector)".into(),
+            Ty::Color => "a colour (`#rrggbb` or `(r, g, b)`)".into(),
+            Ty::PositiveOr(words) => {
+                let w: Vec<String> = words.iter().map(|w| format!("`{w}`")).collect();
+                format!("a number > 0 or {}", w.join(" or "))
+            }
+            Ty::Range(lo, hi) => format!("a number in [{lo}, {hi})"),
+        }
+    }
+}
+
+/// One parameter of a primitive, operator or settings block.
+#[derive(Clone, Copy, Debug)]
+pub struct Param {
+    /// Its name, for named arguments.
+    pub name: &'static str,
+    /// Its type.
+    pub ty: Ty,
+    /// The default; `None` makes the parameter required.
+    pub default: Option<Val>,
+}
+
+/// A parameter with a default.
+pub const fn opt(name: &'static str, ty: Ty, default: Val) -> Param {
+    Param {
+        name,
+        ty,
+        default: Some(default),
+    }
+}
+
+/// A required parameter.
+pub const fn req(name: &'static str, ty: Ty) -> Param {
+    Param {
+        name,
+        ty,
+        default: None,
+    }
+}
+
+/// The result of evaluating a node at a point: the field value and the material of the surface
+/// that value belongs to (`None`: the default material).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sample {
+    /// Field value (a signed distance bound once divided by the node's λ).
+    pub d: f64,
+    /// Material index into the scene's materials.
+    pub mat: Option<u32>,
+}
+
+/// A bounding sphere; `radius` is infinite for unbounded shapes (planes, infinite repetition).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Bound {
+    /// Centre.
+    pub center: DVec3,
+    /// Radius (may be infinite).
+    pub radius: f64,
+}
+
+impl Bound {
+    /// The unbounded bound.
+    pub const INFINITE: Bound = Bound {
+        center: DVec3::ZERO,
+        radius: f64::INFINITY,
+    };
+
+    /// A sphere at the origin.
+    pub fn origin(radius: f64) -> Bound {
+        Bound {
+            center: DVec3::ZERO,
+            radius,
+        }
+    }
+
+    /// The smallest sphere around both (not minimal, but tight enough).
+    pub fn union(self, o: Bound) -> Bound {
+        if !self.radius.is_finite() || !o.radius.is_finite() {
+            return Bound::INFINITE;
+        }
+        let d = (o.center - self.center).length();
+        if d + o.radius <= self.radius {
+            return self;
+        }
+        if d + self.radius <= o.radius {
+            return o;
+        }
+        let radius = (d + self.radius + o.radius) / 2.0;
+        let center = if d > 0.0 {
+            self.center + (o.center - self.center) * ((radius - self.radius) / d)
+        } else {
+            self.center
+        };
+        Bound { center, radius }
+    }
+
+    /// Radius of the infinite cylinder around `axis` (through the origin) that contains the sphere.
+    pub fn cylinder_radius(self, axis: DVec3) -> f64 {
+        let perp = self.center - axis * self.center.dot(axis);
+        perp.length() + self.radius
+    }
+}
+
+/// What an operator knows when it evaluates or computes its bound: its checked arguments and its
+/// children's Lipschitz bounds and bounding spheres.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Ctx {
+    /// Arguments in parameter order, defaults filled in.
+    pub args: Vec<Val>,
+    /// λ of each child (annotations applied).
+    pub child_lambda: Vec<f64>,
+    /// Bounding sphere of each child.
+    pub child_bound: Vec<Bound>,
+}
+
+impl Ctx {
+    /// Argument `i` as a number.
+    pub fn num(&self, i: usize) -> f64 {
+        self.args[i].num()
+    }
+
+    /// Argument `i` as a vector.
+    pub fn vec(&self, i: usize) -> DVec3 {
+        self.args[i].vec()
+    }
+}
+
+/// How many children an operator takes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Arity {
+    /// Exactly this many.
+    Exactly(usize),
+    /// At least this many.
+    AtLeast(usize),
+}
+
+impl Arity {
+    /// Whether `n` children are accepted.
+    pub fn accepts(self, n: usize) -> bool {
+        match self {
+            Arity::Exactly(k) => n == k,
+            Arity::AtLeast(k) => n >= k,
+        }
+    }
+}
+
+/// Evaluates one child of an operator at a point.
+pub type ChildEval<'a> = &'a mut dyn FnMut(usize, DVec3) -> Sample;
+
+/// A primitive shape.
+pub struct Primitive {
+    /// Name in the language.
+    pub name: &'static str,
+    /// One line for the docs.
+    pub doc: &'static str,
+    /// Parameters in positional order.
+    pub params: &'static [Param],
+    /// Whether the field is an exact Euclidean distance (else a bound).
+    pub exact: bool,
+    /// Lipschitz bound λ of the field.
+    pub lipschitz: fn(&Ctx) -> f64,
+    /// Bounding sphere of the surface.
+    pub bound: fn(&Ctx) -> Bound,
+    /// The field in f64.
+    pub eval: fn(&Ctx, DVec3) -> f64,
+}
+
+/// An operator on child shapes (CSG, blend, transform, domain operation).
+pub struct Operator {
+    /// Name in the language.
+    pub name: &'static str,
+    /// One line for the docs (including its Lipschitz rule).
+    pub doc: &'static str,
+    /// Parameters in positional order.
+    pub params: &'static [Param],
+    /// How many children.
+    pub arity: Arity,
+    /// Lipschitz bound λ of the result (infinite: cannot be bounded; the checker asks for an
+    /// annotation).
+    pub lipschitz: fn(&Ctx) -> f64,
+    /// Bounding sphere of the result.
+    pub bound: fn(&Ctx) -> Bound,
+    /// The field in f64, given a way to evaluate the children.
+    pub eval: fn(&Ctx, DVec3, ChildEval) -> Sample,
+}
+
+/// Looks up a primitive by name.
+pub fn primitive(name: &str) -> Option<&'static Primitive> {
+    PRIMITIVES.iter().find(|p| p.name == name)
+}
+
+/// Looks up an operator by name.
+pub fn operator(name: &str) -> Option<&'static Operator> {
+    OPERATORS.iter().find(|p| p.name == name)
+}
+
+/// Looks up a math function by name.
+pub fn math_fn(name: &str) -> Option<&'static MathFn> {
+    MATH_FUNCTIONS.iter().find(|p| p.name == name)
+}
+
+/// Every name a call may use: primitives, operators and math functions.
+pub fn all_names() -> impl Iterator<Item = &'static str> {
+    PRIMITIVES
+        .iter()
+        .map(|p| p.name)
+        .chain(OPERATORS.iter().map(|o| o.name))
+        .chain(MATH_FUNCTIONS.iter().map(|m| m.name))
+}
+
+macro_rules! by_name {
+    ($($t:ty),*) => {$(
+        impl std::fmt::Debug for $t {
+            fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+                f.write_str(self.name)
+            }
+        }
+        impl PartialEq for $t {
+            fn eq(&self, other: &Self) -> bool {
+                std::ptr::eq(self, other)
+            }
+        }
+    )*};
+}
+by_name!(Primitive, Operator, MathFn);

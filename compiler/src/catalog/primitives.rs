@@ -1,0 +1,300 @@
+//! Primitive shapes: parameters, Lipschitz bound, bounding sphere and f64 distance of each.
+//!
+//! Distance formulas follow Inigo Quilez's catalogue of exact distance functions (restated here,
+//! not copied); the dodecahedron is the generalised distance function of Akleman et al. as used in
+//! the Keinert seed (Fig. 11); the Mandelbulb is the distance estimator of Bálint's test scene.
+
+use super::{Bound, Ctx, Primitive, Ty, Val, opt};
+use glam::{DVec2, DVec3};
+
+const ONE: fn(&Ctx) -> f64 = |_| 1.0;
+
+const fn num(x: f64) -> Val {
+    Val::Num(x)
+}
+
+const fn vec3(x: f64, y: f64, z: f64) -> Val {
+    Val::Vec3(DVec3::new(x, y, z))
+}
+
+/// Every primitive of the language.
+pub static PRIMITIVES: &[Primitive] = &[
+    Primitive {
+        name: "sphere",
+        doc: "Sphere of `radius` at the origin.",
+        params: &[opt("radius", Ty::Length, num(1.0))],
+        exact: true,
+        lipschitz: ONE,
+        bound: |c| Bound::origin(c.num(0)),
+        eval: |c, p| p.length() - c.num(0),
+    },
+    Primitive {
+        name: "box",
+        doc: "Axis-aligned box of full edge lengths `size`, centred.",
+        params: &[opt("size", Ty::Size, num(1.0))],
+        exact: true,
+        lipschitz: ONE,
+        bound: |c| Bound::origin(c.vec(0).length() / 2.0),
+        eval: |c, p| sd_box(p, c.vec(0) / 2.0),
+    },
+    Primitive {
+        name: "rounded_box",
+        doc: "Box of full edge lengths `size` whose edges are rounded by `radius` (inside the size).",
+        params: &[
+            opt("size", Ty::Size, num(1.0)),
+            opt("radius", Ty::Length, num(0.1)),
+        ],
+        exact: true,
+        lipschitz: ONE,
+        bound: |c| Bound::origin(c.vec(0).length() / 2.0),
+        eval: |c, p| {
+            let half = c.vec(0) / 2.0;
+            let r = c.num(1).min(half.min_element());
+            sd_box(p, half - DVec3::splat(r)) - r
+        },
+    },
+    Primitive {
+        name: "plane",
+        doc: "Half-space below the plane through `offset`·`normal` (normal `y` is the floor y = offset).",
+        params: &[
+            opt("normal", Ty::Axis, vec3(0.0, 1.0, 0.0)),
+            opt("offset", Ty::Number, num(0.0)),
+        ],
+        exact: true,
+        lipschitz: ONE,
+        bound: |_| Bound::INFINITE,
+        eval: |c, p| p.dot(c.vec(0)) - c.num(1),
+    },
+    Primitive {
+        name: "torus",
+        doc: "Torus in the xz plane: ring radius `major`, tube radius `minor`.",
+        params: &[
+            opt("major", Ty::Length, num(1.0)),
+            opt("minor", Ty::Length, num(0.25)),
+        ],
+        exact: true,
+        lipschitz: ONE,
+        bound: |c| Bound::origin(c.num(0) + c.num(1)),
+        eval: |c, p| DVec2::new(DVec2::new(p.x, p.z).length() - c.num(0), p.y).length() - c.num(1),
+    },
+    Primitive {
+        name: "capsule",
+        doc: "Vertical capsule: a segment of `height` along y, centred, swept by a ball of `radius`.",
+        params: &[
+            opt("height", Ty::Length, num(1.0)),
+            opt("radius", Ty::Length, num(0.25)),
+        ],
+        exact: true,
+        lipschitz: ONE,
+        bound: |c| Bound::origin(c.num(0) / 2.0 + c.num(1)),
+        eval: |c, p| {
+            let h = c.num(0) / 2.0;
+            DVec3::new(p.x, p.y - p.y.clamp(-h, h), p.z).length() - c.num(1)
+        },
+    },
+    Primitive {
+        name: "cylinder",
+        doc: "Capped vertical cylinder of `radius` and `height`, centred.",
+        params: &[
+            opt("radius", Ty::Length, num(0.5)),
+            opt("height", Ty::Length, num(1.0)),
+        ],
+        exact: true,
+        lipschitz: ONE,
+        bound: |c| Bound::origin(DVec2::new(c.num(0), c.num(1) / 2.0).length()),
+        eval: |c, p| {
+            let d = DVec2::new(DVec2::new(p.x, p.z).length(), p.y).abs()
+                - DVec2::new(c.num(0), c.num(1) / 2.0);
+            d.x.max(d.y).min(0.0) + d.max(DVec2::ZERO).length()
+        },
+    },
+    Primitive {
+        name: "cone",
+        doc: "Capped vertical cone of `height`, centred: base `radius` at the bottom, `top` radius above.",
+        params: &[
+            opt("radius", Ty::Length, num(0.5)),
+            opt("height", Ty::Length, num(1.0)),
+            opt("top", Ty::Length, num(0.0)),
+        ],
+        exact: true,
+        lipschitz: ONE,
+        bound: |c| Bound::origin(DVec2::new(c.num(0).max(c.num(2)), c.num(1) / 2.0).length()),
+        eval: |c, p| sd_capped_cone(p, c.num(1) / 2.0, c.num(0), c.num(2)),
+    },
+    Primitive {
+        name: "ellipsoid",
+        doc: "Ellipsoid with semi-axes `radii`; a bound (λ = 1), exact only for spheres.",
+        params: &[opt("radii", Ty::Size, vec3(1.0, 0.5, 0.5))],
+        exact: false,
+        lipschitz: ONE,
+        bound: |c| Bound::origin(c.vec(0).max_element()),
+        // |p / r| - 1 has gradient at most 1 / min(r); scaling by min(r) makes it 1-Lipschitz.
+        eval: |c, p| {
+            let r = c.vec(0);
+            if r.min_element() <= 0.0 {
+                return degenerate_ellipsoid(p, r);
+            }
+            ((p / r).length() - 1.0) * r.min_element()
+        },
+    },
+    Primitive {
+        name: "octahedron",
+        doc: "Regular octahedron |x| + |y| + |z| = `size`.",
+        params: &[opt("size", Ty::Length, num(1.0))],
+        exact: true,
+        lipschitz: ONE,
+        bound: |c| Bound::origin(c.num(0)),
+        eval: |c, p| sd_octahedron(p, c.num(0)),
+    },
+    Primitive {
+        name: "dodecahedron",
+        doc: "Dodecahedron of inradius `radius` as a generalised distance (Akleman; Keinert Fig. 11); \
+              `exponent` 0 is the sharp max form, ≥ 2 rounds it (λ = √2).",
+        params: &[
+            opt("radius", Ty::Length, num(1.0)),
+            opt("exponent", Ty::Number, num(0.0)),
+        ],
+        exact: false,
+        lipschitz: |c| {
+            if c.num(1) == 0.0 {
+                1.0
+            } else {
+                std::f64::consts::SQRT_2
+            }
+        },
+        // The inradius-r dodecahedron has circumradius r·√3·tan(π/5)·φ ≈ 1.2584 r.
+        bound: |c| Bound::origin(c.num(0) * 1.2585),
+        eval: |c, p| gdf_dodecahedron(p, c.num(0), c.num(1)),
+    },
+    Primitive {
+        name: "mandelbulb",
+        doc: "Power-`power` Mandelbulb by its distance estimator (Bálint's test scene); an estimate, \
+              not a proven bound.",
+        params: &[
+            opt("power", Ty::Range(2.0, 32.0), num(8.0)),
+            opt("iterations", Ty::Count, num(8.0)),
+        ],
+        exact: false,
+        lipschitz: ONE,
+        bound: |c| Bound::origin(mandelbulb_radius(c.num(0))),
+        eval: |c, p| mandelbulb(p, c.num(0), c.num(1) as u32),
+    },
+];
+
+/// Distance to a box of half extents `b` (IQ's exact box).
+pub fn sd_box(p: DVec3, b: DVec3) -> f64 {
+    let q = p.abs() - b;
+    q.max(DVec3::ZERO).length() + q.max_element().min(0.0)
+}
+
+/// Capped cone of half height `h`, bottom radius `r1`, top radius `r2` (IQ's exact capped cone).
+fn sd_capped_cone(p: DVec3, h: f64, r1: f64, r2: f64) -> f64 {
+    let q = DVec2::new(DVec2::new(p.x, p.z).length(), p.y);
+    let k1 = DVec2::new(r2, h);
+    let k2 = DVec2::new(r2 - r1, 2.0 * h);
+    let ca = DVec2::new(
+        q.x - q.x.min(if q.y < 0.0 { r1 } else { r2 }),
+        q.y.abs() - h,
+    );
+    let k2_len2 = k2.length_squared();
+    let t = if k2_len2 > 0.0 {
+        ((k1 - q).dot(k2) / k2_len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    let cb = q - k1 + k2 * t;
+    let s = if cb.x < 0.0 && ca.y < 0.0 { -1.0 } else { 1.0 };
+    s * ca.length_squared().min(cb.length_squared()).sqrt()
+}
+
+/// An ellipsoid with a zero semi-axis is a flat disc or segment: the box bound of its extent.
+fn degenerate_ellipsoid(p: DVec3, r: DVec3) -> f64 {
+    sd_box(p, r)
+}
+
+/// IQ's exact octahedron.
+fn sd_octahedron(p: DVec3, s: f64) -> f64 {
+    let p = p.abs();
+    let m = p.x + p.y + p.z - s;
+    let q = if 3.0 * p.x < m {
+        p
+    } else if 3.0 * p.y < m {
+        DVec3::new(p.y, p.z, p.x)
+    } else if 3.0 * p.z < m {
+        DVec3::new(p.z, p.x, p.y)
+    } else {
+        return m * (1.0 / 3f64.sqrt());
+    };
+    let k = (0.5 * (q.z - q.y + s)).clamp(0.0, s);
+    DVec3::new(q.x, q.y - s + k, q.z - k).length()
+}
+
+/// The six face normals of a dodecahedron: cyclic permutations of (0, ±1, φ), normalised.
+pub fn dodecahedron_normals() -> [DVec3; 6] {
+    let phi = (1.0 + 5f64.sqrt()) / 2.0;
+    let n = |x: f64, y: f64, z: f64| DVec3::new(x, y, z).normalize();
+    [
+        n(0.0, 1.0, phi),
+        n(0.0, -1.0, phi),
+        n(1.0, phi, 0.0),
+        n(-1.0, phi, 0.0),
+        n(phi, 0.0, 1.0),
+        n(-phi, 0.0, 1.0),
+    ]
+}
+
+/// Generalised distance: max of |p·n| (exponent 0) or the `e`-norm of the |p·n| minus the radius.
+fn gdf_dodecahedron(p: DVec3, r: f64, e: f64) -> f64 {
+    let dots = dodecahedron_normals().map(|n| p.dot(n).abs());
+    if e == 0.0 {
+        return dots.iter().fold(0.0f64, |a, &b| a.max(b)) - r;
+    }
+    // Scale by the largest term before the power so large |p| cannot overflow.
+    let m = dots.iter().fold(0.0f64, |a, &b| a.max(b));
+    if m == 0.0 {
+        return -r;
+    }
+    m * dots
+        .iter()
+        .map(|d| (d / m).powf(e))
+        .sum::<f64>()
+        .powf(1.0 / e)
+        - r
+}
+
+/// Radius beyond which every point escapes: |z|^(n−1) > 2 (then |z₁| ≥ |z|ⁿ − |z| > |z|).
+pub fn mandelbulb_radius(power: f64) -> f64 {
+    2f64.powf(1.0 / (power - 1.0))
+}
+
+/// Mandelbulb distance estimate 0.5·ln r·r/dr; far outside (beyond twice the escape radius) the
+/// distance to the escape sphere, which is a true bound where the estimator is not.
+fn mandelbulb(p: DVec3, power: f64, iterations: u32) -> f64 {
+    let escape = mandelbulb_radius(power);
+    if p.length() > 2.0 * escape {
+        return p.length() - escape;
+    }
+    let mut z = p;
+    let mut dr = 1.0;
+    let mut r = z.length();
+    for _ in 0..iterations {
+        r = z.length();
+        if r > 2.0 {
+            break;
+        }
+        // θ by atan2 rather than acos: lavapipe's acos is coarse, and both sides must agree.
+        let theta = DVec2::new(z.x, z.y).length().atan2(z.z) * power;
+        let phi = z.y.atan2(z.x) * power;
+        dr = r.powf(power - 1.0) * power * dr + 1.0;
+        let zr = r.powf(power);
+        z =
+            zr * DVec3::new(
+                theta.sin() * phi.cos(),
+                phi.sin() * theta.sin(),
+                theta.cos(),
+            ) + p;
+        r = z.length();
+    }
+    let r = r.max(1e-20);
+    0.5 * r.ln() * r / dr
+}

@@ -1,0 +1,214 @@
+//! Binding call arguments and settings to catalog parameters, with type and range checks.
+
+use super::{Checker, Dim, Value};
+use crate::catalog::{Param, Ty, Val};
+use crate::diag::{Diagnostic, Span, did_you_mean};
+use crate::syntax::{Arg, Expr, ExprKind};
+use glam::DVec3;
+
+/// A signature for messages: `sphere(radius = 1)`.
+pub fn signature(name: &str, params: &[Param]) -> String {
+    let ps: Vec<String> = params
+        .iter()
+        .map(|p| match p.default {
+            Some(d) => format!("{} = {}", p.name, show_val(d)),
+            None => p.name.to_string(),
+        })
+        .collect();
+    format!("{name}({})", ps.join(", "))
+}
+
+/// A default value as the docs show it.
+pub fn show_val(v: Val) -> String {
+    match v {
+        Val::Num(x) => format!("{x}"),
+        Val::Vec3(v) => format!("({}, {}, {})", v.x, v.y, v.z),
+        Val::Word(_) => "…".into(),
+    }
+}
+
+impl Checker<'_> {
+    /// Binds positional and named arguments to `params`; reports every problem found.
+    pub(super) fn bind(
+        &mut self,
+        what: &str,
+        params: &[Param],
+        args: &[Arg],
+        call_span: Span,
+    ) -> Option<Vec<Val>> {
+        let mut slots: Vec<Option<(Val, Span)>> = vec![None; params.len()];
+        let mut ok = true;
+        let mut seen_named = false;
+        for (i, arg) in args.iter().enumerate() {
+            let index = match &arg.name {
+                Some(name) => {
+                    seen_named = true;
+                    match params.iter().position(|p| p.name == name.name) {
+                        Some(k) => k,
+                        None => {
+                            let mut d = Diagnostic::error(
+                                name.span,
+                                format!("`{what}` has no parameter `{}`", name.name),
+                            )
+                            .label("unknown parameter");
+                            d = match did_you_mean(&name.name, params.iter().map(|p| p.name)) {
+                                Some(s) => d.help(format!("did you mean `{s}`?")),
+                                None => d.help(format!(
+                                    "the parameters are: {}",
+                                    signature(what, params)
+                                )),
+                            };
+                            self.diags.push(d);
+                            ok = false;
+                            continue;
+                        }
+                    }
+                }
+                None if seen_named => {
+                    self.diags.push(
+                        Diagnostic::error(arg.value.span, "positional argument after a named one")
+                            .label("give this one a name too")
+                            .help(signature(what, params)),
+                    );
+                    ok = false;
+                    continue;
+                }
+                None if i >= params.len() => {
+                    let n = params.len();
+                    let s = if n == 1 { "" } else { "s" };
+                    let mut d = Diagnostic::error(
+                        arg.value.span,
+                        format!("`{what}` takes {n} argument{s}, but more were given"),
+                    )
+                    .label("unexpected argument")
+                    .help(signature(what, params));
+                    if matches!(arg.value.kind, ExprKind::Number { .. })
+                        && params
+                            .iter()
+                            .any(|p| matches!(p.ty, Ty::Size | Ty::Vec3 | Ty::Scale))
+                    {
+                        d = d.help("a vector is written in its own parentheses: `box((1, 2, 3))`");
+                    }
+                    self.diags.push(d);
+                    ok = false;
+                    continue;
+                }
+                None => i,
+            };
+            let param = params[index];
+            if let Some((_, first)) = slots[index] {
+                self.diags.push(
+                    Diagnostic::error(arg.value.span, format!("`{}` is given twice", param.name))
+                        .label("second value")
+                        .also(first, "first value"),
+                );
+                ok = false;
+                continue;
+            }
+            match self.convert(&arg.value, param.ty, param.name) {
+                Some(v) => slots[index] = Some((v, arg.value.span)),
+                None => ok = false,
+            }
+        }
+        let mut out = Vec::with_capacity(params.len());
+        for (slot, p) in slots.iter().zip(params) {
+            match (slot, p.default) {
+                (Some((v, _)), _) => out.push(*v),
+                (None, Some(d)) => out.push(d),
+                (None, None) => {
+                    if ok {
+                        self.diags.push(
+                            Diagnostic::error(call_span, format!("missing argument `{}`", p.name))
+                                .label(format!("`{what}` needs `{}`", p.name))
+                                .help(signature(what, params)),
+                        );
+                    }
+                    ok = false;
+                }
+            }
+        }
+        ok.then_some(out)
+    }
+
+    /// Converts an expression to a value of type `ty`, checking its range.
+    pub(super) fn convert(&mut self, e: &Expr, ty: Ty, param: &str) -> Option<Val> {
+        // Words that are not names of bindings: axes and enumerations.
+        if let ExprKind::Name(id) = &e.kind
+            && !self.lets.contains_key(&id.name)
+        {
+            match ty {
+                Ty::Axis => {
+                    if let Some(i) = ["x", "y", "z"].iter().position(|a| *a == id.name) {
+                        return Some(Val::Vec3(DVec3::AXES[i]));
+                    }
+                }
+                Ty::PositiveOr(words) => {
+                    if let Some(i) = words.iter().position(|w| *w == id.name) {
+                        return Some(Val::Word(i));
+                    }
+                }
+                _ => {}
+            }
+        }
+        let value = self.value(e)?;
+        let found = value.describe();
+        let bad = |this: &mut Self, why: String| {
+            this.diags.push(
+                Diagnostic::error(e.span, format!("`{param}` must be {}", ty.describe()))
+                    .label(why),
+            );
+            None
+        };
+        match (ty, value) {
+            (Ty::Angle, Value::Num(x, Dim::Angle)) => Some(Val::Num(x)),
+            (Ty::Angle, Value::Num(x, Dim::None)) => {
+                self.diags.push(
+                    Diagnostic::error(e.span, format!("`{param}` is an angle and needs a unit"))
+                        .label("no unit")
+                        .help(format!("write `{x}deg` or `{x}rad`")),
+                );
+                None
+            }
+            (_, Value::Num(_, Dim::Angle)) if !matches!(ty, Ty::Angle) => {
+                bad(self, "found an angle".into())
+            }
+            (Ty::Number, Value::Num(x, _)) => Some(Val::Num(x)),
+            (Ty::Length, Value::Num(x, _)) if x >= 0.0 => Some(Val::Num(x)),
+            (Ty::Positive | Ty::PositiveOr(_), Value::Num(x, _)) if x > 0.0 => Some(Val::Num(x)),
+            (Ty::Fraction, Value::Num(x, _)) if (0.0..=1.0).contains(&x) => Some(Val::Num(x)),
+            (Ty::Range(lo, hi), Value::Num(x, _)) if x >= lo && x < hi => Some(Val::Num(x)),
+            (Ty::Count, Value::Num(x, _)) if x >= 1.0 && x.fract() == 0.0 => Some(Val::Num(x)),
+            (Ty::Size, Value::Num(x, _)) if x >= 0.0 => Some(Val::Vec3(DVec3::splat(x))),
+            (Ty::Size, Value::Vec3(v)) if v.min_element() >= 0.0 => Some(Val::Vec3(v)),
+            (Ty::Counts, Value::Num(x, _)) if x >= 0.0 && x.fract() == 0.0 => {
+                Some(Val::Vec3(DVec3::splat(x)))
+            }
+            (Ty::Counts, Value::Vec3(v)) if v.min_element() >= 0.0 && v.fract() == DVec3::ZERO => {
+                Some(Val::Vec3(v))
+            }
+            (Ty::Scale, Value::Num(x, _)) if x > 0.0 => Some(Val::Vec3(DVec3::splat(x))),
+            (Ty::Scale, Value::Vec3(v)) if v.min_element() > 0.0 => Some(Val::Vec3(v)),
+            (Ty::Vec3, Value::Vec3(v)) => Some(Val::Vec3(v)),
+            (Ty::Axis, Value::Vec3(v)) if v.length() > 1e-12 => Some(Val::Vec3(v.normalize())),
+            (Ty::Color, Value::Color(c)) => Some(Val::Vec3(c)),
+            (Ty::Color, Value::Vec3(v)) if v.min_element() >= 0.0 && v.max_element() <= 1.0 => {
+                Some(Val::Vec3(v))
+            }
+            (Ty::Scale, Value::Num(..) | Value::Vec3(_)) => {
+                let d = Diagnostic::error(e.span, format!("`{param}` must be {}", ty.describe()))
+                    .label(format!("found {found}"))
+                    .note("a zero or negative scale has no distance field; mirror with `mirror(axis)`");
+                self.diags.push(d);
+                None
+            }
+            (Ty::Axis, Value::Vec3(_)) => bad(self, "a zero vector has no direction".into()),
+            (_, Value::Num(..)) if !matches!(ty, Ty::Vec3 | Ty::Axis | Ty::Color) => {
+                bad(self, format!("found {found}"))
+            }
+            (Ty::Size | Ty::Counts | Ty::Color, Value::Vec3(_)) => {
+                bad(self, format!("found {found}"))
+            }
+            _ => bad(self, format!("found {found}")),
+        }
+    }
+}

@@ -1,0 +1,611 @@
+//! Checking expressions: numbers with units, vectors, colours, names, calls of primitives,
+//! operators and math functions, pipes, materials, annotations and `implicit` bodies.
+
+use super::{Binding, Checker, Dim, MAX_DEPTH, Value};
+use crate::catalog::{self, Arity, Ctx};
+use crate::diag::{Diagnostic, Span, did_you_mean};
+use crate::lipschitz;
+use crate::scene::{Field, NodeId, NodeKind, binary};
+use crate::syntax::{Arg, BinOp, Call, Expr, ExprKind, Ident};
+use glam::DVec3;
+
+/// Units a number may carry, and the factor to radians.
+const UNITS: &[(&str, f64)] = &[("deg", std::f64::consts::PI / 180.0), ("rad", 1.0)];
+
+impl Checker<'_> {
+    /// Checks an expression that must be a shape.
+    pub(super) fn shape(&mut self, e: &Expr) -> Option<NodeId> {
+        match self.value(e)? {
+            Value::Shape(n) => Some(n),
+            other => {
+                self.diags.push(
+                    Diagnostic::error(e.span, "expected a shape")
+                        .label(format!("this is {}", other.describe())),
+                );
+                None
+            }
+        }
+    }
+
+    /// Checks any expression; `None` means an error was reported.
+    pub(super) fn value(&mut self, e: &Expr) -> Option<Value> {
+        if self.depth >= MAX_DEPTH {
+            if self.depth == MAX_DEPTH {
+                self.diags.push(
+                    Diagnostic::error(e.span, "expression nested too deeply")
+                        .note(format!("the limit is {MAX_DEPTH} levels"))
+                        .help("split it into `let` bindings"),
+                );
+                // Report once per chain.
+                self.depth += 1;
+            }
+            return None;
+        }
+        self.depth += 1;
+        let v = self.value_inner(e);
+        self.depth -= 1;
+        if self.depth == MAX_DEPTH {
+            self.depth -= 1;
+        }
+        v
+    }
+
+    fn value_inner(&mut self, e: &Expr) -> Option<Value> {
+        match &e.kind {
+            ExprKind::Number { value, unit } => self.number(*value, unit.as_ref()),
+            ExprKind::Color(text) => self.color(text, e.span),
+            ExprKind::Vector(parts) => {
+                let mut v = DVec3::ZERO;
+                let mut ok = true;
+                for (i, part) in parts.iter().enumerate() {
+                    match self.value(part) {
+                        Some(Value::Num(x, Dim::None)) => v[i] = x,
+                        Some(other) => {
+                            self.diags.push(
+                                Diagnostic::error(
+                                    part.span,
+                                    "a vector's components must be numbers",
+                                )
+                                .label(format!("this is {}", other.describe())),
+                            );
+                            ok = false;
+                        }
+                        None => ok = false,
+                    }
+                }
+                ok.then_some(Value::Vec3(v))
+            }
+            ExprKind::Name(id) => self.name(id),
+            ExprKind::Call(call) => self.call(call, None),
+            ExprKind::Neg(a) => match self.value(a)? {
+                Value::Num(x, d) => Some(Value::Num(-x, d)),
+                Value::Vec3(v) => Some(Value::Vec3(-v)),
+                Value::Field(f) => Some(Value::Field(Field::Neg(Box::new(f)))),
+                other => self.no_arithmetic(e.span, "-", &other),
+            },
+            ExprKind::Binary(op, a, b) => {
+                let (a, b) = (self.value(a), self.value(b));
+                self.binary(*op, a?, b?, e.span)
+            }
+            ExprKind::Pipe(lhs, call) => {
+                let child = self.shape(lhs)?;
+                self.call(call, Some(child))
+            }
+            ExprKind::Tag(lhs, material) => {
+                let n = self.shape(lhs);
+                let m = self.material_ref(material);
+                let n = self.copy_node(n?)?;
+                self.nodes[n].material = Some(m?);
+                self.nodes[n].span = e.span;
+                Some(Value::Shape(n))
+            }
+            ExprKind::Annotation(lhs, name, args) => {
+                let n = self.shape(lhs);
+                let l = self.annotation(name, args, e.span);
+                let (n, l) = (n?, l?);
+                let inferred = self.nodes[n].inferred_lambda;
+                if inferred.is_finite() && l > inferred * (1.0 + 1e-9) {
+                    self.diags.push(
+                        Diagnostic::warning(e.span, "annotation is looser than the inferred bound")
+                            .label(format!("inferred λ = {}", short(inferred)))
+                            .note(format!(
+                                "tracing steps by f/λ, so λ = {} makes steps {:.2}× shorter than needed",
+                                short(l),
+                                l / inferred
+                            )),
+                    );
+                }
+                let n = self.copy_node(n)?;
+                self.nodes[n].lambda = l;
+                self.nodes[n].span = e.span;
+                Some(Value::Shape(n))
+            }
+            ExprKind::At(lhs, offset) => {
+                let n = self.shape(lhs);
+                let v = self.convert(offset, catalog::Ty::Vec3, "offset");
+                self.operator_node("translate", vec![v?], vec![n?], e.span)
+                    .map(Value::Shape)
+            }
+        }
+    }
+
+    fn number(&mut self, value: f64, unit: Option<&Ident>) -> Option<Value> {
+        let Some(unit) = unit else {
+            return Some(Value::Num(value, Dim::None));
+        };
+        match UNITS.iter().find(|(u, _)| *u == unit.name) {
+            Some((_, factor)) => Some(Value::Num(value * factor, Dim::Angle)),
+            None => {
+                let mut d = Diagnostic::error(unit.span, format!("unknown unit `{}`", unit.name))
+                    .label("not a unit");
+                d = match did_you_mean(&unit.name, UNITS.iter().map(|(u, _)| *u)) {
+                    Some(s) => d.help(format!("did you mean `{s}`?")),
+                    None => d.note("the units are `deg` and `rad`; lengths have no unit"),
+                };
+                self.diags.push(d);
+                None
+            }
+        }
+    }
+
+    fn color(&mut self, text: &str, span: Span) -> Option<Value> {
+        let hex = &text[1..];
+        let digits: Option<Vec<u32>> = hex.chars().map(|c| c.to_digit(16)).collect();
+        let rgb = match (digits, hex.len()) {
+            (Some(d), 6) => [0, 2, 4].map(|i| (d[i] * 16 + d[i + 1]) as f64 / 255.0),
+            (Some(d), 3) => [0, 1, 2].map(|i| (d[i] * 17) as f64 / 255.0),
+            _ => {
+                self.diags.push(
+                    Diagnostic::error(span, format!("`{text}` is not a colour"))
+                        .label("expected `#rrggbb` or `#rgb` in hexadecimal digits"),
+                );
+                return None;
+            }
+        };
+        Some(Value::Color(DVec3::from_array(rgb)))
+    }
+
+    fn name(&mut self, id: &Ident) -> Option<Value> {
+        if self.in_implicit
+            && let Some(i) = ["x", "y", "z"].iter().position(|a| *a == id.name)
+        {
+            return Some(Value::Field(Field::Coord(i)));
+        }
+        if let Some((binding, _)) = self.lets.get(&id.name) {
+            return match binding {
+                Binding::Value(v) => Some(v.clone()),
+                Binding::Failed => None,
+            };
+        }
+        let d = if self.defining == Some(id.name.as_str()) {
+            Diagnostic::error(id.span, format!("`{}` refers to itself", id.name))
+                .label("used inside its own definition")
+                .note("definitions cannot be recursive")
+        } else if let Some(def) = self.declared.get(&id.name) {
+            let what = if self.materials.iter().any(|m| m.name == id.name)
+                || self.is_material_declared_at(*def)
+            {
+                "a material, not a value"
+            } else {
+                "defined later in the file"
+            };
+            Diagnostic::error(
+                id.span,
+                format!("`{}` is used before its definition", id.name),
+            )
+            .label(what)
+            .also(*def, "defined here")
+            .help("move the definition above its first use")
+        } else if catalog::all_names().any(|n| n == id.name) {
+            Diagnostic::error(id.span, format!("`{}` needs arguments", id.name))
+                .label("a call, written without parentheses")
+                .help(format!("write `{}(...)`", id.name))
+        } else {
+            let mut d = Diagnostic::error(id.span, format!("unknown name `{}`", id.name))
+                .label("not defined");
+            let lets: Vec<&str> = self.lets.keys().map(String::as_str).collect();
+            if let Some(s) = did_you_mean(&id.name, lets) {
+                d = d.help(format!("did you mean `{s}`?"));
+            } else if ["x", "y", "z"].contains(&id.name.as_str()) {
+                d = d.note("coordinates exist only inside `implicit { ... }`");
+            }
+            d
+        };
+        self.diags.push(d);
+        None
+    }
+
+    fn is_material_declared_at(&self, span: Span) -> bool {
+        self.material_spans.contains(&span)
+    }
+
+    fn no_arithmetic(&mut self, span: Span, op: &str, v: &Value) -> Option<Value> {
+        let mut d = Diagnostic::error(
+            span,
+            format!("`{op}` cannot be applied to {}", v.describe()),
+        )
+        .label("unsupported operand");
+        if matches!(v, Value::Shape(_)) {
+            d = d.help(match op {
+                "+" => "combine shapes with `union { a b }`",
+                "-" => "cut shapes with `subtract { a b }` or turn them inside out with `complement { a }`",
+                _ => "shapes combine with operators such as `union`, `intersect` and `mix`",
+            });
+        }
+        self.diags.push(d);
+        None
+    }
+
+    fn binary(&mut self, op: BinOp, a: Value, b: Value, span: Span) -> Option<Value> {
+        match (a, b) {
+            (Value::Num(x, da), Value::Num(y, db)) => {
+                let dim = match (op, da, db) {
+                    (_, Dim::None, Dim::None) => Dim::None,
+                    (BinOp::Add | BinOp::Sub, d1, d2) if d1 == d2 => d1,
+                    (BinOp::Mul, Dim::Angle, Dim::None) | (BinOp::Mul, Dim::None, Dim::Angle) => {
+                        Dim::Angle
+                    }
+                    (BinOp::Div, Dim::Angle, Dim::None) => Dim::Angle,
+                    (BinOp::Div, Dim::Angle, Dim::Angle) => Dim::None,
+                    _ => {
+                        self.diags.push(
+                            Diagnostic::error(span, "mixed units")
+                                .label(format!("`{}` of an angle and a plain number", op.symbol()))
+                                .help("give both operands a unit, or neither"),
+                        );
+                        return None;
+                    }
+                };
+                self.finite(binary(op, x, y), span)
+                    .map(|r| Value::Num(r, dim))
+            }
+            (Value::Vec3(v), Value::Num(s, Dim::None)) if matches!(op, BinOp::Mul | BinOp::Div) => {
+                let r = if op == BinOp::Mul { v * s } else { v / s };
+                self.finite_vec(r, span)
+            }
+            (Value::Num(s, Dim::None), Value::Vec3(v)) if op == BinOp::Mul => {
+                self.finite_vec(v * s, span)
+            }
+            (Value::Vec3(a), Value::Vec3(b)) if matches!(op, BinOp::Add | BinOp::Sub) => {
+                self.finite_vec(if op == BinOp::Add { a + b } else { a - b }, span)
+            }
+            (
+                a @ (Value::Field(_) | Value::Num(_, Dim::None)),
+                b @ (Value::Field(_) | Value::Num(_, Dim::None)),
+            ) => Some(Value::Field(Field::Binary(
+                op,
+                Box::new(as_field(a)),
+                Box::new(as_field(b)),
+            ))),
+            (a, b) => {
+                let bad = if matches!(a, Value::Num(..) | Value::Field(_)) {
+                    b
+                } else {
+                    a
+                };
+                self.no_arithmetic(span, op.symbol(), &bad)
+            }
+        }
+    }
+
+    fn finite(&mut self, x: f64, span: Span) -> Option<f64> {
+        if x.is_finite() {
+            return Some(x);
+        }
+        let what = if x.is_nan() {
+            "not a number (NaN)"
+        } else {
+            "infinite"
+        };
+        self.diags.push(
+            Diagnostic::error(span, format!("this value is {what}"))
+                .label("computed here")
+                .note("every number in a scene must be finite"),
+        );
+        None
+    }
+
+    fn finite_vec(&mut self, v: DVec3, span: Span) -> Option<Value> {
+        for i in 0..3 {
+            self.finite(v[i], span)?;
+        }
+        Some(Value::Vec3(v))
+    }
+
+    /// A call: a math function, `implicit`, a primitive or an operator. `piped` is the child
+    /// given by `lhs |> call`.
+    fn call(&mut self, call: &Call, piped: Option<NodeId>) -> Option<Value> {
+        let name = call.name.name.as_str();
+        if let Some(f) = catalog::math_fn(name) {
+            return self.math_call(f, call);
+        }
+        if name == "implicit" {
+            return self.implicit(call, piped);
+        }
+        if let Some(prim) = catalog::primitive(name) {
+            if piped.is_some() {
+                self.diags.push(
+                    Diagnostic::error(
+                        call.name.span,
+                        format!("`{name}` is a primitive and takes no shape"),
+                    )
+                    .label("only operators can follow `|>`"),
+                );
+                return None;
+            }
+            if let Some(block) = &call.block {
+                let span = block.first().map_or(call.span, |e| e.span);
+                self.diags.push(
+                    Diagnostic::error(span, format!("`{name}` is a primitive and takes no block"))
+                        .label("unexpected block")
+                        .help(format!("write `{}`", signature_of_prim(prim))),
+                );
+                return None;
+            }
+            let args = self.bind(name, prim.params, &call.args, call.span)?;
+            let ctx = Ctx {
+                args,
+                child_lambda: Vec::new(),
+                child_bound: Vec::new(),
+            };
+            let lambda = (prim.lipschitz)(&ctx);
+            let bound = (prim.bound)(&ctx);
+            return self
+                .push_node(NodeKind::Primitive { prim, ctx }, lambda, bound, call.span)
+                .map(Value::Shape);
+        }
+        if let Some(op) = catalog::operator(name) {
+            let args = self.bind(name, op.params, &call.args, call.span);
+            let children = self.children(call, piped, op.arity)?;
+            return self
+                .operator_node(name, args?, children, call.span)
+                .map(Value::Shape);
+        }
+        let mut d = Diagnostic::error(
+            call.name.span,
+            format!("unknown function or shape `{name}`"),
+        )
+        .label("not in the catalog");
+        let candidates = catalog::all_names().chain(["implicit"]);
+        d = match did_you_mean(name, candidates) {
+            Some(s) => d.help(format!("did you mean `{s}`?")),
+            None => d.note("`sdfc check --list` prints the primitives and operators"),
+        };
+        self.diags.push(d);
+        // Check the arguments anyway so their errors are reported too.
+        for a in &call.args {
+            self.value(&a.value);
+        }
+        None
+    }
+
+    fn children(
+        &mut self,
+        call: &Call,
+        piped: Option<NodeId>,
+        arity: Arity,
+    ) -> Option<Vec<NodeId>> {
+        let name = &call.name.name;
+        let mut children = Vec::new();
+        let mut ok = true;
+        match (&call.block, piped) {
+            (Some(_), Some(_)) => {
+                self.diags.push(
+                    Diagnostic::error(
+                        call.span,
+                        format!("`{name}` gets its shape from `|>` and a block"),
+                    )
+                    .label("give it one or the other"),
+                );
+                return None;
+            }
+            (Some(block), None) => {
+                for e in block {
+                    match self.shape(e) {
+                        Some(n) => children.push(n),
+                        None => ok = false,
+                    }
+                }
+            }
+            (None, Some(n)) => children.push(n),
+            (None, None) => {
+                self.diags.push(
+                    Diagnostic::error(call.span, format!("`{name}` needs shapes to work on"))
+                        .label("no block")
+                        .help(format!(
+                            "write `{name}(...) {{ shape ... }}` or `shape |> {name}(...)`"
+                        )),
+                );
+                return None;
+            }
+        }
+        if !ok {
+            return None;
+        }
+        if !arity.accepts(children.len()) {
+            let want = match arity {
+                Arity::Exactly(1) => "exactly one shape".to_string(),
+                Arity::Exactly(n) => format!("exactly {n} shapes"),
+                Arity::AtLeast(1) => "at least one shape".to_string(),
+                Arity::AtLeast(n) => format!("at least {n} shapes"),
+            };
+            let msg = if children.is_empty() {
+                format!("empty `{name}` block")
+            } else {
+                format!("`{name}` takes {want}, found {}", children.len())
+            };
+            self.diags
+                .push(Diagnostic::error(call.span, msg).label(format!("`{name}` takes {want}")));
+            return None;
+        }
+        Some(children)
+    }
+
+    fn math_call(&mut self, f: &'static catalog::MathFn, call: &Call) -> Option<Value> {
+        if call.block.is_some()
+            || call.args.iter().any(|a| a.name.is_some())
+            || call.args.len() != f.arity
+        {
+            let s = if f.arity == 1 { "" } else { "s" };
+            self.diags.push(
+                Diagnostic::error(
+                    call.span,
+                    format!("`{}` takes {} argument{s}", f.name, f.arity),
+                )
+                .label(format!("`{}`: {}", f.name, f.doc)),
+            );
+            return None;
+        }
+        let mut args = Vec::new();
+        for a in &call.args {
+            args.push(self.value(&a.value));
+        }
+        let args: Vec<Value> = args.into_iter().collect::<Option<_>>()?;
+        if args.iter().all(|a| matches!(a, Value::Num(..))) {
+            let xs: Vec<f64> = args
+                .iter()
+                .map(|a| if let Value::Num(x, _) = a { *x } else { 0.0 })
+                .collect();
+            return self
+                .finite((f.eval)(&xs), call.span)
+                .map(|r| Value::Num(r, Dim::None));
+        }
+        if let Some((bad, arg)) = args
+            .iter()
+            .zip(&call.args)
+            .find(|(a, _)| !matches!(a, Value::Num(..) | Value::Field(_)))
+        {
+            return self.no_arithmetic(arg.value.span, f.name, bad);
+        }
+        Some(Value::Field(Field::Call(
+            f,
+            args.into_iter().map(as_field).collect(),
+        )))
+    }
+
+    fn implicit(&mut self, call: &Call, piped: Option<NodeId>) -> Option<Value> {
+        let body = match (&call.block, piped, call.args.is_empty()) {
+            (Some(b), None, true) if b.len() == 1 => &b[0],
+            _ => {
+                self.diags.push(
+                    Diagnostic::error(
+                        call.span,
+                        "`implicit` takes one expression of x, y and z in a block",
+                    )
+                    .label("e.g. `implicit { length(x, y, z) - 1 }`"),
+                );
+                return None;
+            }
+        };
+        let outer = std::mem::replace(&mut self.in_implicit, true);
+        let v = self.value(body);
+        self.in_implicit = outer;
+        let field = match v? {
+            Value::Field(f) => f,
+            Value::Num(x, Dim::None) => Field::Const(x),
+            other => {
+                self.diags.push(
+                    Diagnostic::error(body.span, "`implicit` needs a number-valued expression")
+                        .label(format!("this is {}", other.describe())),
+                );
+                return None;
+            }
+        };
+        let lambda = lipschitz::infer(&field);
+        self.push_node(
+            NodeKind::Implicit { field },
+            lambda,
+            catalog::Bound::INFINITE,
+            call.span,
+        )
+        .map(Value::Shape)
+    }
+
+    fn annotation(&mut self, name: &Ident, args: &[Arg], span: Span) -> Option<f64> {
+        if name.name != "lipschitz" {
+            let mut d =
+                Diagnostic::error(name.span, format!("unknown annotation `@{}`", name.name))
+                    .label("not an annotation");
+            d = match did_you_mean(&name.name, ["lipschitz"]) {
+                Some(s) => d.help(format!("did you mean `@{s}`?")),
+                None => d.note("the only annotation is `@lipschitz(L)`"),
+            };
+            self.diags.push(d);
+            return None;
+        }
+        let [Arg { name: None, value }] = args else {
+            self.diags.push(
+                Diagnostic::error(span, "`@lipschitz` takes one number")
+                    .label("e.g. `@lipschitz(2)`"),
+            );
+            return None;
+        };
+        match self.value(value)? {
+            Value::Num(l, Dim::None) if l.is_finite() && l > 0.0 => Some(l),
+            other => {
+                self.diags.push(
+                    Diagnostic::error(value.span, "a Lipschitz bound must be a finite number > 0")
+                        .label(format!("found {}", other.describe())),
+                );
+                None
+            }
+        }
+    }
+
+    fn material_ref(&mut self, id: &Ident) -> Option<u32> {
+        if let Some(i) = self.materials.iter().position(|m| m.name == id.name) {
+            return Some(i as u32);
+        }
+        let d = match self.declared.get(&id.name) {
+            Some(def) if self.material_spans.contains(def) => Diagnostic::error(
+                id.span,
+                format!("material `{}` is used before its definition", id.name),
+            )
+            .label("defined later")
+            .also(*def, "defined here")
+            .help("move the material above its first use"),
+            _ => {
+                let mut d = Diagnostic::error(id.span, format!("unknown material `{}`", id.name))
+                    .label("no such material");
+                let names: Vec<&str> = self.materials.iter().map(|m| m.name.as_str()).collect();
+                d = match did_you_mean(&id.name, names) {
+                    Some(s) => d.help(format!("did you mean `{s}`?")),
+                    None => d.help(format!(
+                        "declare it: `material {} {{ color #d4af37 }}`",
+                        id.name
+                    )),
+                };
+                d
+            }
+        };
+        self.diags.push(d);
+        None
+    }
+
+    /// A copy of a node, so that tagging or annotating a shared (`let`) shape changes only this
+    /// use of it.
+    fn copy_node(&mut self, n: NodeId) -> Option<NodeId> {
+        let node = self.nodes[n].clone();
+        let id = self.push_node(node.kind.clone(), node.lambda, node.bound, node.span)?;
+        self.nodes[id] = node;
+        Some(id)
+    }
+}
+
+fn signature_of_prim(p: &catalog::Primitive) -> String {
+    super::signature(p.name, p.params)
+}
+
+fn as_field(v: Value) -> Field {
+    match v {
+        Value::Num(x, _) => Field::Const(x),
+        Value::Field(f) => f,
+        _ => Field::Const(f64::NAN),
+    }
+}
+
+/// A number printed short for messages.
+fn short(x: f64) -> String {
+    let s = format!("{x:.4}");
+    s.trim_end_matches('0').trim_end_matches('.').to_string()
+}

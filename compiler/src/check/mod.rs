@@ -1,0 +1,339 @@
+//! Checking: AST → scene graph. Names resolved, arguments typed and ranged, units converted,
+//! materials resolved, a Lipschitz bound for every node; all errors of a file reported at once.
+
+mod args;
+mod expr;
+mod settings;
+
+pub use args::signature;
+pub use settings::{LIGHT_KINDS, TRACE_METHODS};
+
+use crate::catalog::{Bound, Ctx};
+use crate::diag::{Diagnostic, Span};
+use crate::scene::{Field, Material, Node, NodeId, NodeKind, Scene};
+use crate::syntax::{self, Expr, Item};
+use glam::DVec3;
+use std::collections::HashMap;
+
+/// Most shape nodes a scene may have.
+pub const MAX_NODES: usize = 100_000;
+/// Deepest expression nesting the checker follows.
+pub const MAX_DEPTH: usize = 256;
+
+/// The result of checking: a scene (if there were no errors) and all diagnostics, warnings
+/// included.
+pub struct Checked {
+    /// The scene, when no error was found.
+    pub scene: Option<Scene>,
+    /// Errors and warnings in source order.
+    pub diagnostics: Vec<Diagnostic>,
+}
+
+/// Parses and checks source text.
+pub fn compile(source: &str) -> Checked {
+    match syntax::parse(source) {
+        Ok(file) => check(&file),
+        Err(d) => Checked {
+            scene: None,
+            diagnostics: vec![d],
+        },
+    }
+}
+
+/// Checks a parsed file.
+pub fn check(file: &syntax::File) -> Checked {
+    let mut c = Checker::new(file);
+    let mut roots = Vec::new();
+    for item in &file.items {
+        match item {
+            Item::Let { name, value } => c.let_binding(name, value),
+            Item::Block {
+                keyword,
+                kind,
+                settings,
+                span,
+            } => c.block(keyword, kind.as_ref(), settings, *span),
+            Item::Value { keyword, value } => c.value_statement(keyword, value),
+            Item::Scene(e) => {
+                if let Some(n) = c.shape(e) {
+                    roots.push(n);
+                }
+            }
+        }
+    }
+    let had_scene = file.items.iter().any(|i| matches!(i, Item::Scene(_)));
+    let root = match roots.len() {
+        0 => {
+            if !had_scene {
+                let end = file_end(file);
+                c.diags.push(
+                    Diagnostic::error(Span::new(end, end), "the file has no shape to render")
+                        .help("add a shape after the settings, e.g. `sphere(1)`"),
+                );
+            }
+            None
+        }
+        1 => Some(roots[0]),
+        _ => {
+            let span = c.nodes[roots[0]]
+                .span
+                .to(c.nodes[*roots.last().unwrap()].span);
+            c.operator_node("union", Vec::new(), roots, span)
+        }
+    };
+    if let Some(root) = root {
+        c.check_bounded(root);
+    }
+    c.diags.sort_by_key(|d| (d.span.start, d.span.end));
+    let ok = !c.diags.iter().any(Diagnostic::is_error);
+    let diagnostics = std::mem::take(&mut c.diags);
+    let scene = match (ok, root) {
+        (true, Some(root)) => Some(c.finish(root)),
+        _ => None,
+    };
+    Checked { scene, diagnostics }
+}
+
+fn file_end(file: &syntax::File) -> usize {
+    file.items
+        .iter()
+        .map(|i| match i {
+            Item::Let { value, .. } | Item::Value { value, .. } | Item::Scene(value) => {
+                value.span.end
+            }
+            Item::Block { span, .. } => span.end,
+        })
+        .max()
+        .unwrap_or(0)
+}
+
+/// The dimension of a number: plain, or an angle (from a `deg`/`rad` unit).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Dim {
+    None,
+    Angle,
+}
+
+/// A value during checking.
+#[derive(Clone, Debug)]
+pub(crate) enum Value {
+    Num(f64, Dim),
+    Vec3(DVec3),
+    Color(DVec3),
+    Shape(NodeId),
+    /// An expression of x, y, z (inside `implicit`).
+    Field(Field),
+}
+
+impl Value {
+    fn describe(&self) -> String {
+        match self {
+            Value::Num(x, Dim::None) => format!("the number {x}"),
+            Value::Num(x, Dim::Angle) => format!("the angle {x}rad"),
+            Value::Vec3(v) => format!("the vector ({}, {}, {})", v.x, v.y, v.z),
+            Value::Color(_) => "a colour".into(),
+            Value::Shape(_) => "a shape".into(),
+            Value::Field(_) => "an expression of x, y, z".into(),
+        }
+    }
+}
+
+/// What a `let` name stands for.
+#[derive(Clone, Debug)]
+enum Binding {
+    /// A checked value.
+    Value(Value),
+    /// The definition had errors (already reported); uses stay quiet.
+    Failed,
+}
+
+pub(crate) struct Checker<'a> {
+    nodes: Vec<Node>,
+    diags: Vec<Diagnostic>,
+    lets: HashMap<String, (Binding, Span)>,
+    /// Every `let` and `material` name in the file with its definition, for "used before
+    /// definition" messages.
+    declared: HashMap<String, Span>,
+    /// Definition spans of the file's material names.
+    material_spans: Vec<Span>,
+    materials: Vec<Material>,
+    /// The `let` being checked, to catch self-reference.
+    defining: Option<&'a str>,
+    /// Inside an `implicit` body: x, y and z are coordinates.
+    in_implicit: bool,
+    depth: usize,
+    settings: settings::Settings,
+}
+
+impl<'a> Checker<'a> {
+    fn new(file: &'a syntax::File) -> Checker<'a> {
+        let mut declared = HashMap::new();
+        let mut material_spans = Vec::new();
+        for item in &file.items {
+            match item {
+                Item::Let { name, .. } => {
+                    declared.entry(name.name.clone()).or_insert(name.span);
+                }
+                Item::Block {
+                    keyword,
+                    kind: Some(kind),
+                    ..
+                } if keyword.name == "material" => {
+                    declared.entry(kind.name.clone()).or_insert(kind.span);
+                    material_spans.push(kind.span);
+                }
+                _ => {}
+            }
+        }
+        Checker {
+            nodes: Vec::new(),
+            diags: Vec::new(),
+            lets: HashMap::new(),
+            declared,
+            material_spans,
+            materials: Vec::new(),
+            defining: None,
+            in_implicit: false,
+            depth: 0,
+            settings: settings::Settings::default(),
+        }
+    }
+
+    fn let_binding(&mut self, name: &'a syntax::Ident, value: &'a Expr) {
+        if let Some(d) = self.reserved_name(name) {
+            self.diags.push(d);
+            return;
+        }
+        if let Some((_, first)) = self.lets.get(&name.name) {
+            self.diags.push(
+                Diagnostic::error(name.span, format!("`{}` is defined twice", name.name))
+                    .label("second definition")
+                    .also(*first, "first definition"),
+            );
+            return;
+        }
+        self.defining = Some(&name.name);
+        let binding = match self.value(value) {
+            Some(Value::Shape(n)) => {
+                self.nodes[n].name.get_or_insert_with(|| name.name.clone());
+                Binding::Value(Value::Shape(n))
+            }
+            Some(v) => Binding::Value(v),
+            None => Binding::Failed,
+        };
+        self.defining = None;
+        self.lets.insert(name.name.clone(), (binding, name.span));
+    }
+
+    /// Names that would be confusing or ambiguous as `let` or material names.
+    fn reserved_name(&self, name: &syntax::Ident) -> Option<Diagnostic> {
+        let n = name.name.as_str();
+        if ["x", "y", "z"].contains(&n) {
+            return Some(
+                Diagnostic::error(name.span, format!("`{n}` is reserved"))
+                    .label("x, y and z name the coordinates inside `implicit` and the axes"),
+            );
+        }
+        if crate::catalog::all_names().any(|c| c == n) || n == "implicit" {
+            return Some(
+                Diagnostic::error(
+                    name.span,
+                    format!("`{n}` is already the name of a built-in"),
+                )
+                .label("choose another name"),
+            );
+        }
+        None
+    }
+
+    /// Adds a node; `None` (with an error) past [`MAX_NODES`].
+    fn push_node(
+        &mut self,
+        kind: NodeKind,
+        lambda: f64,
+        bound: Bound,
+        span: Span,
+    ) -> Option<NodeId> {
+        if self.nodes.len() >= MAX_NODES {
+            if self.nodes.len() == MAX_NODES {
+                self.diags.push(
+                    Diagnostic::error(span, "the scene has too many nodes")
+                        .note(format!("the limit is {MAX_NODES} nodes")),
+                );
+                // Push a placeholder so the message is given once.
+                self.nodes.push(self.nodes[0].clone());
+            }
+            return None;
+        }
+        self.nodes.push(Node {
+            kind,
+            span,
+            lambda,
+            inferred_lambda: lambda,
+            bound,
+            material: None,
+            name: None,
+        });
+        Some(self.nodes.len() - 1)
+    }
+
+    /// Builds an operator node over checked children.
+    fn operator_node(
+        &mut self,
+        name: &str,
+        args: Vec<crate::catalog::Val>,
+        children: Vec<NodeId>,
+        span: Span,
+    ) -> Option<NodeId> {
+        let op = crate::catalog::operator(name).expect("operator in the catalog");
+        let ctx = Ctx {
+            args,
+            child_lambda: children.iter().map(|&c| self.nodes[c].lambda).collect(),
+            child_bound: children.iter().map(|&c| self.nodes[c].bound).collect(),
+        };
+        let lambda = (op.lipschitz)(&ctx);
+        let bound = (op.bound)(&ctx);
+        self.push_node(
+            NodeKind::Operator { op, ctx, children },
+            lambda,
+            bound,
+            span,
+        )
+    }
+
+    /// Every reachable node needs a finite λ; report those that have none.
+    fn check_bounded(&mut self, root: NodeId) {
+        let mut seen = vec![false; self.nodes.len()];
+        let mut stack = vec![root];
+        while let Some(n) = stack.pop() {
+            if std::mem::replace(&mut seen[n], true) {
+                continue;
+            }
+            let node = &self.nodes[n];
+            let children_bounded = node
+                .children()
+                .iter()
+                .all(|&c| self.nodes[c].lambda.is_finite());
+            if !node.lambda.is_finite() && children_bounded {
+                let what = node.kind_name();
+                let mut d = Diagnostic::error(
+                    node.span,
+                    format!("cannot bound the slope of this `{what}`"),
+                )
+                .label("no Lipschitz bound")
+                .help("add `@lipschitz(L)` after it with a bound L on the gradient's length");
+                if what == "twist" || what == "bend" {
+                    d = d.note(format!(
+                        "`{what}` can only be bounded when its shape is bounded"
+                    ));
+                }
+                self.diags.push(d);
+            }
+            stack.extend(self.nodes[n].children().iter().copied());
+        }
+    }
+
+    fn finish(self, root: NodeId) -> Scene {
+        self.settings.finish(self.nodes, root, self.materials)
+    }
+}

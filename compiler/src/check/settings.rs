@@ -1,0 +1,335 @@
+//! Checking the settings statements: camera, lights, tracer, materials and background, each a
+//! table of parameters bound by the same code as call arguments.
+
+use super::Checker;
+use crate::catalog::{Param, Ty, Val, opt, req};
+use crate::diag::{Diagnostic, Span, did_you_mean};
+use crate::scene::{
+    Camera, Epsilon, Light, LightKind, Material, Method, Node, NodeId, Scene, Trace,
+};
+use crate::syntax::{Arg, Expr, Ident, Setting};
+use glam::DVec3;
+
+/// Largest step budget a tracer accepts.
+pub const MAX_STEPS: f64 = 100_000.0;
+
+const fn v(x: f64, y: f64, z: f64) -> Val {
+    Val::Vec3(DVec3::new(x, y, z))
+}
+
+const CAMERA: &[Param] = &[
+    opt("eye", Ty::Vec3, v(0.0, 1.0, -5.0)),
+    opt("target", Ty::Vec3, v(0.0, 0.0, 0.0)),
+    opt("up", Ty::Axis, v(0.0, 1.0, 0.0)),
+    opt("fov", Ty::Angle, Val::Num(std::f64::consts::PI / 4.0)),
+];
+
+const MATERIAL: &[Param] = &[
+    opt("color", Ty::Color, v(0.8, 0.8, 0.8)),
+    opt("specular", Ty::Fraction, Val::Num(0.0)),
+];
+
+/// Light kinds (`light point { .. }`); the first is the default.
+pub const LIGHT_KINDS: &[(&str, &[Param])] = &[
+    (
+        "directional",
+        &[
+            opt("direction", Ty::Axis, v(-0.4, 1.0, -0.3)),
+            opt("color", Ty::Color, v(1.0, 1.0, 1.0)),
+            opt("intensity", Ty::Length, Val::Num(1.0)),
+        ],
+    ),
+    (
+        "point",
+        &[
+            req("position", Ty::Vec3),
+            opt("color", Ty::Color, v(1.0, 1.0, 1.0)),
+            opt("intensity", Ty::Length, Val::Num(1.0)),
+        ],
+    ),
+];
+
+const STEPS: Param = opt("steps", Ty::Count, Val::Num(128.0));
+const EPSILON: Param = opt("epsilon", Ty::PositiveOr(&["pixel"]), Val::Word(0));
+const MAX_DISTANCE: Param = opt("max_distance", Ty::Positive, Val::Num(100.0));
+const OMEGA: Param = opt("omega", Ty::Range(1.0, 2.0), Val::Num(1.2));
+
+/// Tracing methods (`trace enhanced { .. }`) and their parameters; the first is the default.
+pub const TRACE_METHODS: &[(&str, Method, &[Param])] = &[
+    ("basic", Method::Basic, &[STEPS, EPSILON, MAX_DISTANCE]),
+    (
+        "relaxed",
+        Method::Relaxed,
+        &[STEPS, EPSILON, MAX_DISTANCE, OMEGA],
+    ),
+    (
+        "enhanced",
+        Method::Enhanced,
+        &[STEPS, EPSILON, MAX_DISTANCE, OMEGA],
+    ),
+    ("hybrid", Method::Hybrid, &[STEPS, EPSILON, MAX_DISTANCE]),
+    ("auto", Method::Auto, &[STEPS, EPSILON, MAX_DISTANCE, OMEGA]),
+];
+
+/// Settings collected while checking, with where each was first given.
+#[derive(Default)]
+pub(super) struct Settings {
+    camera: Option<(Camera, Span)>,
+    lights: Vec<Light>,
+    trace: Option<(Trace, Span)>,
+    background: Option<(DVec3, Span)>,
+}
+
+impl Settings {
+    pub(super) fn finish(self, nodes: Vec<Node>, root: NodeId, materials: Vec<Material>) -> Scene {
+        let camera = self.camera.map(|c| c.0).unwrap_or(Camera {
+            eye: DVec3::new(0.0, 1.0, -5.0),
+            target: DVec3::ZERO,
+            up: DVec3::Y,
+            fov: std::f64::consts::PI / 4.0,
+        });
+        let lights = if self.lights.is_empty() {
+            vec![Light {
+                kind: LightKind::Directional(DVec3::new(-0.4, 1.0, -0.3).normalize()),
+                color: DVec3::ONE,
+                intensity: 1.0,
+            }]
+        } else {
+            self.lights
+        };
+        Scene {
+            nodes,
+            root,
+            materials,
+            camera,
+            lights,
+            background: self
+                .background
+                .map_or(DVec3::new(0.08, 0.09, 0.12), |b| b.0),
+            trace: self.trace.map_or(
+                Trace {
+                    method: Method::Basic,
+                    steps: 128,
+                    epsilon: Epsilon::Pixel,
+                    omega: 1.2,
+                    max_distance: 100.0,
+                },
+                |t| t.0,
+            ),
+        }
+    }
+}
+
+impl Checker<'_> {
+    /// `camera {..}`, `light kind {..}`, `trace method {..}`, `material name {..}`.
+    pub(super) fn block(
+        &mut self,
+        keyword: &Ident,
+        kind: Option<&Ident>,
+        settings: &[Setting],
+        span: Span,
+    ) {
+        let args: Vec<Arg> = settings
+            .iter()
+            .map(|s| Arg {
+                name: Some(s.key.clone()),
+                value: s.value.clone(),
+            })
+            .collect();
+        match keyword.name.as_str() {
+            "camera" => {
+                if let Some(k) = kind {
+                    self.diags.push(
+                        Diagnostic::error(k.span, "a camera has no kind").label("remove this name"),
+                    );
+                }
+                let Some(a) = self.bind("camera", CAMERA, &args, span) else {
+                    return;
+                };
+                let camera = Camera {
+                    eye: a[0].vec(),
+                    target: a[1].vec(),
+                    up: a[2].vec(),
+                    fov: a[3].num(),
+                };
+                if !(0.01..=3.1).contains(&camera.fov) {
+                    self.diags.push(
+                        Diagnostic::error(
+                            setting_span(settings, "fov", span),
+                            "the field of view must be between 0.6deg and 177deg",
+                        )
+                        .label("out of range"),
+                    );
+                } else if (camera.eye - camera.target).length() < 1e-9 {
+                    self.diags.push(
+                        Diagnostic::error(span, "the camera's eye and target coincide")
+                            .label("no view direction"),
+                    );
+                } else if (camera.eye - camera.target)
+                    .normalize()
+                    .cross(camera.up)
+                    .length()
+                    < 1e-6
+                {
+                    self.diags.push(
+                        Diagnostic::error(span, "the camera looks along its `up` direction")
+                            .label("choose another `up`"),
+                    );
+                }
+                self.once(|s| &mut s.camera, camera, span, "camera");
+            }
+            "light" => {
+                let Some((name, params)) =
+                    self.kind_of(LIGHT_KINDS.iter().map(|(n, p)| (*n, *p)), kind, "light")
+                else {
+                    return;
+                };
+                let Some(a) = self.bind(&format!("light {name}"), params, &args, span) else {
+                    return;
+                };
+                let place = a[0].vec();
+                self.settings.lights.push(Light {
+                    kind: if name == "point" {
+                        LightKind::Point(place)
+                    } else {
+                        LightKind::Directional(place)
+                    },
+                    color: a[1].vec(),
+                    intensity: a[2].num(),
+                });
+            }
+            "trace" => {
+                let methods = TRACE_METHODS.iter().map(|(n, _, p)| (*n, *p));
+                let Some((name, params)) = self.kind_of(methods, kind, "trace") else {
+                    return;
+                };
+                let method = TRACE_METHODS
+                    .iter()
+                    .find(|m| m.0 == name)
+                    .map(|m| m.1)
+                    .unwrap_or(Method::Basic);
+                let Some(a) = self.bind(&format!("trace {name}"), params, &args, span) else {
+                    return;
+                };
+                if a[0].num() > MAX_STEPS {
+                    self.diags.push(
+                        Diagnostic::error(setting_span(settings, "steps", span), "too many steps")
+                            .label(format!("the limit is {MAX_STEPS}")),
+                    );
+                    return;
+                }
+                let trace = Trace {
+                    method,
+                    steps: a[0].num() as u32,
+                    epsilon: match a[1] {
+                        Val::Word(_) => Epsilon::Pixel,
+                        other => Epsilon::Absolute(other.num()),
+                    },
+                    max_distance: a[2].num(),
+                    omega: a.get(3).map_or(1.0, |o| o.num()),
+                };
+                self.once(|s| &mut s.trace, trace, span, "trace");
+            }
+            _ => self.material(kind, &args, span),
+        }
+    }
+
+    fn material(&mut self, kind: Option<&Ident>, args: &[Arg], span: Span) {
+        let Some(name) = kind else {
+            self.diags.push(
+                Diagnostic::error(span, "a material needs a name")
+                    .label("e.g. `material gold { color #d4af37 }`"),
+            );
+            return;
+        };
+        if let Some(d) = self.reserved_name(name) {
+            self.diags.push(d);
+            return;
+        }
+        if let Some(first) = self.materials.iter().find(|m| m.name == name.name) {
+            let first = first.span;
+            self.diags.push(
+                Diagnostic::error(
+                    name.span,
+                    format!("material `{}` is defined twice", name.name),
+                )
+                .label("second definition")
+                .also(first, "first definition"),
+            );
+            return;
+        }
+        let Some(a) = self.bind(&format!("material {}", name.name), MATERIAL, args, span) else {
+            return;
+        };
+        self.materials.push(Material {
+            name: name.name.clone(),
+            color: a[0].vec(),
+            specular: a[1].num(),
+            span: name.span,
+        });
+    }
+
+    /// `background #202030`
+    pub(super) fn value_statement(&mut self, keyword: &Ident, value: &Expr) {
+        if let Some(Val::Vec3(c)) = self.convert(value, Ty::Color, "background") {
+            self.once(
+                |s| &mut s.background,
+                c,
+                keyword.span.to(value.span),
+                "background",
+            );
+        }
+    }
+
+    /// Resolves the name after `light` or `trace` (default: the table's first entry).
+    fn kind_of(
+        &mut self,
+        table: impl Iterator<Item = (&'static str, &'static [Param])> + Clone,
+        kind: Option<&Ident>,
+        what: &str,
+    ) -> Option<(&'static str, &'static [Param])> {
+        let Some(kind) = kind else {
+            return table.clone().next();
+        };
+        if let Some(found) = table.clone().find(|(n, _)| *n == kind.name) {
+            return Some(found);
+        }
+        let names: Vec<&str> = table.map(|(n, _)| n).collect();
+        let mut d = Diagnostic::error(kind.span, format!("unknown {what} kind `{}`", kind.name))
+            .label("not known");
+        d = match did_you_mean(&kind.name, names.iter().copied()) {
+            Some(s) => d.help(format!("did you mean `{s}`?")),
+            None => d.note(format!("the kinds are: {}", names.join(", "))),
+        };
+        self.diags.push(d);
+        None
+    }
+
+    /// Stores a setting that may be given only once.
+    fn once<T>(
+        &mut self,
+        slot: impl Fn(&mut Settings) -> &mut Option<(T, Span)>,
+        value: T,
+        span: Span,
+        what: &str,
+    ) {
+        match slot(&mut self.settings) {
+            Some((_, first)) => {
+                let first = *first;
+                self.diags.push(
+                    Diagnostic::error(span, format!("`{what}` is given twice"))
+                        .label("second")
+                        .also(first, "first"),
+                );
+            }
+            s @ None => *s = Some((value, span)),
+        }
+    }
+}
+
+fn setting_span(settings: &[Setting], key: &str, default: Span) -> Span {
+    settings
+        .iter()
+        .find(|s| s.key.name == key)
+        .map_or(default, |s| s.key.span.to(s.value.span))
+}

@@ -1,0 +1,154 @@
+//! Diagnostics: errors and warnings with source spans, rendered with codespan-reporting.
+
+use codespan_reporting::diagnostic as cs;
+use codespan_reporting::files::SimpleFile;
+use codespan_reporting::term;
+
+/// A byte range in the source text.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub struct Span {
+    /// First byte.
+    pub start: usize,
+    /// One past the last byte.
+    pub end: usize,
+}
+
+impl Span {
+    /// The span from `start` to `end`.
+    pub fn new(start: usize, end: usize) -> Span {
+        Span { start, end }
+    }
+
+    /// The smallest span covering both.
+    pub fn to(self, other: Span) -> Span {
+        Span::new(self.start.min(other.start), self.end.max(other.end))
+    }
+}
+
+impl From<pest::Span<'_>> for Span {
+    /// pest spans of rules ending in an optional part include the whitespace before it; trim it.
+    fn from(s: pest::Span<'_>) -> Span {
+        let text = s.as_str();
+        Span::new(s.start(), s.start() + text.trim_end().len())
+    }
+}
+
+/// How bad a diagnostic is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Severity {
+    /// The scene cannot be compiled.
+    Error,
+    /// The scene compiles, but something is likely wrong.
+    Warning,
+}
+
+/// One message about the source, with a primary span and optional extra labels and help.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Diagnostic {
+    /// Error or warning.
+    pub severity: Severity,
+    /// The headline.
+    pub message: String,
+    /// Where, and what to say under the caret.
+    pub span: Span,
+    /// Text under the caret (may be empty).
+    pub label: String,
+    /// Other places that explain this one.
+    pub secondary: Vec<(Span, String)>,
+    /// Lines printed after the source excerpt (`help: ...`, `note: ...`).
+    pub notes: Vec<String>,
+}
+
+impl Diagnostic {
+    /// An error at `span`.
+    pub fn error(span: Span, message: impl Into<String>) -> Diagnostic {
+        Diagnostic {
+            severity: Severity::Error,
+            message: message.into(),
+            span,
+            label: String::new(),
+            secondary: Vec::new(),
+            notes: Vec::new(),
+        }
+    }
+
+    /// A warning at `span`.
+    pub fn warning(span: Span, message: impl Into<String>) -> Diagnostic {
+        Diagnostic {
+            severity: Severity::Warning,
+            ..Diagnostic::error(span, message)
+        }
+    }
+
+    /// Sets the text under the caret.
+    pub fn label(mut self, label: impl Into<String>) -> Diagnostic {
+        self.label = label.into();
+        self
+    }
+
+    /// Adds a secondary label elsewhere in the source.
+    pub fn also(mut self, span: Span, label: impl Into<String>) -> Diagnostic {
+        self.secondary.push((span, label.into()));
+        self
+    }
+
+    /// Adds a `help: ...` line.
+    pub fn help(mut self, text: impl Into<String>) -> Diagnostic {
+        self.notes.push(format!("help: {}", text.into()));
+        self
+    }
+
+    /// Adds a `note: ...` line.
+    pub fn note(mut self, text: impl Into<String>) -> Diagnostic {
+        self.notes.push(format!("note: {}", text.into()));
+        self
+    }
+
+    /// Whether this is an error (not a warning).
+    pub fn is_error(&self) -> bool {
+        self.severity == Severity::Error
+    }
+}
+
+/// Renders diagnostics as the user sees them: `error: ...`, `--> file:line:col`, the source line
+/// and a caret under the span.
+pub fn render(diagnostics: &[Diagnostic], file_name: &str, source: &str) -> String {
+    let file = SimpleFile::new(file_name, source);
+    let config = term::Config::default();
+    let mut out = String::new();
+    for d in diagnostics {
+        let clamp = |s: Span| {
+            let end = s.end.min(source.len());
+            s.start.min(end)..end
+        };
+        let mut labels = vec![cs::Label::primary((), clamp(d.span)).with_message(&d.label)];
+        labels.extend(
+            d.secondary
+                .iter()
+                .map(|(s, m)| cs::Label::secondary((), clamp(*s)).with_message(m)),
+        );
+        let diagnostic = match d.severity {
+            Severity::Error => cs::Diagnostic::error(),
+            Severity::Warning => cs::Diagnostic::warning(),
+        }
+        .with_message(&d.message)
+        .with_labels(labels)
+        .with_notes(d.notes.clone());
+        // Writing to a String cannot fail; a failure here would only drop a message.
+        let _ = term::emit_to_string(&mut out, &config, &file, &diagnostic);
+    }
+    out
+}
+
+/// The closest of `candidates` to `name`, if one is close enough to be a likely typo.
+pub fn did_you_mean<'a>(
+    name: &str,
+    candidates: impl IntoIterator<Item = &'a str>,
+) -> Option<&'a str> {
+    candidates
+        .into_iter()
+        .map(|c| (strsim::damerau_levenshtein(name, c), c))
+        .filter(|&(d, c)| d <= 2.max(c.len() / 3) && d < c.len().max(name.len()))
+        .min_by_key(|&(d, _)| d)
+        .map(|(_, c)| c)
+}

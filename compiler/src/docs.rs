@@ -1,0 +1,72 @@
+//! Text generated from the catalog and the scene graph: the reference table and check summaries.
+
+use crate::catalog::{MATH_FUNCTIONS, OPERATORS, PRIMITIVES};
+use crate::check::signature;
+use crate::scene::{Epsilon, Scene};
+use std::fmt::Write;
+
+/// The Markdown reference table of primitives, operators and math functions (in the README,
+/// where a test checks it is current).
+pub fn catalog_table() -> String {
+    let mut s = String::new();
+    s.push_str("| kind | signature | exact | what it is |\n| --- | --- | --- | --- |\n");
+    for p in PRIMITIVES {
+        let exact = if p.exact { "yes" } else { "bound" };
+        let _ = writeln!(
+            s,
+            "| primitive | `{}` | {exact} | {} |",
+            signature(p.name, p.params),
+            p.doc
+        );
+    }
+    let _ = writeln!(
+        s,
+        "| primitive | `implicit {{ expr }}` | bound | Any expression of x, y, z; λ inferred by interval arithmetic, or `@lipschitz(L)`. |"
+    );
+    for o in OPERATORS {
+        let _ = writeln!(
+            s,
+            "| operator | `{} {{ … }}` | — | {} |",
+            signature(o.name, o.params),
+            o.doc
+        );
+    }
+    for f in MATH_FUNCTIONS {
+        let args: Vec<&str> = ["a", "b", "c"][..f.arity].to_vec();
+        let _ = writeln!(
+            s,
+            "| function | `{}({})` | — | {} |",
+            f.name,
+            args.join(", "),
+            f.doc
+        );
+    }
+    s
+}
+
+/// The one-paragraph summary `sdfc check` prints for a good file.
+pub fn summary(name: &str, scene: &Scene, warnings: usize) -> String {
+    let reachable = scene.reachable().len();
+    let t = &scene.trace;
+    let eps = match t.epsilon {
+        Epsilon::Pixel => "pixel".to_string(),
+        Epsilon::Absolute(e) => format!("{e}"),
+    };
+    let method = crate::check::TRACE_METHODS
+        .iter()
+        .find(|m| m.1 == t.method)
+        .map_or("?", |m| m.0);
+    let bound = scene.root_node().bound;
+    let bound = if bound.radius.is_finite() {
+        format!("radius {:.3}", bound.radius)
+    } else {
+        "unbounded".to_string()
+    };
+    format!(
+        "{name}: ok\n  nodes: {reachable}\n  materials: {}\n  root λ: {}\n  bound: {bound}\n  lights: {}\n  tracer: {method} ({} steps, ε {eps})\n  warnings: {warnings}",
+        scene.materials.len(),
+        scene.root_node().lambda,
+        scene.lights.len(),
+        t.steps,
+    )
+}

@@ -1,0 +1,56 @@
+//! The CPU reference evaluator: the scene's field and material at a point, in f64. It is the
+//! ground truth the GPU output is checked against.
+
+use crate::catalog::Sample;
+use crate::scene::{NodeId, NodeKind, Scene};
+use glam::DVec3;
+
+/// The scene's distance bound at `p`: the root's field divided by its λ, so that stepping by it
+/// never passes a surface (Liktor §4, f/λ).
+pub fn distance(scene: &Scene, p: DVec3) -> f64 {
+    sample(scene, p).d
+}
+
+/// Distance bound and material at `p`.
+pub fn sample(scene: &Scene, p: DVec3) -> Sample {
+    let s = node(scene, scene.root, p);
+    Sample {
+        d: s.d / scene.root_node().lambda,
+        mat: s.mat,
+    }
+}
+
+/// The raw field of one node (not divided by its λ).
+pub fn node(scene: &Scene, id: NodeId, p: DVec3) -> Sample {
+    let n = &scene.nodes[id];
+    let s = match &n.kind {
+        NodeKind::Primitive { prim, ctx } => Sample {
+            d: (prim.eval)(ctx, p),
+            mat: None,
+        },
+        NodeKind::Implicit { field } => Sample {
+            d: field.eval(p),
+            mat: None,
+        },
+        NodeKind::Operator { op, ctx, children } => {
+            let mut child = |i: usize, q: DVec3| node(scene, children[i], q);
+            (op.eval)(ctx, p, &mut child)
+        }
+    };
+    Sample {
+        d: s.d,
+        mat: s.mat.or(n.material),
+    }
+}
+
+/// Central-difference gradient of the scene's field (Munini §2.3), normalised; a zero gradient
+/// (at a cusp or the centre of a sphere) gives the zero vector rather than NaN.
+pub fn normal(scene: &Scene, p: DVec3, h: f64) -> DVec3 {
+    let d = |q: DVec3| distance(scene, q);
+    let g = DVec3::new(
+        d(p + DVec3::X * h) - d(p - DVec3::X * h),
+        d(p + DVec3::Y * h) - d(p - DVec3::Y * h),
+        d(p + DVec3::Z * h) - d(p - DVec3::Z * h),
+    );
+    g.try_normalize().unwrap_or(DVec3::ZERO)
+}

@@ -1,0 +1,12 @@
+//! sdfc's compiler: the scene language's syntax, checker, catalog, Lipschitz bounds and CPU
+//! reference evaluator (and, in later stages, lowering to naga IR).
+
+pub mod catalog;
+pub mod check;
+pub mod diag;
+pub mod docs;
+pub mod eval;
+pub mod interval;
+pub mod lipschitz;
+pub mod scene;
+pub mod syntax;

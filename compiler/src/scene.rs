@@ -1,0 +1,239 @@
+//! The checked scene graph: shape nodes with their Lipschitz bounds, materials, camera, lights and
+//! tracer settings. Both the CPU evaluator and the lowering read this, so they cannot drift apart.
+
+use crate::catalog::{Bound, Ctx, MathFn, Operator, Primitive};
+use crate::diag::Span;
+use crate::syntax::BinOp;
+use glam::DVec3;
+
+/// Index of a node in [`Scene::nodes`].
+pub type NodeId = usize;
+
+/// A checked scene.
+#[derive(Clone, Debug)]
+pub struct Scene {
+    /// All shape nodes; children come before their parents. Nodes may be shared (`let`).
+    pub nodes: Vec<Node>,
+    /// The node whose field is the scene.
+    pub root: NodeId,
+    /// Materials in declaration order; a node's material is an index here.
+    pub materials: Vec<Material>,
+    /// The camera.
+    pub camera: Camera,
+    /// Lights (a default light when the file declares none).
+    pub lights: Vec<Light>,
+    /// Background colour (sRGB, 0..1).
+    pub background: DVec3,
+    /// Tracer choice and parameters.
+    pub trace: Trace,
+}
+
+impl Scene {
+    /// The root node.
+    pub fn root_node(&self) -> &Node {
+        &self.nodes[self.root]
+    }
+
+    /// Nodes reachable from the root, children before parents, each once.
+    pub fn reachable(&self) -> Vec<NodeId> {
+        let mut seen = vec![false; self.nodes.len()];
+        let mut stack = vec![self.root];
+        while let Some(n) = stack.pop() {
+            if !std::mem::replace(&mut seen[n], true) {
+                stack.extend(self.nodes[n].children());
+            }
+        }
+        (0..self.nodes.len()).filter(|&n| seen[n]).collect()
+    }
+}
+
+/// A shape node.
+#[derive(Clone, Debug)]
+pub struct Node {
+    /// What it computes.
+    pub kind: NodeKind,
+    /// Where it was written.
+    pub span: Span,
+    /// Lipschitz bound of the node's field (annotation applied).
+    pub lambda: f64,
+    /// The bound the catalog's rules give, before any annotation.
+    pub inferred_lambda: f64,
+    /// Bounding sphere of its surface.
+    pub bound: Bound,
+    /// Material for surfaces of this subtree that have none of their own.
+    pub material: Option<u32>,
+    /// The `let` name it was bound to, if any.
+    pub name: Option<String>,
+}
+
+impl Node {
+    /// Child node ids (empty for primitives).
+    pub fn children(&self) -> &[NodeId] {
+        match &self.kind {
+            NodeKind::Operator { children, .. } => children,
+            _ => &[],
+        }
+    }
+
+    /// The catalog name of what this node is (`sphere`, `union`, `implicit`).
+    pub fn kind_name(&self) -> &'static str {
+        match &self.kind {
+            NodeKind::Primitive { prim, .. } => prim.name,
+            NodeKind::Operator { op, .. } => op.name,
+            NodeKind::Implicit { .. } => "implicit",
+        }
+    }
+}
+
+/// The kinds of node.
+#[derive(Clone, Debug)]
+pub enum NodeKind {
+    /// A catalog primitive with checked arguments.
+    Primitive {
+        /// The catalog entry.
+        prim: &'static Primitive,
+        /// Its arguments.
+        ctx: Ctx,
+    },
+    /// A catalog operator applied to children.
+    Operator {
+        /// The catalog entry.
+        op: &'static Operator,
+        /// Its arguments and its children's bounds.
+        ctx: Ctx,
+        /// The children in order.
+        children: Vec<NodeId>,
+    },
+    /// `implicit { expr }`
+    Implicit {
+        /// The expression of x, y, z.
+        field: Field,
+    },
+}
+
+/// An expression of the coordinates x, y, z (the body of `implicit`), constants folded.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Field {
+    /// A constant.
+    Const(f64),
+    /// Coordinate 0 (x), 1 (y) or 2 (z).
+    Coord(usize),
+    /// −a
+    Neg(Box<Field>),
+    /// a ∘ b
+    Binary(BinOp, Box<Field>, Box<Field>),
+    /// f(args)
+    Call(&'static MathFn, Vec<Field>),
+}
+
+impl Field {
+    /// Value at a point, in f64.
+    pub fn eval(&self, p: DVec3) -> f64 {
+        match self {
+            Field::Const(c) => *c,
+            Field::Coord(i) => p[*i],
+            Field::Neg(a) => -a.eval(p),
+            Field::Binary(op, a, b) => binary(*op, a.eval(p), b.eval(p)),
+            Field::Call(f, args) => {
+                let v: Vec<f64> = args.iter().map(|a| a.eval(p)).collect();
+                (f.eval)(&v)
+            }
+        }
+    }
+}
+
+/// Applies a binary operator to numbers.
+pub fn binary(op: BinOp, a: f64, b: f64) -> f64 {
+    match op {
+        BinOp::Add => a + b,
+        BinOp::Sub => a - b,
+        BinOp::Mul => a * b,
+        BinOp::Div => a / b,
+        BinOp::Pow => a.powf(b),
+    }
+}
+
+/// A declared material.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Material {
+    /// Its name.
+    pub name: String,
+    /// Base colour (sRGB, 0..1).
+    pub color: DVec3,
+    /// Strength of the specular highlight, 0..1.
+    pub specular: f64,
+    /// Where it was declared.
+    pub span: Span,
+}
+
+/// A pinhole camera (Munini §2.1).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Camera {
+    /// Eye position.
+    pub eye: DVec3,
+    /// Point looked at.
+    pub target: DVec3,
+    /// Up direction (unit).
+    pub up: DVec3,
+    /// Vertical field of view, radians.
+    pub fov: f64,
+}
+
+/// A light.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Light {
+    /// Directional (towards the light) or positional.
+    pub kind: LightKind,
+    /// Colour (0..1).
+    pub color: DVec3,
+    /// Intensity multiplier.
+    pub intensity: f64,
+}
+
+/// Where light comes from.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum LightKind {
+    /// Unit direction towards the light.
+    Directional(DVec3),
+    /// Position of a point light.
+    Point(DVec3),
+}
+
+/// Which sphere-tracing variant.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Method {
+    /// Hart; Bálint Alg. 1.
+    Basic,
+    /// Keinert §3.1, Listing 2.
+    Relaxed,
+    /// Bálint Alg. 3.
+    Enhanced,
+    /// Liktor §5.4.
+    Hybrid,
+    /// Bán & Valasek 2023.
+    Auto,
+}
+
+/// When a ray counts as having hit.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Epsilon {
+    /// f < ε.
+    Absolute(f64),
+    /// f < t·(pixel footprint) (Bálint Eq. 2).
+    Pixel,
+}
+
+/// Tracer settings.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Trace {
+    /// Variant.
+    pub method: Method,
+    /// Step budget.
+    pub steps: u32,
+    /// Hit condition.
+    pub epsilon: Epsilon,
+    /// Over-relaxation factor ω (relaxed, enhanced, auto).
+    pub omega: f64,
+    /// Rays stop beyond this distance.
+    pub max_distance: f64,
+}

@@ -1,0 +1,453 @@
+//! Syntax: the pest parser of `grammar/sdf.pest` and the typed AST it produces, every node with its span.
+
+use crate::diag::{Diagnostic, Span};
+use pest::Parser as _;
+use pest::iterators::Pair;
+use pest::pratt_parser::{Assoc, Op, PrattParser};
+use std::sync::LazyLock;
+
+#[derive(pest_derive::Parser)]
+#[grammar = "../../grammar/sdf.pest"]
+struct SdfParser;
+
+/// Deepest bracket nesting accepted; deeper input is refused before parsing (no stack overflow).
+pub const MAX_NESTING: usize = 200;
+/// Longest source accepted, in bytes.
+pub const MAX_SOURCE_BYTES: usize = 4 << 20;
+
+/// A name as written, with its span.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Ident {
+    /// The text.
+    pub name: String,
+    /// Where it is.
+    pub span: Span,
+}
+
+/// A parsed file: its statements in order.
+#[derive(Clone, Debug, PartialEq)]
+pub struct File {
+    /// Top-level statements.
+    pub items: Vec<Item>,
+}
+
+/// A top-level statement.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Item {
+    /// `let name = value`
+    Let {
+        /// The bound name.
+        name: Ident,
+        /// The value.
+        value: Expr,
+    },
+    /// `camera { .. }`, `light point { .. }`, `trace enhanced { .. }`, `material gold { .. }`
+    Block {
+        /// `camera`, `light`, `trace` or `material`.
+        keyword: Ident,
+        /// The name after the keyword, if any.
+        kind: Option<Ident>,
+        /// `key value` pairs.
+        settings: Vec<Setting>,
+        /// The whole statement.
+        span: Span,
+    },
+    /// `background #202030`
+    Value {
+        /// `background`.
+        keyword: Ident,
+        /// The value.
+        value: Expr,
+    },
+    /// A shape of the scene.
+    Scene(Expr),
+}
+
+/// `key value` inside a settings block.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Setting {
+    /// The key.
+    pub key: Ident,
+    /// The value.
+    pub value: Expr,
+}
+
+/// An expression and its span.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Expr {
+    /// What it is.
+    pub kind: ExprKind,
+    /// Where it is.
+    pub span: Span,
+}
+
+/// Binary arithmetic operators.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BinOp {
+    /// `+`
+    Add,
+    /// `-`
+    Sub,
+    /// `*`
+    Mul,
+    /// `/`
+    Div,
+    /// `^`
+    Pow,
+}
+
+impl BinOp {
+    /// The operator as written.
+    pub fn symbol(self) -> &'static str {
+        match self {
+            BinOp::Add => "+",
+            BinOp::Sub => "-",
+            BinOp::Mul => "*",
+            BinOp::Div => "/",
+            BinOp::Pow => "^",
+        }
+    }
+}
+
+/// The kinds of expression.
+#[derive(Clone, Debug, PartialEq)]
+pub enum ExprKind {
+    /// `1.5`, `30deg`: the number and the unit suffix as written.
+    Number {
+        /// The value before units are applied.
+        value: f64,
+        /// The unit suffix, if any.
+        unit: Option<Ident>,
+    },
+    /// `#d4af37` as written, `#` included.
+    Color(String),
+    /// `(x, y, z)`
+    Vector(Box<[Expr; 3]>),
+    /// A name: a `let` binding, a material, a coordinate inside `implicit`.
+    Name(Ident),
+    /// `name(args) { block }`
+    Call(Call),
+    /// `-e`
+    Neg(Box<Expr>),
+    /// `a + b` and friends.
+    Binary(BinOp, Box<Expr>, Box<Expr>),
+    /// `shape |> op(args)`: the shape becomes the operator's only child.
+    Pipe(Box<Expr>, Call),
+    /// `shape : material`
+    Tag(Box<Expr>, Ident),
+    /// `shape @name(args)`
+    Annotation(Box<Expr>, Ident, Vec<Arg>),
+    /// `shape at (x, y, z)`
+    At(Box<Expr>, Box<Expr>),
+}
+
+/// `name(args) { children }`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Call {
+    /// The called name.
+    pub name: Ident,
+    /// Arguments in order.
+    pub args: Vec<Arg>,
+    /// The `{ ... }` block, if written.
+    pub block: Option<Vec<Expr>>,
+    /// The whole call.
+    pub span: Span,
+}
+
+/// A positional (`1`) or named (`radius = 1`) argument.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Arg {
+    /// The name, for a named argument.
+    pub name: Option<Ident>,
+    /// The value.
+    pub value: Expr,
+}
+
+static PRATT: LazyLock<PrattParser<Rule>> = LazyLock::new(|| {
+    PrattParser::new()
+        .op(Op::infix(Rule::add, Assoc::Left) | Op::infix(Rule::sub, Assoc::Left))
+        .op(Op::infix(Rule::mul, Assoc::Left) | Op::infix(Rule::div, Assoc::Left))
+        .op(Op::prefix(Rule::neg))
+        .op(Op::infix(Rule::pow, Assoc::Right))
+        .op(Op::postfix(Rule::pipe)
+            | Op::postfix(Rule::tag)
+            | Op::postfix(Rule::annotation)
+            | Op::postfix(Rule::at))
+});
+
+/// Parses a whole file. Syntax errors come back as one diagnostic with the expected tokens.
+pub fn parse(source: &str) -> Result<File, Diagnostic> {
+    if source.len() > MAX_SOURCE_BYTES {
+        return Err(Diagnostic::error(Span::new(0, 0), "the file is too large")
+            .note(format!("the limit is {MAX_SOURCE_BYTES} bytes")));
+    }
+    check_nesting(source)?;
+    let mut pairs = SdfParser::parse(Rule::file, source).map_err(syntax_error)?;
+    let file = pairs.next().expect("the `file` rule matched");
+    let items = file
+        .into_inner()
+        .filter(|p| p.as_rule() != Rule::EOI)
+        .map(item)
+        .collect();
+    Ok(File { items })
+}
+
+/// Refuses input nested deeper than [`MAX_NESTING`] brackets (or `|>`-free postfix chains of
+/// prefix minus signs) before the recursive parser sees it.
+fn check_nesting(source: &str) -> Result<(), Diagnostic> {
+    let mut depth = 0usize;
+    let mut minus_run = 0usize;
+    let mut in_line_comment = false;
+    let bytes = source.as_bytes();
+    for (i, &b) in bytes.iter().enumerate() {
+        if in_line_comment {
+            in_line_comment = b != b'\n';
+            continue;
+        }
+        match b {
+            b'/' if bytes.get(i + 1) == Some(&b'/') => in_line_comment = true,
+            b'(' | b'{' => depth += 1,
+            b')' | b'}' => depth = depth.saturating_sub(1),
+            _ => {}
+        }
+        minus_run = match b {
+            b'-' => minus_run + 1,
+            b' ' | b'\t' | b'\r' | b'\n' => minus_run,
+            _ => 0,
+        };
+        if depth > MAX_NESTING || minus_run > MAX_NESTING {
+            return Err(
+                Diagnostic::error(Span::new(i, i + 1), "nesting is too deep")
+                    .label(format!("more than {MAX_NESTING} levels deep here"))
+                    .help("split the scene into `let` bindings"),
+            );
+        }
+    }
+    Ok(())
+}
+
+fn syntax_error(e: pest::error::Error<Rule>) -> Diagnostic {
+    use pest::error::{ErrorVariant, InputLocation};
+    let span = match e.location {
+        InputLocation::Pos(p) => Span::new(p, p),
+        InputLocation::Span((a, b)) => Span::new(a, b),
+    };
+    let (message, label) = match &e.variant {
+        ErrorVariant::ParsingError { positives, .. } => {
+            let mut names: Vec<&str> = positives.iter().map(|r| rule_name(*r)).collect();
+            names.sort();
+            names.dedup();
+            let expected = match names.as_slice() {
+                [] => "something else".to_string(),
+                [one] => one.to_string(),
+                [init @ .., last] => format!("{} or {}", init.join(", "), last),
+            };
+            ("syntax error".to_string(), format!("expected {expected}"))
+        }
+        ErrorVariant::CustomError { message } => (message.clone(), String::new()),
+    };
+    Diagnostic::error(span, message).label(label)
+}
+
+/// Words a user understands for the grammar's rules.
+fn rule_name(rule: Rule) -> &'static str {
+    match rule {
+        Rule::EOI => "end of file",
+        Rule::ident | Rule::name => "a name",
+        Rule::number | Rule::quantity => "a number",
+        Rule::unit => "a unit",
+        Rule::color => "a colour",
+        Rule::vector | Rule::paren | Rule::call | Rule::neg | Rule::expr | Rule::arg => {
+            "an expression"
+        }
+        Rule::add | Rule::sub | Rule::mul | Rule::div | Rule::pow => "an operator",
+        Rule::pipe | Rule::tag | Rule::annotation | Rule::at | Rule::at_kw => {
+            "`|>`, `:`, `@` or `at`"
+        }
+        Rule::args | Rule::arg_list => "`(`",
+        Rule::block => "`{`",
+        Rule::settings_body => "`{`",
+        Rule::setting => "a setting",
+        Rule::let_stmt
+        | Rule::block_stmt
+        | Rule::block_kw
+        | Rule::value_stmt
+        | Rule::value_kw
+        | Rule::scene_expr
+        | Rule::file => "a statement",
+        Rule::keyword => "a keyword",
+        Rule::WHITESPACE | Rule::COMMENT => "a space",
+        Rule::statement => "a statement",
+        Rule::term | Rule::infix | Rule::prefix | Rule::postfix | Rule::primary => "an expression",
+        Rule::ident_char => "a letter or digit",
+    }
+}
+
+fn ident(p: Pair<Rule>) -> Ident {
+    Ident {
+        name: p.as_str().to_string(),
+        span: p.as_span().into(),
+    }
+}
+
+fn item(p: Pair<Rule>) -> Item {
+    let span: Span = p.as_span().into();
+    match p.as_rule() {
+        Rule::let_stmt => {
+            let mut it = p.into_inner();
+            let name = ident(it.next().expect("let name"));
+            let value = expr(it.next().expect("let value"));
+            Item::Let { name, value }
+        }
+        Rule::block_stmt => {
+            let mut keyword = None;
+            let mut kind = None;
+            let mut settings = Vec::new();
+            for q in p.into_inner() {
+                match q.as_rule() {
+                    Rule::block_kw => keyword = Some(ident(q)),
+                    Rule::ident => kind = Some(ident(q)),
+                    _ => settings = q.into_inner().map(setting).collect(),
+                }
+            }
+            Item::Block {
+                keyword: keyword.expect("block keyword"),
+                kind,
+                settings,
+                span,
+            }
+        }
+        Rule::value_stmt => {
+            let mut it = p.into_inner();
+            let keyword = ident(it.next().expect("value keyword"));
+            let value = expr(it.next().expect("value"));
+            Item::Value { keyword, value }
+        }
+        _ => Item::Scene(expr(p.into_inner().next().expect("scene expression"))),
+    }
+}
+
+fn setting(p: Pair<Rule>) -> Setting {
+    let mut it = p.into_inner();
+    Setting {
+        key: ident(it.next().expect("setting key")),
+        value: expr(it.next().expect("setting value")),
+    }
+}
+
+fn expr(p: Pair<Rule>) -> Expr {
+    PRATT
+        .map_primary(primary)
+        .map_prefix(|op, rhs| Expr {
+            span: Span::from(op.as_span()).to(rhs.span),
+            kind: ExprKind::Neg(Box::new(rhs)),
+        })
+        .map_postfix(|lhs, op| {
+            let span = lhs.span.to(op.as_span().into());
+            let lhs = Box::new(lhs);
+            let kind = match op.as_rule() {
+                Rule::pipe => {
+                    let target = op.into_inner().next().expect("pipe target");
+                    ExprKind::Pipe(lhs, call_or_name(target))
+                }
+                Rule::tag => ExprKind::Tag(lhs, ident(op.into_inner().next().expect("tag"))),
+                Rule::annotation => {
+                    let mut it = op.into_inner();
+                    let name = ident(it.next().expect("annotation name"));
+                    let args = it.next().map(arg_list).unwrap_or_default();
+                    ExprKind::Annotation(lhs, name, args)
+                }
+                _ => {
+                    let target = op.into_inner().nth(1).expect("at target");
+                    ExprKind::At(lhs, Box::new(primary(target)))
+                }
+            };
+            Expr { kind, span }
+        })
+        .map_infix(|lhs, op, rhs| {
+            let op = match op.as_rule() {
+                Rule::add => BinOp::Add,
+                Rule::sub => BinOp::Sub,
+                Rule::mul => BinOp::Mul,
+                Rule::div => BinOp::Div,
+                _ => BinOp::Pow,
+            };
+            Expr {
+                span: lhs.span.to(rhs.span),
+                kind: ExprKind::Binary(op, Box::new(lhs), Box::new(rhs)),
+            }
+        })
+        .parse(p.into_inner())
+}
+
+fn primary(p: Pair<Rule>) -> Expr {
+    let span: Span = p.as_span().into();
+    let kind = match p.as_rule() {
+        Rule::vector => {
+            let mut it = p.into_inner().map(expr);
+            let mut next = || it.next().expect("vector component");
+            ExprKind::Vector(Box::new([next(), next(), next()]))
+        }
+        Rule::paren => return expr(p.into_inner().next().expect("parenthesised expression")),
+        Rule::quantity => {
+            let mut it = p.into_inner();
+            let number = it.next().expect("number");
+            // The grammar admits only digit strings that Rust's float parser accepts.
+            let value = number.as_str().parse::<f64>().unwrap_or(f64::NAN);
+            ExprKind::Number {
+                value,
+                unit: it.next().map(ident),
+            }
+        }
+        Rule::color => ExprKind::Color(p.as_str().to_string()),
+        Rule::call | Rule::name => return call_or_name_expr(p),
+        rule => unreachable!("primary rule {rule:?}"),
+    };
+    Expr { kind, span }
+}
+
+fn call_or_name_expr(p: Pair<Rule>) -> Expr {
+    let span: Span = p.as_span().into();
+    let kind = match p.as_rule() {
+        Rule::name => ExprKind::Name(ident(p.into_inner().next().expect("name"))),
+        _ => ExprKind::Call(call_or_name(p)),
+    };
+    Expr { kind, span }
+}
+
+/// A call, or a bare name taken as a call with no arguments (`s |> complement`).
+fn call_or_name(p: Pair<Rule>) -> Call {
+    let span: Span = p.as_span().into();
+    let mut it = p.into_inner();
+    let name = ident(it.next().expect("called name"));
+    let mut args = Vec::new();
+    let mut block = None;
+    for q in it {
+        match q.as_rule() {
+            Rule::args => args = arg_list(q.into_inner().next().expect("argument list")),
+            _ => block = Some(q.into_inner().map(expr).collect()),
+        }
+    }
+    Call {
+        name,
+        args,
+        block,
+        span,
+    }
+}
+
+fn arg_list(p: Pair<Rule>) -> Vec<Arg> {
+    p.into_inner()
+        .map(|a| {
+            let mut it = a.into_inner().peekable();
+            let name = match it.peek().map(|q| q.as_rule()) {
+                Some(Rule::ident) => it.next().map(ident),
+                _ => None,
+            };
+            Arg {
+                name,
+                value: expr(it.next().expect("argument value")),
+            }
+        })
+        .collect()
+}

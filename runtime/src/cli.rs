@@ -1,0 +1,93 @@
+//! Command-line parsing and the subcommands' drivers.
+
+use clap::{Parser, Subcommand};
+use sdfc_compiler::check::{self, Checked};
+use sdfc_compiler::diag::{self, Diagnostic};
+use std::path::{Path, PathBuf};
+
+#[derive(Parser)]
+#[command(
+    name = "sdfc",
+    version,
+    about = "A compiler for scenes of signed distance functions"
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Parse and check a scene; print a summary or the diagnostics.
+    Check {
+        /// The scene file (`-` for standard input).
+        file: Option<PathBuf>,
+        /// Print the catalog of primitives, operators and functions instead.
+        #[arg(long)]
+        list: bool,
+    },
+}
+
+/// Runs the command line; returns the exit code (0 ok, 1 user error).
+pub fn run() -> i32 {
+    let cli = match Cli::try_parse() {
+        Ok(c) => c,
+        Err(e) => {
+            let code = if e.use_stderr() { 1 } else { 0 };
+            let _ = e.print();
+            return code;
+        }
+    };
+    match cli.command {
+        Command::Check { list: true, .. } => {
+            print!("{}", sdfc_compiler::docs::catalog_table());
+            0
+        }
+        Command::Check { file: None, .. } => {
+            eprintln!("error: give a scene file to check (or `-` for standard input)");
+            1
+        }
+        Command::Check {
+            file: Some(file), ..
+        } => check_command(&file),
+    }
+}
+
+/// Reads a scene file or standard input; the error is a message for the user.
+pub fn read_source(path: &Path) -> Result<(String, String), String> {
+    if path == Path::new("-") {
+        let mut s = String::new();
+        std::io::Read::read_to_string(&mut std::io::stdin(), &mut s)
+            .map_err(|e| format!("error: cannot read standard input: {e}"))?;
+        return Ok(("<stdin>".into(), s));
+    }
+    let name = path.display().to_string();
+    std::fs::read_to_string(path)
+        .map(|s| (name.clone(), s))
+        .map_err(|e| format!("error: cannot read `{name}`: {e}"))
+}
+
+fn check_command(path: &Path) -> i32 {
+    let (name, source) = match read_source(path) {
+        Ok(x) => x,
+        Err(e) => {
+            eprintln!("{e}");
+            return 1;
+        }
+    };
+    let Checked {
+        scene,
+        mut diagnostics,
+    } = check::compile(&source);
+    if let Some(scene) = &scene {
+        diagnostics.extend(sdfc_compiler::lipschitz::verify_annotations(scene));
+    }
+    eprint!("{}", diag::render(&diagnostics, &name, &source));
+    let Some(scene) = scene else { return 1 };
+    let warnings = diagnostics
+        .iter()
+        .filter(|d| !Diagnostic::is_error(d))
+        .count();
+    println!("{}", sdfc_compiler::docs::summary(&name, &scene, warnings));
+    0
+}

@@ -1,0 +1,14 @@
+//! The `sdfc` command line: check, emit, render and bench scene files.
+
+mod cli;
+
+fn main() {
+    // The front end recurses over the syntax tree; a large stack keeps pathological input (which
+    // it rejects past its nesting limits) from overflowing before it is rejected.
+    let code = std::thread::Builder::new()
+        .stack_size(256 << 20)
+        .spawn(cli::run)
+        .map(|h| h.join().unwrap_or(2))
+        .unwrap_or(2);
+    std::process::exit(code);
+}
