@@ -16,7 +16,7 @@ pub fn catalog_table() -> String {
             s,
             "| primitive | `{}` | {exact} | {} |",
             signature(p.name, p.params),
-            p.doc
+            cell(p.doc)
         );
     }
     let _ = writeln!(
@@ -24,12 +24,11 @@ pub fn catalog_table() -> String {
         "| primitive | `implicit {{ expr }}` | bound | Any expression of x, y, z; λ inferred by interval arithmetic, or `@lipschitz(L)`. |"
     );
     for o in OPERATORS {
-        let _ = writeln!(
-            s,
-            "| operator | `{} {{ … }}` | — | {} |",
-            signature(o.name, o.params),
-            o.doc
-        );
+        let head = match o.params {
+            [] => o.name.to_string(),
+            ps => signature(o.name, ps),
+        };
+        let _ = writeln!(s, "| operator | `{head} {{ … }}` | — | {} |", cell(o.doc));
     }
     for f in MATH_FUNCTIONS {
         let args: Vec<&str> = ["a", "b", "c"][..f.arity].to_vec();
@@ -38,10 +37,15 @@ pub fn catalog_table() -> String {
             "| function | `{}({})` | — | {} |",
             f.name,
             args.join(", "),
-            f.doc
+            cell(f.doc)
         );
     }
     s
+}
+
+/// A table cell: `|` escaped.
+fn cell(text: &str) -> String {
+    text.replace('|', "\\|")
 }
 
 /// The one-paragraph summary `sdfc check` prints for a good file.
