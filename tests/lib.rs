@@ -1,1 +1,53 @@
-//! Shared helpers for the integration tests.
+//! Shared helpers for the integration tests: loading examples, compiling with a large stack.
+
+use sdfc_compiler::check::{self, Checked};
+use sdfc_compiler::diag;
+use sdfc_compiler::scene::Scene;
+use std::path::{Path, PathBuf};
+
+/// The workspace root.
+pub fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .expect("workspace root")
+        .to_path_buf()
+}
+
+/// Every `examples/*.sdf`, sorted.
+pub fn examples() -> Vec<PathBuf> {
+    let mut v: Vec<PathBuf> = std::fs::read_dir(root().join("examples"))
+        .expect("examples folder")
+        .map(|e| e.expect("dir entry").path())
+        .filter(|p| p.extension().is_some_and(|e| e == "sdf"))
+        .collect();
+    v.sort();
+    v
+}
+
+/// Runs `f` on a thread with a large stack, as the command line does.
+pub fn with_stack<T: Send + 'static>(f: impl FnOnce() -> T + Send + 'static) -> T {
+    std::thread::Builder::new()
+        .stack_size(256 << 20)
+        .spawn(f)
+        .expect("spawn")
+        .join()
+        .expect("no panic")
+}
+
+/// Compiles a source that must be valid; panics with the rendered diagnostics otherwise.
+pub fn scene(name: &str, source: &str) -> Scene {
+    let Checked { scene, diagnostics } = check::compile(source);
+    match scene {
+        Some(s) => s,
+        None => panic!(
+            "{name} did not compile:\n{}",
+            diag::render(&diagnostics, name, source)
+        ),
+    }
+}
+
+/// Compiles an example file by path.
+pub fn example(path: &Path) -> Scene {
+    let source = std::fs::read_to_string(path).expect("read example");
+    scene(&path.display().to_string(), &source)
+}

@@ -1,0 +1,195 @@
+//! The CPU evaluator against independently computed exact distances (tests/data/iq_reference.csv,
+//! made by tests/data/iq_reference.py), hand-derived values, and the operators' definitions.
+
+use glam::DVec3;
+use sdfc_compiler::eval;
+
+fn at(source: &str, p: DVec3) -> f64 {
+    eval::distance(&sdfc_tests::scene("inline", source), p)
+}
+
+#[test]
+fn primitives_match_the_independent_reference() {
+    let csv =
+        std::fs::read_to_string(sdfc_tests::root().join("tests/data/iq_reference.csv")).unwrap();
+    let mut rows = 0;
+    let mut worst: f64 = 0.0;
+    for line in csv.lines().skip(1) {
+        let f: Vec<&str> = line.split(',').collect();
+        let num = |i: usize| f[i].parse::<f64>().unwrap();
+        let (a, b, c) = (f[1], f[2], f[3]);
+        let call = match f[0] {
+            "box" => format!("box(({a}, {b}, {c}))"),
+            "rounded_box" => format!("rounded_box({a}, {b})"),
+            "plane" => format!("plane(y, {a})"),
+            "cone" => format!("cone({a}, {b}, {c})"),
+            name if !b.is_empty() => format!("{name}({a}, {b})"),
+            name => format!("{name}({a})"),
+        };
+        let p = DVec3::new(num(4), num(5), num(6));
+        let want = num(7);
+        let got = at(&call, p);
+        let tol = 1e-9 * (1.0 + want.abs());
+        assert!(
+            (got - want).abs() <= tol,
+            "{call} at {p}: got {got}, want {want} ({})",
+            f[8]
+        );
+        worst = worst.max((got - want).abs() / (1.0 + want.abs()));
+        rows += 1;
+    }
+    assert!(rows >= 100, "only {rows} reference rows");
+    println!("{rows} reference rows, worst relative difference {worst:e}");
+}
+
+#[test]
+fn hand_derived_values() {
+    let cases: &[(&str, DVec3, f64)] = &[
+        // A unit-size box: the corner (0.5, 0.5, 0.5) is at distance √3·0.5 from (1, 1, 1).
+        ("box(1)", DVec3::ONE, 3f64.sqrt() * 0.5),
+        ("box(1)", DVec3::ZERO, -0.5),
+        ("box(0)", DVec3::new(0.0, 3.0, 4.0), 5.0),
+        ("sphere(0)", DVec3::new(1e6, 0.0, 0.0), 1e6),
+        ("sphere(2)", DVec3::ZERO, -2.0),
+        // Torus, ring 1, tube 0.25: the centre is 1 − 0.25 from the tube surface.
+        ("torus(1, 0.25)", DVec3::ZERO, 0.75),
+        ("torus(1, 0.25)", DVec3::new(1e6, 0.0, 0.0), 1e6 - 1.25),
+        ("capsule(0, 1)", DVec3::new(0.0, 2.0, 0.0), 1.0),
+        ("plane(y, 0)", DVec3::new(5.0, -3.0, 1.0), -3.0),
+        ("plane((0, 0, 2), 1)", DVec3::new(0.0, 0.0, 4.0), 3.0),
+        ("cylinder(1, 2)", DVec3::new(2.0, 2.0, 0.0), 2f64.sqrt()),
+        (
+            "octahedron(1)",
+            DVec3::new(1.0, 1.0, 1.0),
+            2.0 / 3f64.sqrt(),
+        ),
+        ("ellipsoid((2, 2, 2))", DVec3::new(0.0, 5.0, 0.0), 3.0),
+        // Generalised dodecahedron (max form): along a face normal the distance is exact.
+        (
+            "dodecahedron(1)",
+            DVec3::new(0.0, 1.0, 1.618_033_988_749_895).normalize() * 3.0,
+            2.0,
+        ),
+    ];
+    for (src, p, want) in cases {
+        let got = at(src, *p);
+        assert!(
+            (got - want).abs() < 1e-9 * (1.0 + want.abs()),
+            "{src} at {p}: {got} vs {want}"
+        );
+    }
+}
+
+#[test]
+fn operators_follow_their_definitions() {
+    let p = DVec3::new(0.3, -0.2, 0.9);
+    let a = at("sphere(1)", p);
+    let b = at("box((1, 2, 0.5)) at (0.5, 0, 0)", p);
+    let close = |x: f64, y: f64| (x - y).abs() < 1e-12;
+    assert!(close(
+        at("union { sphere(1) box((1, 2, 0.5)) at (0.5, 0, 0) }", p),
+        a.min(b)
+    ));
+    assert!(close(
+        at("intersect { sphere(1) box((1, 2, 0.5)) at (0.5, 0, 0) }", p),
+        a.max(b)
+    ));
+    assert!(close(
+        at("subtract { sphere(1) box((1, 2, 0.5)) at (0.5, 0, 0) }", p),
+        a.max(-b)
+    ));
+    assert!(close(at("complement { sphere(1) }", p), -a));
+    assert!(close(
+        at("mix(0.25) { sphere(1) box((1, 2, 0.5)) at (0.5, 0, 0) }", p),
+        0.75 * a + 0.25 * b
+    ));
+    assert!(close(at("sphere(1) |> round(0.5)", p), a - 0.5));
+    assert!(close(at("sphere(1) |> onion(0.1)", p), a.abs() - 0.1));
+    // Smooth union is at most the union and at least the union minus radius/4.
+    let s = at(
+        "smooth_union(0.4) { sphere(1) box((1, 2, 0.5)) at (0.5, 0, 0) }",
+        p,
+    );
+    assert!(s <= a.min(b) && s >= a.min(b) - 0.1);
+    // Uniform scale is exact: a sphere of radius 1 scaled by 3 is a sphere of radius 3.
+    assert!(close(
+        at("scale(3) { sphere(1) }", DVec3::new(0.0, 7.0, 0.0)),
+        4.0
+    ));
+    // Rotation by 90° about y takes +x to −z.
+    assert!(close(
+        at(
+            "box((2, 0.2, 0.2)) |> rotate(y, 90deg)",
+            DVec3::new(0.0, 0.0, -1.0)
+        ),
+        0.0
+    ));
+    assert!(close(at("sphere(1) |> rotate(y, 360deg)", p), a));
+    // Repetition: the copy at spacing 4 looks like the original.
+    assert!(close(
+        at(
+            "sphere(1) |> repeat((4, 0, 0))",
+            p + DVec3::new(8.0, 0.0, 0.0)
+        ),
+        a
+    ));
+    // A finite repetition of 3 copies stops after the third.
+    let far = at(
+        "sphere(1) |> repeat((4, 0, 0), (3, 1, 1))",
+        DVec3::new(12.0, 0.0, 0.0),
+    );
+    assert!(close(far, 7.0));
+    // Mirror in x: the point at −x sees the shape at +x.
+    assert!(close(
+        at(
+            "sphere(1) at (2, 0, 0) |> mirror(x)",
+            DVec3::new(-2.0, 0.0, 0.0)
+        ),
+        -1.0
+    ));
+    // Elongating a sphere by 2 along x makes a capsule-like shape: (2, 0, 0) is on the axis, 1 inside.
+    assert!(close(
+        at(
+            "sphere(1) |> elongate((2, 0, 0))",
+            DVec3::new(2.0, 0.0, 0.0)
+        ),
+        0.0
+    ));
+}
+
+#[test]
+fn annotation_divides_the_root_field() {
+    let p = DVec3::new(0.0, 5.0, 0.0);
+    assert!((at("sphere(1) @lipschitz(2)", p) - 2.0).abs() < 1e-12);
+}
+
+#[test]
+fn implicit_bounds_are_inferred_or_refused() {
+    let lambda = |src: &str| sdfc_tests::scene("inline", src).root_node().lambda;
+    assert!((lambda("implicit { length(x, y, z) - 1 }") - 3f64.sqrt()).abs() < 1e-12);
+    assert!((lambda("implicit { y + 0.5 * sin(x) }") - 1.25f64.sqrt()).abs() < 1e-12);
+    assert!((lambda("implicit { 2 * x - 3 * z }") - 13f64.sqrt()).abs() < 1e-12);
+    let refused = sdfc_compiler::check::compile("implicit { x * x - 1 }");
+    assert!(refused.scene.is_none());
+}
+
+#[test]
+fn materials_follow_csg() {
+    let src = "material red { color #f00 }\nmaterial blue { color #00f }\n\
+               union { sphere(1) : red  sphere(1) at (3, 0, 0) : blue }";
+    let scene = sdfc_tests::scene("inline", src);
+    assert_eq!(
+        eval::sample(&scene, DVec3::new(-1.5, 0.0, 0.0)).mat,
+        Some(0)
+    );
+    assert_eq!(eval::sample(&scene, DVec3::new(4.5, 0.0, 0.0)).mat, Some(1));
+    // The inner material wins over the outer one; untagged parts take the outer one.
+    let src = "material red { color #f00 }\nmaterial blue { color #00f }\n\
+               union { box(1) : blue  sphere(0.1) at (5, 0, 0) } : red";
+    let scene = sdfc_tests::scene("inline", src);
+    assert_eq!(
+        eval::sample(&scene, DVec3::new(-2.0, 0.0, 0.0)).mat,
+        Some(1)
+    );
+    assert_eq!(eval::sample(&scene, DVec3::new(6.0, 0.0, 0.0)).mat, Some(0));
+}

@@ -1,0 +1,109 @@
+//! Every example compiles without errors or warnings, the examples together use every catalog
+//! entry, the README's reference table is current, and every example's field respects its λ.
+
+use glam::DVec3;
+use sdfc_compiler::catalog::{OPERATORS, PRIMITIVES};
+use sdfc_compiler::scene::NodeKind;
+use sdfc_compiler::{check, docs, eval, lipschitz};
+use std::collections::BTreeSet;
+
+#[test]
+fn every_example_checks_clean() {
+    let examples = sdfc_tests::examples();
+    assert!(examples.len() >= 10, "only {} examples", examples.len());
+    for path in examples {
+        let source = std::fs::read_to_string(&path).unwrap();
+        let checked = check::compile(&source);
+        let name = path.display().to_string();
+        assert!(
+            checked.diagnostics.is_empty() && checked.scene.is_some(),
+            "{name}:\n{}",
+            sdfc_compiler::diag::render(&checked.diagnostics, &name, &source)
+        );
+    }
+}
+
+#[test]
+fn examples_cover_the_catalog() {
+    let mut used = BTreeSet::new();
+    for path in sdfc_tests::examples() {
+        let scene = sdfc_tests::example(&path);
+        for id in scene.reachable() {
+            used.insert(scene.nodes[id].kind_name());
+        }
+    }
+    let missing: Vec<&str> = PRIMITIVES
+        .iter()
+        .map(|p| p.name)
+        .chain(OPERATORS.iter().map(|o| o.name))
+        .chain(["implicit"])
+        .filter(|n| !used.contains(n))
+        .collect();
+    assert!(missing.is_empty(), "no example uses: {missing:?}");
+}
+
+#[test]
+fn readme_reference_table_is_current() {
+    let readme = std::fs::read_to_string(sdfc_tests::root().join("README.md")).unwrap();
+    let start = "<!-- catalog:start -->\n";
+    let end = "<!-- catalog:end -->";
+    let a = readme
+        .find(start)
+        .expect("README has the catalog start marker")
+        + start.len();
+    let b = readme.find(end).expect("README has the catalog end marker");
+    assert_eq!(
+        &readme[a..b],
+        docs::catalog_table(),
+        "README's table is stale: replace it with the output of `sdfc check --list`"
+    );
+}
+
+/// The tracer steps by f/λ; that is safe only if |∇(f/λ)| ≤ 1 everywhere. Sample it.
+#[test]
+fn every_example_respects_its_lipschitz_bound() {
+    let mut report = String::new();
+    for path in sdfc_tests::examples() {
+        let scene = sdfc_tests::example(&path);
+        let b = scene.root_node().bound;
+        let (center, extent) = if b.radius.is_finite() {
+            (b.center, b.radius * 1.2)
+        } else {
+            (
+                scene.camera.target,
+                (scene.camera.eye - scene.camera.target).length(),
+            )
+        };
+        let slope = lipschitz::estimate(|p| eval::distance(&scene, p), center, extent, 20_000);
+        let estimate_only = scene
+            .reachable()
+            .iter()
+            .any(|&n| matches!(&scene.nodes[n].kind, NodeKind::Primitive { prim, .. } if prim.name == "mandelbulb"));
+        report += &format!("{}: max |∇(f/λ)| = {slope:.4}\n", path.display());
+        if !estimate_only {
+            assert!(slope <= 1.0 + 1e-3, "{}: slope {slope} > 1", path.display());
+        }
+    }
+    println!("{report}");
+}
+
+#[test]
+fn every_example_is_finite_at_awkward_points() {
+    let points = [
+        DVec3::ZERO,
+        DVec3::splat(1e-12),
+        DVec3::new(1e6, 0.0, 0.0),
+        DVec3::new(-1e6, 1e6, -1e6),
+        DVec3::new(0.0, 1e-300, 0.0),
+        DVec3::new(3.0, -2.0, 7.5),
+    ];
+    for path in sdfc_tests::examples() {
+        let scene = sdfc_tests::example(&path);
+        for p in points {
+            let s = eval::sample(&scene, p);
+            assert!(s.d.is_finite(), "{}: f({p}) = {}", path.display(), s.d);
+            let n = eval::normal(&scene, p, 1e-4);
+            assert!(n.is_finite(), "{}: normal({p}) = {n}", path.display());
+        }
+    }
+}
