@@ -33,8 +33,21 @@ pub fn node(scene: &Scene, id: NodeId, p: DVec3) -> Sample {
             mat: None,
         },
         NodeKind::Operator { op, ctx, children } => {
-            let mut child = |i: usize, q: DVec3| node(scene, children[i], q);
-            (op.eval)(ctx, p, &mut child)
+            let mut seen = vec![None; children.len()];
+            let mut child = |i: usize, q: DVec3| {
+                let s = node(scene, children[i], q);
+                seen[i] = Some(s);
+                s.d
+            };
+            let d = (op.eval)(ctx, p, &mut child);
+            let seen: Vec<Sample> = seen
+                .into_iter()
+                .map(|s| s.unwrap_or(Sample { d, mat: None }))
+                .collect();
+            Sample {
+                d,
+                mat: op.materials.pick(ctx, &seen),
+            }
         }
     };
     Sample {

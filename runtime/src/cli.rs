@@ -3,6 +3,8 @@
 use clap::{Parser, Subcommand};
 use sdfc_compiler::check::{self, Checked};
 use sdfc_compiler::diag::{self, Diagnostic};
+use sdfc_compiler::emit::Target;
+use sdfc_compiler::lower::Entry;
 use std::path::{Path, PathBuf};
 
 #[derive(Parser)]
@@ -26,6 +28,36 @@ enum Command {
         #[arg(long)]
         list: bool,
     },
+    /// Compile a scene to shader code.
+    Emit {
+        /// The scene file (`-` for standard input).
+        file: PathBuf,
+        /// Output language.
+        #[arg(long, value_enum, default_value = "wgsl")]
+        target: TargetArg,
+        /// The interface: the runtime's compute pass, a full-screen fragment pass, or a library of functions.
+        #[arg(long, value_enum, default_value = "compute")]
+        entry: EntryArg,
+        /// Output file (default: standard output; SPIR-V needs a file).
+        #[arg(short, long)]
+        output: Option<PathBuf>,
+    },
+}
+
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum TargetArg {
+    Wgsl,
+    Spirv,
+    Glsl,
+    Msl,
+    Hlsl,
+}
+
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum EntryArg {
+    Compute,
+    Fragment,
+    Library,
 }
 
 /// Runs the command line; returns the exit code (0 ok, 1 user error).
@@ -50,7 +82,49 @@ pub fn run() -> i32 {
         Command::Check {
             file: Some(file), ..
         } => check_command(&file),
+        Command::Emit {
+            file,
+            target,
+            entry,
+            output,
+        } => crate::emit_cmd::run(&file, target.into(), entry.into(), output.as_deref()),
     }
+}
+
+impl From<TargetArg> for Target {
+    fn from(t: TargetArg) -> Target {
+        match t {
+            TargetArg::Wgsl => Target::Wgsl,
+            TargetArg::Spirv => Target::Spirv,
+            TargetArg::Glsl => Target::Glsl,
+            TargetArg::Msl => Target::Msl,
+            TargetArg::Hlsl => Target::Hlsl,
+        }
+    }
+}
+
+impl From<EntryArg> for Entry {
+    fn from(e: EntryArg) -> Entry {
+        match e {
+            EntryArg::Compute => Entry::Compute,
+            EntryArg::Fragment => Entry::Fragment,
+            EntryArg::Library => Entry::Library,
+        }
+    }
+}
+
+/// Reads and checks a scene, printing diagnostics; `None` (after printing) when it has errors.
+pub fn load_scene(path: &Path) -> Option<(String, String, sdfc_compiler::scene::Scene)> {
+    let (name, source) = match read_source(path) {
+        Ok(x) => x,
+        Err(e) => {
+            eprintln!("{e}");
+            return None;
+        }
+    };
+    let Checked { scene, diagnostics } = check::compile(&source);
+    eprint!("{}", diag::render(&diagnostics, &name, &source));
+    scene.map(|s| (name, source, s))
 }
 
 /// Reads a scene file or standard input; the error is a message for the user.

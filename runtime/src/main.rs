@@ -1,6 +1,7 @@
 //! The `sdfc` command line: check, emit, render and bench scene files.
 
 mod cli;
+mod emit_cmd;
 
 fn main() {
     // The front end recurses over the syntax tree; a large stack keeps pathological input (which

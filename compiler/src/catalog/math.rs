@@ -18,6 +18,8 @@ pub struct MathFn {
     pub range: fn(&[Interval]) -> Interval,
     /// Ranges of the partial derivatives with respect to each argument.
     pub partials: fn(&[Interval]) -> Vec<Interval>,
+    /// The naga math function computing it.
+    pub lower: naga::MathFunction,
 }
 
 fn unit() -> Interval {
@@ -33,6 +35,7 @@ fn switch() -> Interval {
 pub static MATH_FUNCTIONS: &[MathFn] = &[
     MathFn {
         name: "abs",
+        lower: naga::MathFunction::Abs,
         arity: 1,
         doc: "|a|",
         eval: |a| a[0].abs(),
@@ -41,6 +44,7 @@ pub static MATH_FUNCTIONS: &[MathFn] = &[
     },
     MathFn {
         name: "sqrt",
+        lower: naga::MathFunction::Sqrt,
         arity: 1,
         doc: "√a (a < 0 gives NaN, which is an error in constants)",
         eval: |a| a[0].sqrt(),
@@ -55,6 +59,7 @@ pub static MATH_FUNCTIONS: &[MathFn] = &[
     },
     MathFn {
         name: "sin",
+        lower: naga::MathFunction::Sin,
         arity: 1,
         doc: "sine (radians)",
         eval: |a| a[0].sin(),
@@ -63,6 +68,7 @@ pub static MATH_FUNCTIONS: &[MathFn] = &[
     },
     MathFn {
         name: "cos",
+        lower: naga::MathFunction::Cos,
         arity: 1,
         doc: "cosine (radians)",
         eval: |a| a[0].cos(),
@@ -71,6 +77,7 @@ pub static MATH_FUNCTIONS: &[MathFn] = &[
     },
     MathFn {
         name: "exp",
+        lower: naga::MathFunction::Exp,
         arity: 1,
         doc: "eᵃ",
         eval: |a| a[0].exp(),
@@ -79,6 +86,7 @@ pub static MATH_FUNCTIONS: &[MathFn] = &[
     },
     MathFn {
         name: "log",
+        lower: naga::MathFunction::Log,
         arity: 1,
         doc: "natural logarithm",
         eval: |a| a[0].ln(),
@@ -87,6 +95,7 @@ pub static MATH_FUNCTIONS: &[MathFn] = &[
     },
     MathFn {
         name: "min",
+        lower: naga::MathFunction::Min,
         arity: 2,
         doc: "the smaller of a and b",
         eval: |a| a[0].min(a[1]),
@@ -95,6 +104,7 @@ pub static MATH_FUNCTIONS: &[MathFn] = &[
     },
     MathFn {
         name: "max",
+        lower: naga::MathFunction::Max,
         arity: 2,
         doc: "the larger of a and b",
         eval: |a| a[0].max(a[1]),
@@ -103,6 +113,7 @@ pub static MATH_FUNCTIONS: &[MathFn] = &[
     },
     MathFn {
         name: "length",
+        lower: naga::MathFunction::Length,
         arity: 3,
         doc: "√(a² + b² + c²): the length of a vector (its partials are bounded by 1)",
         eval: |a| (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt(),
@@ -114,6 +125,7 @@ pub static MATH_FUNCTIONS: &[MathFn] = &[
     },
     MathFn {
         name: "atan2",
+        lower: naga::MathFunction::Atan2,
         arity: 2,
         doc: "the angle of the point (b, a): atan2(a, b)",
         eval: |a| a[0].atan2(a[1]),

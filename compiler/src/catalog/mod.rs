@@ -4,8 +4,8 @@
 //! primitive means adding one entry (and its formula) in `primitives.rs`.
 
 mod math;
-mod operators;
-mod primitives;
+pub mod operators;
+pub mod primitives;
 
 pub use math::{MATH_FUNCTIONS, MathFn};
 pub use operators::OPERATORS;
@@ -235,8 +235,49 @@ impl Arity {
     }
 }
 
-/// Evaluates one child of an operator at a point.
-pub type ChildEval<'a> = &'a mut dyn FnMut(usize, DVec3) -> Sample;
+/// Evaluates one child of an operator at a point: its raw field (not divided by its λ).
+pub type ChildEval<'a> = &'a mut dyn FnMut(usize, DVec3) -> f64;
+
+/// Which child's material the result takes. Comparisons use the children's fields divided by
+/// their λ and a sharp fold even for smooth blends, identically on the CPU and in shaders.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MatRule {
+    /// The smallest field wins (union, smooth union, blob).
+    Nearest,
+    /// The largest field wins (intersection).
+    Farthest,
+    /// The first child, unless a later one's negated field is larger (subtraction: cut faces
+    /// take the cutter's material).
+    Cut,
+    /// The first child below weight 0.5, else the second (`mix`; the weight is argument 0).
+    Weighted,
+    /// The only child's.
+    Pass,
+}
+
+impl MatRule {
+    /// The material of an operator's result from its children's raw samples, in child order.
+    pub fn pick(self, ctx: &Ctx, children: &[Sample]) -> Option<u32> {
+        let norm = |i: usize| children[i].d / ctx.child_lambda[i];
+        let fold = |better: &dyn Fn(f64, f64) -> bool, sign: f64| {
+            let (mut d, mut m) = (norm(0), children[0].mat);
+            for (i, child) in children.iter().enumerate().skip(1) {
+                let di = sign * norm(i);
+                if better(di, d) {
+                    (d, m) = (di, child.mat);
+                }
+            }
+            m
+        };
+        match self {
+            MatRule::Pass => children[0].mat,
+            MatRule::Weighted => children[usize::from(ctx.num(0) >= 0.5)].mat,
+            MatRule::Nearest => fold(&|a, b| a < b, 1.0),
+            MatRule::Farthest => fold(&|a, b| a > b, 1.0),
+            MatRule::Cut => fold(&|a, b| a > b, -1.0),
+        }
+    }
+}
 
 /// A primitive shape.
 pub struct Primitive {
@@ -254,6 +295,8 @@ pub struct Primitive {
     pub bound: fn(&Ctx) -> Bound,
     /// The field in f64.
     pub eval: fn(&Ctx, DVec3) -> f64,
+    /// The same field as the body of `sd_<name>(p, params...)` in naga IR.
+    pub lower: crate::lower::prims::PrimLower,
 }
 
 /// An operator on child shapes (CSG, blend, transform, domain operation).
@@ -272,7 +315,11 @@ pub struct Operator {
     /// Bounding sphere of the result.
     pub bound: fn(&Ctx) -> Bound,
     /// The field in f64, given a way to evaluate the children.
-    pub eval: fn(&Ctx, DVec3, ChildEval) -> Sample,
+    pub eval: fn(&Ctx, DVec3, ChildEval) -> f64,
+    /// How materials propagate.
+    pub materials: MatRule,
+    /// The same field in naga IR.
+    pub lower: crate::lower::ops::OpLower,
 }
 
 /// Looks up a primitive by name.

@@ -6,7 +6,8 @@
 //! IQ's polynomial smooth minimum is a convex combination of its operands' gradients). Operators
 //! that only move the domain keep the child's λ, or raise it by their Jacobian's norm.
 
-use super::{Arity, Bound, ChildEval, Ctx, Operator, Sample, Ty, Val, opt, req};
+use super::{Arity, Bound, ChildEval, Ctx, MatRule, Operator, Ty, Val, opt, req};
+use crate::lower::ops as ir;
 use glam::DVec3;
 
 const fn num(x: f64) -> Val {
@@ -17,56 +18,28 @@ const SAME: fn(&Ctx) -> f64 = |c| c.child_lambda[0];
 const ONE: fn(&Ctx) -> f64 = |_| 1.0;
 
 /// Child `i` at `p`, divided by its λ.
-fn norm(c: &Ctx, child: ChildEval, i: usize, p: DVec3) -> Sample {
-    let s = child(i, p);
-    Sample {
-        d: s.d / c.child_lambda[i],
-        mat: s.mat,
-    }
+fn norm(c: &Ctx, child: ChildEval, i: usize, p: DVec3) -> f64 {
+    child(i, p) / c.child_lambda[i]
 }
 
-/// Folds the normalised children with `f`, which returns the combined sample.
-fn fold(c: &Ctx, p: DVec3, child: ChildEval, f: impl Fn(Sample, Sample) -> Sample) -> Sample {
+/// Folds the normalised children with `f`.
+fn fold(c: &Ctx, p: DVec3, child: ChildEval, f: impl Fn(f64, f64) -> f64) -> f64 {
     let first = norm(c, child, 0, p);
-    (1..c.args_children()).fold(first, |acc, i| f(acc, norm(c, child, i, p)))
+    (1..c.child_lambda.len()).fold(first, |acc, i| f(acc, norm(c, child, i, p)))
 }
 
-impl Ctx {
-    fn args_children(&self) -> usize {
-        self.child_lambda.len()
-    }
-}
-
-fn min_s(a: Sample, b: Sample) -> Sample {
-    if b.d < a.d { b } else { a }
-}
-
-fn max_s(a: Sample, b: Sample) -> Sample {
-    if b.d > a.d { b } else { a }
-}
-
-fn neg(s: Sample) -> Sample {
-    Sample {
-        d: -s.d,
-        mat: s.mat,
-    }
-}
-
-/// IQ's quadratic polynomial smooth minimum with blend radius `k`; the material is the nearer
-/// operand's.
-pub fn smin(a: Sample, b: Sample, k: f64) -> Sample {
+/// IQ's quadratic polynomial smooth minimum with blend radius `k`.
+pub fn smin(a: f64, b: f64, k: f64) -> f64 {
     if k <= 0.0 {
-        return min_s(a, b);
+        return a.min(b);
     }
-    let h = (k - (a.d - b.d).abs()).max(0.0) / k;
-    Sample {
-        d: a.d.min(b.d) - h * h * k * 0.25,
-        mat: min_s(a, b).mat,
-    }
+    let h = (k - (a - b).abs()).max(0.0) / k;
+    a.min(b) - h * h * k * 0.25
 }
 
-fn smax(a: Sample, b: Sample, k: f64) -> Sample {
-    neg(smin(neg(a), neg(b), k))
+/// The smooth maximum, −smin(−a, −b).
+pub fn smax(a: f64, b: f64, k: f64) -> f64 {
+    -smin(-a, -b, k)
 }
 
 fn smallest(c: &Ctx) -> Bound {
@@ -118,20 +91,14 @@ pub fn twist_stretch(rate: f64, rho: f64) -> f64 {
 /// A domain bend or twist: the child at `q`, normalised by `stretch`, and outside the cylinder of
 /// radius `rho_max` (which holds the whole surface) the distance to that cylinder. With an
 /// unbounded child the raw field is returned (λ is then infinite and must be annotated).
-fn warp(c: &Ctx, child: ChildEval, q: DVec3, rho: f64, rho_max: f64, stretch: f64) -> Sample {
+fn warp(c: &Ctx, child: ChildEval, q: DVec3, rho: f64, rho_max: f64, stretch: f64) -> f64 {
+    let d = child(0, q);
     if !rho_max.is_finite() {
-        return child(0, q);
-    }
-    if rho > rho_max {
-        return Sample {
-            d: rho - rho_max,
-            mat: None,
-        };
-    }
-    let s = child(0, q);
-    Sample {
-        d: s.d / (c.child_lambda[0] * stretch),
-        mat: s.mat,
+        d
+    } else if rho > rho_max {
+        rho - rho_max
+    } else {
+        d / (c.child_lambda[0] * stretch)
     }
 }
 
@@ -147,44 +114,54 @@ fn warp_lambda(c: &Ctx) -> f64 {
 pub static OPERATORS: &[Operator] = &[
     Operator {
         name: "union",
+        materials: MatRule::Nearest,
+        lower: ir::union,
         doc: "Union of its shapes: min (λ = 1 after dividing each child by its λ); the nearest \
               shape's material.",
         params: &[],
         arity: Arity::AtLeast(1),
         lipschitz: ONE,
         bound: all,
-        eval: |c, p, child| fold(c, p, child, min_s),
+        eval: |c, p, child| fold(c, p, child, f64::min),
     },
     Operator {
         name: "intersect",
+        materials: MatRule::Farthest,
+        lower: ir::intersect,
         doc: "Intersection: max (λ = 1); the material of the shape that bounds the result.",
         params: &[],
         arity: Arity::AtLeast(1),
         lipschitz: ONE,
         bound: smallest,
-        eval: |c, p, child| fold(c, p, child, max_s),
+        eval: |c, p, child| fold(c, p, child, f64::max),
     },
     Operator {
         name: "subtract",
+        materials: MatRule::Cut,
+        lower: ir::subtract,
         doc: "The first shape minus the others: max(a, −b) (λ = 1); cut faces take the cutter's \
               material.",
         params: &[],
         arity: Arity::AtLeast(2),
         lipschitz: ONE,
         bound: |c| c.child_bound[0],
-        eval: |c, p, child| fold(c, p, child, |a, b| max_s(a, neg(b))),
+        eval: |c, p, child| fold(c, p, child, |a, b| a.max(-b)),
     },
     Operator {
         name: "complement",
+        materials: MatRule::Pass,
+        lower: ir::complement,
         doc: "Inside out: −f (λ unchanged).",
         params: &[],
         arity: Arity::Exactly(1),
         lipschitz: SAME,
         bound: |_| Bound::INFINITE,
-        eval: |_, p, child| neg(child(0, p)),
+        eval: |_, p, child| -child(0, p),
     },
     Operator {
         name: "smooth_union",
+        materials: MatRule::Nearest,
+        lower: ir::smooth_union,
         doc: "Union blended over `radius` by IQ's polynomial smooth minimum (λ = 1); the nearer \
               shape's material.",
         params: &[req("radius", Ty::Length)],
@@ -195,6 +172,8 @@ pub static OPERATORS: &[Operator] = &[
     },
     Operator {
         name: "smooth_intersect",
+        materials: MatRule::Farthest,
+        lower: ir::smooth_intersect,
         doc: "Intersection blended over `radius` (λ = 1).",
         params: &[req("radius", Ty::Length)],
         arity: Arity::AtLeast(1),
@@ -204,15 +183,19 @@ pub static OPERATORS: &[Operator] = &[
     },
     Operator {
         name: "smooth_subtract",
+        materials: MatRule::Cut,
+        lower: ir::smooth_subtract,
         doc: "The first shape minus the others, blended over `radius` (λ = 1).",
         params: &[req("radius", Ty::Length)],
         arity: Arity::AtLeast(2),
         lipschitz: ONE,
         bound: |c| c.child_bound[0],
-        eval: |c, p, child| fold(c, p, child, |a, b| smax(a, neg(b), c.num(0))),
+        eval: |c, p, child| fold(c, p, child, |a, b| smax(a, -b, c.num(0))),
     },
     Operator {
         name: "mix",
+        materials: MatRule::Weighted,
+        lower: ir::mix,
         doc: "Metamorphosis (Liktor Fig. 9): (1 − `weight`)·a + `weight`·b of the raw fields, \
               λ = (1 − w)·λa + w·λb; the heavier shape's material.",
         params: &[req("weight", Ty::Fraction)],
@@ -221,15 +204,13 @@ pub static OPERATORS: &[Operator] = &[
         bound: all,
         eval: |c, p, child| {
             let w = c.num(0);
-            let (a, b) = (child(0, p), child(1, p));
-            Sample {
-                d: (1.0 - w) * a.d + w * b.d,
-                mat: if w < 0.5 { a.mat } else { b.mat },
-            }
+            (1.0 - w) * child(0, p) + w * child(1, p)
         },
     },
     Operator {
         name: "blob",
+        materials: MatRule::Nearest,
+        lower: ir::blob,
         doc: "Blob field (Liktor §2): `threshold` − Σ (1 − (dᵢ/`radius`)²)³ over the children's \
               distances dᵢ ≥ 0, divided by its slope bound n·1.7173/`radius`, and the distance to \
               the children's influence zone outside it (λ = 1).",
@@ -242,28 +223,22 @@ pub static OPERATORS: &[Operator] = &[
         bound: |c| grow(all(c), c.num(0)),
         eval: |c, p, child| {
             let (radius, threshold) = (c.num(0), c.num(1));
-            let n = c.args_children();
+            let n = c.child_lambda.len();
             let mut field = 0.0;
             let mut nearest = f64::INFINITY;
-            let mut strongest = (0.0, None);
             for i in 0..n {
-                let s = norm(c, child, i, p);
-                let g = falloff(s.d.max(0.0) / radius);
-                field += g;
-                nearest = nearest.min(s.d);
-                if g > strongest.0 || strongest.1.is_none() {
-                    strongest = (g, s.mat);
-                }
+                let d = norm(c, child, i, p);
+                field += falloff(d.max(0.0) / radius);
+                nearest = nearest.min(d);
             }
             let slope = n as f64 * FALLOFF_SLOPE / radius;
-            Sample {
-                d: ((threshold - field) / slope).max(nearest - radius),
-                mat: strongest.1,
-            }
+            ((threshold - field) / slope).max(nearest - radius)
         },
     },
     Operator {
         name: "translate",
+        materials: MatRule::Pass,
+        lower: ir::translate,
         doc: "Moves its shape by `offset` (λ unchanged). `s at (x, y, z)` is the same.",
         params: &[req("offset", Ty::Vec3)],
         arity: Arity::Exactly(1),
@@ -276,6 +251,8 @@ pub static OPERATORS: &[Operator] = &[
     },
     Operator {
         name: "rotate",
+        materials: MatRule::Pass,
+        lower: ir::rotate,
         doc: "Rotates its shape by `angle` about `axis` through the origin (λ unchanged).",
         params: &[req("axis", Ty::Axis), req("angle", Ty::Angle)],
         arity: Arity::Exactly(1),
@@ -288,6 +265,8 @@ pub static OPERATORS: &[Operator] = &[
     },
     Operator {
         name: "scale",
+        materials: MatRule::Pass,
+        lower: ir::scale,
         doc: "Scales its shape by `factor` (a number, or a vector for non-uniform scale): \
               f(p/s)·min(s), λ multiplied by max(s)/min(s).",
         params: &[req("factor", Ty::Scale)],
@@ -299,15 +278,13 @@ pub static OPERATORS: &[Operator] = &[
         },
         eval: |c, p, child| {
             let s = c.vec(0);
-            let r = child(0, p / s);
-            Sample {
-                d: r.d * s.min_element(),
-                mat: r.mat,
-            }
+            child(0, p / s) * s.min_element()
         },
     },
     Operator {
         name: "repeat",
+        materials: MatRule::Pass,
+        lower: ir::repeat,
         doc: "Repeats its shape every `spacing` along each axis (0: not on that axis), `count` \
               copies per axis (0: without end); λ unchanged while the shape fits in its cell.",
         params: &[req("spacing", Ty::Size), opt("count", Ty::Counts, num(0.0))],
@@ -325,6 +302,8 @@ pub static OPERATORS: &[Operator] = &[
     },
     Operator {
         name: "mirror",
+        materials: MatRule::Pass,
+        lower: ir::mirror,
         doc: "Mirrors the half-space in front of the plane through the origin with normal `axis` \
               onto the back (λ unchanged).",
         params: &[req("axis", Ty::Axis)],
@@ -346,6 +325,8 @@ pub static OPERATORS: &[Operator] = &[
     },
     Operator {
         name: "twist",
+        materials: MatRule::Pass,
+        lower: ir::twist,
         doc: "Twists its shape about the y axis by `rate` radians per unit of y; normalised by \
               the Jacobian bound (a + √(a²+4))/2, a = |rate|·ρ, inside the bounding cylinder of \
               radius ρ (λ = 1; an unbounded shape needs an annotation).",
@@ -370,6 +351,8 @@ pub static OPERATORS: &[Operator] = &[
     },
     Operator {
         name: "bend",
+        materials: MatRule::Pass,
+        lower: ir::bend,
         doc: "Bends its shape in the xy plane by `rate` radians per unit of x; normalised by the \
               Jacobian bound 1 + |rate|·ρ inside the bounding cylinder about z (λ = 1).",
         params: &[req("rate", Ty::Number)],
@@ -393,36 +376,30 @@ pub static OPERATORS: &[Operator] = &[
     },
     Operator {
         name: "round",
+        materials: MatRule::Pass,
+        lower: ir::round,
         doc: "Rounds its shape outward by `radius`: f/λ − r (λ = 1).",
         params: &[req("radius", Ty::Length)],
         arity: Arity::Exactly(1),
         lipschitz: ONE,
         bound: |c| grow(c.child_bound[0], c.num(0)),
-        eval: |c, p, child| {
-            let s = norm(c, child, 0, p);
-            Sample {
-                d: s.d - c.num(0),
-                mat: s.mat,
-            }
-        },
+        eval: |c, p, child| norm(c, child, 0, p) - c.num(0),
     },
     Operator {
         name: "onion",
+        materials: MatRule::Pass,
+        lower: ir::onion,
         doc: "Hollows its shape into a shell of `thickness`: |f/λ| − t (λ = 1).",
         params: &[req("thickness", Ty::Length)],
         arity: Arity::Exactly(1),
         lipschitz: ONE,
         bound: |c| grow(c.child_bound[0], c.num(0)),
-        eval: |c, p, child| {
-            let s = norm(c, child, 0, p);
-            Sample {
-                d: s.d.abs() - c.num(0),
-                mat: s.mat,
-            }
-        },
+        eval: |c, p, child| norm(c, child, 0, p).abs() - c.num(0),
     },
     Operator {
         name: "elongate",
+        materials: MatRule::Pass,
+        lower: ir::elongate,
         doc: "Stretches its shape by inserting `amount` of straight extent along each axis at the \
               origin: f(p − clamp(p, −h, h)), h = amount/2 (λ unchanged).",
         params: &[req("amount", Ty::Size)],
@@ -446,11 +423,16 @@ pub fn repeat_cell(p: DVec3, spacing: DVec3, count: DVec3) -> DVec3 {
         }
         let n = count[i];
         q[i] = if n == 0.0 {
-            p[i] - s * (p[i] / s).round()
+            p[i] - s * round_half_up(p[i] / s)
         } else {
             let half = (n - 1.0) / 2.0;
-            p[i] - s * ((p[i] / s + half).round().clamp(0.0, n - 1.0) - half)
+            p[i] - s * (round_half_up(p[i] / s + half).clamp(0.0, n - 1.0) - half)
         };
     }
     q
+}
+
+/// floor(x + 0.5): the rounding the shaders use too, so cells agree at exact halves.
+pub fn round_half_up(x: f64) -> f64 {
+    (x + 0.5).floor()
 }

@@ -5,6 +5,7 @@
 //! the Keinert seed (Fig. 11); the Mandelbulb is the distance estimator of Bálint's test scene.
 
 use super::{Bound, Ctx, Primitive, Ty, Val, opt};
+use crate::lower::prims as ir;
 use glam::{DVec2, DVec3};
 
 const ONE: fn(&Ctx) -> f64 = |_| 1.0;
@@ -21,6 +22,7 @@ const fn vec3(x: f64, y: f64, z: f64) -> Val {
 pub static PRIMITIVES: &[Primitive] = &[
     Primitive {
         name: "sphere",
+        lower: ir::sphere,
         doc: "Sphere of `radius` at the origin.",
         params: &[opt("radius", Ty::Length, num(1.0))],
         exact: true,
@@ -30,6 +32,7 @@ pub static PRIMITIVES: &[Primitive] = &[
     },
     Primitive {
         name: "box",
+        lower: ir::cuboid,
         doc: "Axis-aligned box of full edge lengths `size`, centred.",
         params: &[opt("size", Ty::Size, num(1.0))],
         exact: true,
@@ -39,6 +42,7 @@ pub static PRIMITIVES: &[Primitive] = &[
     },
     Primitive {
         name: "rounded_box",
+        lower: ir::rounded_box,
         doc: "Box of full edge lengths `size` whose edges are rounded by `radius` (inside the size).",
         params: &[
             opt("size", Ty::Size, num(1.0)),
@@ -55,6 +59,7 @@ pub static PRIMITIVES: &[Primitive] = &[
     },
     Primitive {
         name: "plane",
+        lower: ir::plane,
         doc: "Half-space below the plane through `offset`·`normal` (normal `y` is the floor y = offset).",
         params: &[
             opt("normal", Ty::Axis, vec3(0.0, 1.0, 0.0)),
@@ -67,6 +72,7 @@ pub static PRIMITIVES: &[Primitive] = &[
     },
     Primitive {
         name: "torus",
+        lower: ir::torus,
         doc: "Torus in the xz plane: ring radius `major`, tube radius `minor`.",
         params: &[
             opt("major", Ty::Length, num(1.0)),
@@ -79,6 +85,7 @@ pub static PRIMITIVES: &[Primitive] = &[
     },
     Primitive {
         name: "capsule",
+        lower: ir::capsule,
         doc: "Vertical capsule: a segment of `height` along y, centred, swept by a ball of `radius`.",
         params: &[
             opt("height", Ty::Length, num(1.0)),
@@ -94,6 +101,7 @@ pub static PRIMITIVES: &[Primitive] = &[
     },
     Primitive {
         name: "cylinder",
+        lower: ir::cylinder,
         doc: "Capped vertical cylinder of `radius` and `height`, centred.",
         params: &[
             opt("radius", Ty::Length, num(0.5)),
@@ -110,6 +118,7 @@ pub static PRIMITIVES: &[Primitive] = &[
     },
     Primitive {
         name: "cone",
+        lower: ir::cone,
         doc: "Capped vertical cone of `height`, centred: base `radius` at the bottom, `top` radius above.",
         params: &[
             opt("radius", Ty::Length, num(0.5)),
@@ -123,6 +132,7 @@ pub static PRIMITIVES: &[Primitive] = &[
     },
     Primitive {
         name: "ellipsoid",
+        lower: ir::ellipsoid,
         doc: "Ellipsoid with semi-axes `radii`; a bound (λ = 1), exact only for spheres.",
         params: &[opt("radii", Ty::Size, vec3(1.0, 0.5, 0.5))],
         exact: false,
@@ -130,15 +140,13 @@ pub static PRIMITIVES: &[Primitive] = &[
         bound: |c| Bound::origin(c.vec(0).max_element()),
         // |p / r| - 1 has gradient at most 1 / min(r); scaling by min(r) makes it 1-Lipschitz.
         eval: |c, p| {
-            let r = c.vec(0);
-            if r.min_element() <= 0.0 {
-                return degenerate_ellipsoid(p, r);
-            }
+            let r = c.vec(0).max(DVec3::splat(ELLIPSOID_MIN_RADIUS));
             ((p / r).length() - 1.0) * r.min_element()
         },
     },
     Primitive {
         name: "octahedron",
+        lower: ir::octahedron,
         doc: "Regular octahedron |x| + |y| + |z| = `size`.",
         params: &[opt("size", Ty::Length, num(1.0))],
         exact: true,
@@ -148,6 +156,7 @@ pub static PRIMITIVES: &[Primitive] = &[
     },
     Primitive {
         name: "dodecahedron",
+        lower: ir::dodecahedron,
         doc: "Dodecahedron of inradius `radius` as a generalised distance (Akleman; Keinert Fig. 11); \
               `exponent` 0 is the sharp max form, ≥ 2 rounds it (λ = √2).",
         params: &[
@@ -168,6 +177,7 @@ pub static PRIMITIVES: &[Primitive] = &[
     },
     Primitive {
         name: "mandelbulb",
+        lower: ir::mandelbulb,
         doc: "Power-`power` Mandelbulb by its distance estimator (Bálint's test scene); an estimate, \
               not a proven bound.",
         params: &[
@@ -207,10 +217,8 @@ fn sd_capped_cone(p: DVec3, h: f64, r1: f64, r2: f64) -> f64 {
     s * ca.length_squared().min(cb.length_squared()).sqrt()
 }
 
-/// An ellipsoid with a zero semi-axis is a flat disc or segment: the box bound of its extent.
-fn degenerate_ellipsoid(p: DVec3, r: DVec3) -> f64 {
-    sd_box(p, r)
-}
+/// Smallest semi-axis the ellipsoid uses: a zero radius is raised to it (a flat disc).
+pub const ELLIPSOID_MIN_RADIUS: f64 = 1e-9;
 
 /// IQ's exact octahedron.
 fn sd_octahedron(p: DVec3, s: f64) -> f64 {

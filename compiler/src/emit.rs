@@ -1,0 +1,163 @@
+//! Emitting: compact and validate the lowered module, then write it with one of naga's back ends.
+
+use crate::lower::{self, Entry, tracer::Options};
+use crate::scene::Scene;
+use naga::back;
+use naga::valid::{Capabilities, ModuleInfo, ValidationFlags, Validator};
+
+/// Output languages.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Target {
+    /// WGSL text.
+    Wgsl,
+    /// SPIR-V binary (1.3).
+    Spirv,
+    /// GLSL 4.50 (Vulkan-style bindings, for `glslangValidator -V`).
+    Glsl,
+    /// Metal Shading Language.
+    Msl,
+    /// HLSL (shader model 5.1).
+    Hlsl,
+}
+
+/// What an emit produces: text, or SPIR-V words.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Output {
+    /// Source text.
+    Text(String),
+    /// SPIR-V binary.
+    Binary(Vec<u32>),
+}
+
+/// A compiler bug: the lowered module failed validation or a back end refused it.
+#[derive(Debug)]
+pub struct InternalError(pub String);
+
+/// Lowers, compacts and validates a scene for an entry kind.
+pub fn module(
+    scene: &Scene,
+    entry: Entry,
+    options: &Options,
+) -> Result<(naga::Module, ModuleInfo), InternalError> {
+    let mut module = lower::lower(scene, entry, options);
+    let keep = if entry == Entry::Library {
+        naga::compact::KeepUnused::Yes
+    } else {
+        naga::compact::KeepUnused::No
+    };
+    naga::compact::compact(&mut module, keep);
+    let info = validate(&module)?;
+    Ok((module, info))
+}
+
+/// Runs naga's validator with every check on.
+pub fn validate(module: &naga::Module) -> Result<ModuleInfo, InternalError> {
+    Validator::new(ValidationFlags::all(), Capabilities::empty())
+        .validate(module)
+        .map_err(|e| {
+            InternalError(format!(
+                "the generated module is invalid: {}",
+                e.emit_to_string("")
+            ))
+        })
+}
+
+/// Binding map for GLSL with Vulkan semantics and HLSL: group 0, binding n → binding n.
+fn glsl_bindings(module: &naga::Module) -> back::glsl::BindingMap {
+    module
+        .global_variables
+        .iter()
+        .filter_map(|(_, g)| g.binding)
+        .map(|rb| (rb, rb.binding as u8))
+        .collect()
+}
+
+/// Writes a validated module in the target language.
+pub fn write(
+    module: &naga::Module,
+    info: &ModuleInfo,
+    target: Target,
+    entry: Entry,
+) -> Result<Output, InternalError> {
+    let err =
+        |e: &dyn std::fmt::Display| InternalError(format!("the {target:?} back end failed: {e}"));
+    let stage = match entry {
+        Entry::Compute => naga::ShaderStage::Compute,
+        _ => naga::ShaderStage::Fragment,
+    };
+    match target {
+        Target::Wgsl => back::wgsl::write_string(module, info, back::wgsl::WriterFlags::empty())
+            .map(Output::Text)
+            .map_err(|e| err(&e)),
+        Target::Spirv => {
+            let options = back::spv::Options {
+                lang_version: (1, 3),
+                ..Default::default()
+            };
+            let pipeline = (entry != Entry::Library).then(|| back::spv::PipelineOptions {
+                shader_stage: stage,
+                entry_point: "main".into(),
+            });
+            back::spv::write_vec(module, info, &options, pipeline.as_ref())
+                .map(Output::Binary)
+                .map_err(|e| err(&e))
+        }
+        Target::Glsl if entry == Entry::Library => {
+            // GLSL needs an entry point: add an empty compute `main`; the library functions are
+            // written beside it.
+            let mut m = module.clone();
+            m.entry_points.push(naga::EntryPoint {
+                name: "main".into(),
+                stage: naga::ShaderStage::Compute,
+                early_depth_test: None,
+                workgroup_size: [1, 1, 1],
+                workgroup_size_overrides: None,
+                function: naga::Function::default(),
+                mesh_info: None,
+                task_payload: None,
+                incoming_ray_payload: None,
+            });
+            let info = validate(&m)?;
+            write(&m, &info, target, Entry::Compute)
+        }
+        Target::Glsl => {
+            let options = back::glsl::Options {
+                version: back::glsl::Version::Desktop(450),
+                binding_map: glsl_bindings(module),
+                ..Default::default()
+            };
+            let pipeline = back::glsl::PipelineOptions {
+                shader_stage: stage,
+                entry_point: "main".into(),
+                multiview: None,
+            };
+            let mut s = String::new();
+            back::glsl::Writer::new(
+                &mut s,
+                module,
+                info,
+                &options,
+                &pipeline,
+                naga::proc::BoundsCheckPolicies::default(),
+            )
+            .and_then(|mut w| w.write().map(|_| ()))
+            .map_err(|e| err(&e))?;
+            Ok(Output::Text(s))
+        }
+        Target::Msl => {
+            let options = back::msl::Options::default();
+            let pipeline = back::msl::PipelineOptions::default();
+            back::msl::write_string(module, info, &options, &pipeline)
+                .map(|(s, _)| Output::Text(s))
+                .map_err(|e| err(&e))
+        }
+        Target::Hlsl => {
+            let options = back::hlsl::Options::default();
+            let mut s = String::new();
+            back::hlsl::Writer::new(&mut s, &options, &back::hlsl::PipelineOptions::default())
+                .write(module, info, None)
+                .map_err(|e| err(&e))?;
+            Ok(Output::Text(s))
+        }
+    }
+}

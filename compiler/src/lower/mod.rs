@@ -1,0 +1,317 @@
+//! Lowering: the checked scene graph becomes a naga module — `sd_*` functions for the primitives
+//! used, `op_*` helpers for the blends used, a function per surviving `let` shape, `map`, and
+//! (only when the scene has materials) `map_material`; the tracer and entry points come from
+//! `tracer.rs`.
+
+pub mod builder;
+pub mod ops;
+pub mod prims;
+pub mod tracer;
+
+use crate::catalog::{MatRule, Ty};
+use crate::scene::{Field, NodeId, NodeKind, Scene};
+use crate::syntax::BinOp;
+use builder::{Ex, FnBuilder, ModuleBuilder};
+use naga::{Function, Handle, MathFunction, Type};
+use std::collections::HashMap;
+
+pub use tracer::Entry;
+
+/// Builds the module for a scene and an entry kind. Validation happens in `emit`.
+pub fn lower(scene: &Scene, entry: Entry, options: &tracer::Options) -> naga::Module {
+    let mut mb = ModuleBuilder::default();
+    let reachable = scene.reachable();
+    add_primitive_functions(&mut mb, scene, &reachable);
+    add_operator_helpers(&mut mb, scene, &reachable);
+    let named = add_let_functions(&mut mb, scene, &reachable);
+    let map = {
+        let v3 = mb.vec3();
+        let f32t = mb.f32();
+        let mut b = FnBuilder::new(&mut mb, "map", &[("p", v3)], Some(f32t));
+        let p = b.arg(0);
+        let d = Walk {
+            scene,
+            named: &named,
+            root_fn: None,
+        }
+        .distance(&mut b, scene.root, p);
+        let d = ops::scale_by(&mut b, d, 1.0 / scene.root_node().lambda);
+        b.ret(Some(d));
+        let f = b.finish();
+        mb.add_helper("map", f)
+    };
+    let material = has_materials(scene, &reachable).then(|| {
+        let v3 = mb.vec3();
+        let u32t = mb.u32();
+        let mut b = FnBuilder::new(&mut mb, "map_material", &[("p", v3)], Some(u32t));
+        let p = b.arg(0);
+        let (_, m) = Walk {
+            scene,
+            named: &named,
+            root_fn: None,
+        }
+        .with_material(&mut b, scene.root, p);
+        let m = m.unwrap_or_else(|| b.u(0));
+        b.ret(Some(m));
+        let f = b.finish();
+        mb.add_helper("map_material", f)
+    });
+    tracer::add(&mut mb, scene, map, material, entry, options);
+    mb.module
+}
+
+fn has_materials(scene: &Scene, reachable: &[NodeId]) -> bool {
+    reachable.iter().any(|&n| scene.nodes[n].material.is_some())
+}
+
+/// The IR type of a parameter of type `ty`.
+fn param_type(mb: &mut ModuleBuilder, ty: Ty) -> Handle<Type> {
+    match ty {
+        Ty::Count => mb.u32(),
+        Ty::Vec3 | Ty::Size | Ty::Scale | Ty::Axis | Ty::Color | Ty::Counts => mb.vec3(),
+        _ => mb.f32(),
+    }
+}
+
+/// `sd_<name>(p, params...)` for each primitive kind the scene uses, in order of first use.
+fn add_primitive_functions(mb: &mut ModuleBuilder, scene: &Scene, reachable: &[NodeId]) {
+    for &n in reachable {
+        let NodeKind::Primitive { prim, .. } = &scene.nodes[n].kind else {
+            continue;
+        };
+        let name = format!("sd_{}", prim.name);
+        if mb.has_helper(&name) {
+            continue;
+        }
+        let v3 = mb.vec3();
+        let f32t = mb.f32();
+        let mut args = vec![("p", v3)];
+        for param in prim.params {
+            let ty = param_type(mb, param.ty);
+            // Keep the module's own function names (`normal`) free for those functions.
+            let name = if param.name == "normal" {
+                "n"
+            } else {
+                param.name
+            };
+            args.push((name, ty));
+        }
+        let mut b = FnBuilder::new(mb, &name, &args, Some(f32t));
+        let p = b.arg(0);
+        let params: Vec<Ex> = (1..args.len() as u32).map(|i| b.arg(i)).collect();
+        let d = (prim.lower)(&mut b, p, &params);
+        b.ret(Some(d));
+        let f = b.finish();
+        mb.add_helper(&name, f);
+    }
+}
+
+/// The smooth-blend helpers the scene uses.
+fn add_operator_helpers(mb: &mut ModuleBuilder, scene: &Scene, reachable: &[NodeId]) {
+    for &n in reachable {
+        let NodeKind::Operator { op, .. } = &scene.nodes[n].kind else {
+            continue;
+        };
+        let (name, body): (&str, fn(&mut FnBuilder) -> Ex) = match op.name {
+            "smooth_union" => ("op_smooth_union", ops::smooth_min_body),
+            "smooth_intersect" | "smooth_subtract" => ("op_smooth_intersect", ops::smooth_max_body),
+            _ => continue,
+        };
+        if mb.has_helper(name) {
+            continue;
+        }
+        let f32t = mb.f32();
+        let mut b = FnBuilder::new(
+            mb,
+            name,
+            &[("a", f32t), ("b", f32t), ("k", f32t)],
+            Some(f32t),
+        );
+        let d = body(&mut b);
+        b.ret(Some(d));
+        let f = b.finish();
+        mb.add_helper(name, f);
+    }
+}
+
+/// A function per reachable `let` shape (children first), so a shape used twice is code once.
+fn add_let_functions(
+    mb: &mut ModuleBuilder,
+    scene: &Scene,
+    reachable: &[NodeId],
+) -> HashMap<NodeId, Handle<Function>> {
+    let mut named = HashMap::new();
+    for &n in reachable {
+        let Some(name) = &scene.nodes[n].name else {
+            continue;
+        };
+        // Tagged or annotated copies share the name; the first keeps it plain.
+        let v3 = mb.vec3();
+        let f32t = mb.f32();
+        let mut b = FnBuilder::new(mb, name, &[("p", v3)], Some(f32t));
+        let p = b.arg(0);
+        let d = Walk {
+            scene,
+            named: &named,
+            root_fn: Some(n),
+        }
+        .distance(&mut b, n, p);
+        b.ret(Some(d));
+        let f = b.finish();
+        named.insert(n, mb.add_function(f));
+    }
+    named
+}
+
+/// A walk over the scene graph emitting IR.
+struct Walk<'s> {
+    scene: &'s Scene,
+    named: &'s HashMap<NodeId, Handle<Function>>,
+    /// The `let` function being built (which must not call itself).
+    root_fn: Option<NodeId>,
+}
+
+impl Walk<'_> {
+    /// The raw field of node `id` at `p`.
+    fn distance(&self, b: &mut FnBuilder, id: NodeId, p: Ex) -> Ex {
+        if self.root_fn != Some(id)
+            && let Some(&f) = self.named.get(&id)
+        {
+            return b.call(f, vec![p]);
+        }
+        let node = &self.scene.nodes[id];
+        match &node.kind {
+            NodeKind::Primitive { prim, ctx } => {
+                let f = b.m.helper(&format!("sd_{}", prim.name));
+                let mut args = vec![p];
+                for (param, v) in prim.params.iter().zip(&ctx.args) {
+                    args.push(literal(b, param.ty, *v));
+                }
+                b.call(f, args)
+            }
+            NodeKind::Implicit { field } => lower_field(b, field, p),
+            NodeKind::Operator { op, ctx, children } => {
+                let inner = Walk {
+                    root_fn: None,
+                    ..*self
+                };
+                let mut child =
+                    |b: &mut FnBuilder, i: usize, q: Ex| inner.distance(b, children[i], q);
+                (op.lower)(b, ctx, p, &mut child)
+            }
+        }
+    }
+
+    /// Field and material id (1-based; 0 the default; `None`: statically no material) of a node.
+    fn with_material(&self, b: &mut FnBuilder, id: NodeId, p: Ex) -> (Ex, Option<Ex>) {
+        let node = &self.scene.nodes[id];
+        let (d, m) = match &node.kind {
+            NodeKind::Operator { op, ctx, children } => {
+                let mut seen: Vec<Option<(Ex, Option<Ex>)>> = vec![None; children.len()];
+                let mut child = |b: &mut FnBuilder, i: usize, q: Ex| {
+                    let (d, m) = self.with_material(b, children[i], q);
+                    seen[i] = Some((d, m));
+                    d
+                };
+                let d = (op.lower)(b, ctx, p, &mut child);
+                let seen: Vec<(Ex, Option<Ex>)> = seen
+                    .into_iter()
+                    .map(|s| s.expect("every child lowered"))
+                    .collect();
+                (d, pick_material(b, op.materials, ctx, &seen))
+            }
+            _ => (self.distance(b, id, p), None),
+        };
+        let m = match (node.material, m) {
+            (None, m) => m,
+            (Some(k), None) => Some(b.u(k + 1)),
+            (Some(k), Some(inner)) => {
+                let own = b.u(k + 1);
+                let zero = b.u(0);
+                let has = b.bin(naga::BinaryOperator::NotEqual, inner, zero);
+                Some(b.select(has, inner, own))
+            }
+        };
+        (d, m)
+    }
+}
+
+/// The material rule of `catalog::MatRule::pick`, in IR.
+fn pick_material(
+    b: &mut FnBuilder,
+    rule: MatRule,
+    ctx: &crate::catalog::Ctx,
+    seen: &[(Ex, Option<Ex>)],
+) -> Option<Ex> {
+    if seen.iter().all(|(_, m)| m.is_none()) {
+        return None;
+    }
+    let mat = |b: &mut FnBuilder, i: usize| seen[i].1.unwrap_or_else(|| b.u(0));
+    match rule {
+        MatRule::Pass => seen[0].1,
+        MatRule::Weighted => Some(mat(b, usize::from(ctx.num(0) >= 0.5))),
+        MatRule::Nearest | MatRule::Farthest | MatRule::Cut => {
+            let sign = if rule == MatRule::Cut { -1.0 } else { 1.0 };
+            let mut d = ops::scale_by(b, seen[0].0, 1.0 / ctx.child_lambda[0]);
+            let mut m = mat(b, 0);
+            for (i, &(di, _)) in seen.iter().enumerate().skip(1) {
+                let di = ops::scale_by(b, di, sign / ctx.child_lambda[i]);
+                let better = if rule == MatRule::Nearest {
+                    b.lt(di, d)
+                } else {
+                    b.gt(di, d)
+                };
+                let mi = mat(b, i);
+                m = b.select(better, mi, m);
+                d = b.select(better, di, d);
+            }
+            Some(m)
+        }
+    }
+}
+
+/// A checked argument as an IR literal of its parameter's type.
+fn literal(b: &mut FnBuilder, ty: Ty, v: crate::catalog::Val) -> Ex {
+    match ty {
+        Ty::Count => b.u(v.num() as u32),
+        Ty::Vec3 | Ty::Size | Ty::Scale | Ty::Axis | Ty::Color | Ty::Counts => b.vec3_lit(v.vec()),
+        _ => b.f(v.num()),
+    }
+}
+
+/// An `implicit` body in IR. Whole powers up to 16 are multiplied out (WGSL's `pow` is undefined
+/// for negative bases, f64's `powi` is not).
+fn lower_field(b: &mut FnBuilder, f: &Field, p: Ex) -> Ex {
+    match f {
+        Field::Const(c) => b.f(*c),
+        Field::Coord(i) => b.at(p, *i as u32),
+        Field::Neg(a) => {
+            let a = lower_field(b, a, p);
+            b.neg(a)
+        }
+        Field::Binary(BinOp::Pow, a, n) if matches!(**n, Field::Const(k) if k.fract() == 0.0 && (1.0..=16.0).contains(&k)) =>
+        {
+            let Field::Const(k) = **n else { unreachable!() };
+            let a = lower_field(b, a, p);
+            (1..k as u32).fold(a, |acc, _| b.mul(acc, a))
+        }
+        Field::Binary(op, x, y) => {
+            let (x, y) = (lower_field(b, x, p), lower_field(b, y, p));
+            match op {
+                BinOp::Add => b.add(x, y),
+                BinOp::Sub => b.sub(x, y),
+                BinOp::Mul => b.mul(x, y),
+                BinOp::Div => b.div(x, y),
+                BinOp::Pow => b.math(MathFunction::Pow, &[x, y]),
+            }
+        }
+        Field::Call(func, args) => {
+            let args: Vec<Ex> = args.iter().map(|a| lower_field(b, a, p)).collect();
+            if func.lower == MathFunction::Length {
+                let v = b.compose_vec3([args[0], args[1], args[2]]);
+                return b.length(v);
+            }
+            b.math(func.lower, &args)
+        }
+    }
+}

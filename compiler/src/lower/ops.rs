@@ -1,0 +1,343 @@
+//! Operator lowering in naga IR, inline in `map`, mirroring each catalog entry's f64 evaluation
+//! in `catalog/operators.rs`; the smooth blends call small `op_*` helper functions.
+
+use super::builder::{Ex, FnBuilder};
+use crate::catalog::Ctx;
+use crate::catalog::operators::{FALLOFF_SLOPE, rotate as rotate_point, twist_stretch};
+use glam::DVec3;
+use naga::{MathFunction as M, VectorSize};
+
+/// Lowers child `i` at a point; returns its raw field.
+pub type ChildLower<'a> = &'a mut dyn FnMut(&mut FnBuilder, usize, Ex) -> Ex;
+
+/// An operator's IR: builder, arguments, point, children.
+pub type OpLower = fn(&mut FnBuilder, &Ctx, Ex, ChildLower) -> Ex;
+
+/// Child `i` at `p` divided by its λ (no division when λ = 1).
+fn norm(b: &mut FnBuilder, c: &Ctx, child: ChildLower, i: usize, p: Ex) -> Ex {
+    let d = child(b, i, p);
+    scale_by(b, d, 1.0 / c.child_lambda[i])
+}
+
+/// d·k, skipped when k = 1.
+pub fn scale_by(b: &mut FnBuilder, d: Ex, k: f64) -> Ex {
+    if k == 1.0 {
+        return d;
+    }
+    let k = b.f(k);
+    b.mul(d, k)
+}
+
+fn fold(
+    b: &mut FnBuilder,
+    c: &Ctx,
+    p: Ex,
+    child: ChildLower,
+    f: &dyn Fn(&mut FnBuilder, Ex, Ex) -> Ex,
+) -> Ex {
+    let mut acc = norm(b, c, child, 0, p);
+    for i in 1..c.child_lambda.len() {
+        let d = norm(b, c, child, i, p);
+        acc = f(b, acc, d);
+    }
+    acc
+}
+
+/// min of the normalised children.
+pub fn union(b: &mut FnBuilder, c: &Ctx, p: Ex, child: ChildLower) -> Ex {
+    fold(b, c, p, child, &|b, x, y| b.min(x, y))
+}
+
+/// max of the normalised children.
+pub fn intersect(b: &mut FnBuilder, c: &Ctx, p: Ex, child: ChildLower) -> Ex {
+    fold(b, c, p, child, &|b, x, y| b.max(x, y))
+}
+
+/// max(a, −b, −c, ...)
+pub fn subtract(b: &mut FnBuilder, c: &Ctx, p: Ex, child: ChildLower) -> Ex {
+    fold(b, c, p, child, &|b, x, y| {
+        let ny = b.neg(y);
+        b.max(x, ny)
+    })
+}
+
+/// −f
+pub fn complement(b: &mut FnBuilder, _: &Ctx, p: Ex, child: ChildLower) -> Ex {
+    let d = child(b, 0, p);
+    b.neg(d)
+}
+
+fn smooth(
+    b: &mut FnBuilder,
+    c: &Ctx,
+    p: Ex,
+    child: ChildLower,
+    helper: &'static str,
+    negate: bool,
+) -> Ex {
+    let f = b.m.helper(helper);
+    let k = b.f(c.num(0));
+    fold(b, c, p, child, &|b, x, y| {
+        let y = if negate { b.neg(y) } else { y };
+        b.call(f, vec![x, y, k])
+    })
+}
+
+/// Folds `op_smooth_union(a, b, k)`.
+pub fn smooth_union(b: &mut FnBuilder, c: &Ctx, p: Ex, child: ChildLower) -> Ex {
+    smooth(b, c, p, child, "op_smooth_union", false)
+}
+
+/// Folds `op_smooth_intersect(a, b, k)`.
+pub fn smooth_intersect(b: &mut FnBuilder, c: &Ctx, p: Ex, child: ChildLower) -> Ex {
+    smooth(b, c, p, child, "op_smooth_intersect", false)
+}
+
+/// Folds `op_smooth_intersect(a, −b, k)`.
+pub fn smooth_subtract(b: &mut FnBuilder, c: &Ctx, p: Ex, child: ChildLower) -> Ex {
+    smooth(b, c, p, child, "op_smooth_intersect", true)
+}
+
+/// Body of `op_smooth_union(a, b, k)`: IQ's quadratic polynomial smooth minimum.
+pub fn smooth_min_body(b: &mut FnBuilder) -> Ex {
+    let (x, y, k) = (b.arg(0), b.arg(1), b.arg(2));
+    let diff = b.sub(x, y);
+    let diff = b.abs(diff);
+    let kd = b.sub(k, diff);
+    let zero = b.f(0.0);
+    let kd = b.max(kd, zero);
+    let h = b.div(kd, k);
+    let m = b.min(x, y);
+    let hh = b.mul(h, h);
+    let hhk = b.mul(hh, k);
+    let quarter = b.f(0.25);
+    let dip = b.mul(hhk, quarter);
+    b.sub(m, dip)
+}
+
+/// Body of `op_smooth_intersect(a, b, k)`: −smin(−a, −b, k).
+pub fn smooth_max_body(b: &mut FnBuilder) -> Ex {
+    let (x, y, k) = (b.arg(0), b.arg(1), b.arg(2));
+    let diff = b.sub(x, y);
+    let diff = b.abs(diff);
+    let kd = b.sub(k, diff);
+    let zero = b.f(0.0);
+    let kd = b.max(kd, zero);
+    let h = b.div(kd, k);
+    let m = b.max(x, y);
+    let hh = b.mul(h, h);
+    let hhk = b.mul(hh, k);
+    let quarter = b.f(0.25);
+    let bump = b.mul(hhk, quarter);
+    b.add(m, bump)
+}
+
+/// (1 − w)·a + w·b
+pub fn mix(b: &mut FnBuilder, c: &Ctx, p: Ex, child: ChildLower) -> Ex {
+    let w = c.num(0);
+    let a = child(b, 0, p);
+    let a = scale_by(b, a, 1.0 - w);
+    let d = child(b, 1, p);
+    let d = scale_by(b, d, w);
+    b.add(a, d)
+}
+
+/// Blob field: threshold − Σ falloff, over its slope bound, or the influence zone's distance.
+pub fn blob(b: &mut FnBuilder, c: &Ctx, p: Ex, child: ChildLower) -> Ex {
+    let (radius, threshold) = (c.num(0), c.num(1));
+    let n = c.child_lambda.len();
+    let mut field = None;
+    let mut nearest = None;
+    for i in 0..n {
+        let d = norm(b, c, child, i, p);
+        let zero = b.f(0.0);
+        let dp = b.max(d, zero);
+        let s = scale_by(b, dp, 1.0 / radius);
+        // (1 − s²)³ clamped at 0
+        let s2 = b.mul(s, s);
+        let one = b.f(1.0);
+        let t = b.sub(one, s2);
+        let t = b.max(t, zero);
+        let t2 = b.mul(t, t);
+        let g = b.mul(t2, t);
+        field = Some(match field {
+            Some(f) => b.add(f, g),
+            None => g,
+        });
+        nearest = Some(match nearest {
+            Some(m) => b.min(m, d),
+            None => d,
+        });
+    }
+    let (field, nearest) = (field.expect("a child"), nearest.expect("a child"));
+    let th = b.f(threshold);
+    let v = b.sub(th, field);
+    let v = scale_by(b, v, radius / (n as f64 * FALLOFF_SLOPE));
+    let r = b.f(radius);
+    let outside = b.sub(nearest, r);
+    b.max(v, outside)
+}
+
+/// f(p − offset)
+pub fn translate(b: &mut FnBuilder, c: &Ctx, p: Ex, child: ChildLower) -> Ex {
+    let o = b.vec3_lit(c.vec(0));
+    let q = b.sub(p, o);
+    child(b, 0, q)
+}
+
+/// f(R⁻¹p) with R⁻¹ folded into a constant matrix.
+pub fn rotate(b: &mut FnBuilder, c: &Ctx, p: Ex, child: ChildLower) -> Ex {
+    let (axis, angle) = (c.vec(0), c.num(1));
+    let cols = [DVec3::X, DVec3::Y, DVec3::Z].map(|e| rotate_point(e, axis, -angle));
+    let cols: Vec<Ex> = cols.iter().map(|v| b.vec3_lit(*v)).collect();
+    let ty = b.m.ty(naga::TypeInner::Matrix {
+        columns: VectorSize::Tri,
+        rows: VectorSize::Tri,
+        scalar: naga::Scalar::F32,
+    });
+    let m = b.compose(ty, cols);
+    let q = b.mul(m, p);
+    child(b, 0, q)
+}
+
+/// f(p / s)·min(s)
+pub fn scale(b: &mut FnBuilder, c: &Ctx, p: Ex, child: ChildLower) -> Ex {
+    let s = c.vec(0);
+    let inv = b.vec3_lit(DVec3::ONE / s);
+    let q = b.mul(p, inv);
+    let d = child(b, 0, q);
+    scale_by(b, d, s.min_element())
+}
+
+/// The repetition cell, per axis as in `repeat_cell`.
+pub fn repeat(b: &mut FnBuilder, c: &Ctx, p: Ex, child: ChildLower) -> Ex {
+    let (spacing, count) = (c.vec(0), c.vec(1));
+    let mut parts = Vec::new();
+    let comps = b.xyz(p);
+    for i in 0..3 {
+        let (s, n, x) = (spacing[i], count[i], comps[i]);
+        if s <= 0.0 {
+            parts.push(x);
+            continue;
+        }
+        let inv = b.f(1.0 / s);
+        let cell = b.mul(x, inv);
+        let id = if n == 0.0 {
+            b.round_half_up(cell, None)
+        } else {
+            let half = (n - 1.0) / 2.0;
+            let h = b.f(half);
+            let shifted = b.add(cell, h);
+            let r = b.round_half_up(shifted, None);
+            let (lo, hi) = (b.f(0.0), b.f(n - 1.0));
+            let r = b.clamp(r, lo, hi);
+            b.sub(r, h)
+        };
+        let sv = b.f(s);
+        let off = b.mul(sv, id);
+        parts.push(b.sub(x, off));
+    }
+    let q = b.compose_vec3([parts[0], parts[1], parts[2]]);
+    child(b, 0, q)
+}
+
+/// p − 2·min(p·n, 0)·n
+pub fn mirror(b: &mut FnBuilder, c: &Ctx, p: Ex, child: ChildLower) -> Ex {
+    let n = b.vec3_lit(c.vec(0));
+    let d = b.dot(p, n);
+    let zero = b.f(0.0);
+    let d = b.min(d, zero);
+    let two = b.f(2.0);
+    let d = b.mul(two, d);
+    let off = b.mul(n, d);
+    let q = b.sub(p, off);
+    child(b, 0, q)
+}
+
+/// The warped child normalised by `stretch`, or the distance to the bounding cylinder outside it.
+fn warp(
+    b: &mut FnBuilder,
+    c: &Ctx,
+    q: Ex,
+    rho: Ex,
+    rho_max: f64,
+    stretch: f64,
+    child: ChildLower,
+) -> Ex {
+    let d = child(b, 0, q);
+    if !rho_max.is_finite() {
+        return d;
+    }
+    let inside = scale_by(b, d, 1.0 / (c.child_lambda[0] * stretch));
+    let rm = b.f(rho_max);
+    let outside = b.sub(rho, rm);
+    let out = b.gt(rho, rm);
+    b.select(out, outside, inside)
+}
+
+/// Rotation of the xz plane by rate·y.
+pub fn twist(b: &mut FnBuilder, c: &Ctx, p: Ex, child: ChildLower) -> Ex {
+    let rho_max = c.child_bound[0].cylinder_radius(DVec3::Y);
+    let [x, y, z] = b.xyz(p);
+    let k = b.f(c.num(0));
+    let a = b.mul(k, y);
+    let (s, co) = (b.math(M::Sin, &[a]), b.math(M::Cos, &[a]));
+    let (cx, sz) = (b.mul(co, x), b.mul(s, z));
+    let qx = b.sub(cx, sz);
+    let (sx, cz) = (b.mul(s, x), b.mul(co, z));
+    let qz = b.add(sx, cz);
+    let q = b.compose_vec3([qx, y, qz]);
+    let xz = b.swizzle(p, &[0, 2]);
+    let rho = b.length(xz);
+    warp(
+        b,
+        c,
+        q,
+        rho,
+        rho_max,
+        twist_stretch(c.num(0), rho_max),
+        child,
+    )
+}
+
+/// Rotation of the xy plane by rate·x.
+pub fn bend(b: &mut FnBuilder, c: &Ctx, p: Ex, child: ChildLower) -> Ex {
+    let rho_max = c.child_bound[0].cylinder_radius(DVec3::Z);
+    let [x, y, z] = b.xyz(p);
+    let k = b.f(c.num(0));
+    let a = b.mul(k, x);
+    let (s, co) = (b.math(M::Sin, &[a]), b.math(M::Cos, &[a]));
+    let (cx, sy) = (b.mul(co, x), b.mul(s, y));
+    let qx = b.sub(cx, sy);
+    let (sx, cy) = (b.mul(s, x), b.mul(co, y));
+    let qy = b.add(sx, cy);
+    let q = b.compose_vec3([qx, qy, z]);
+    let xy = b.swizzle(p, &[0, 1]);
+    let rho = b.length(xy);
+    warp(b, c, q, rho, rho_max, 1.0 + c.num(0).abs() * rho_max, child)
+}
+
+/// f/λ − r
+pub fn round(b: &mut FnBuilder, c: &Ctx, p: Ex, child: ChildLower) -> Ex {
+    let d = norm(b, c, child, 0, p);
+    let r = b.f(c.num(0));
+    b.sub(d, r)
+}
+
+/// |f/λ| − t
+pub fn onion(b: &mut FnBuilder, c: &Ctx, p: Ex, child: ChildLower) -> Ex {
+    let d = norm(b, c, child, 0, p);
+    let d = b.abs(d);
+    let t = b.f(c.num(0));
+    b.sub(d, t)
+}
+
+/// f(p − clamp(p, −h, h))
+pub fn elongate(b: &mut FnBuilder, c: &Ctx, p: Ex, child: ChildLower) -> Ex {
+    let h = c.vec(0) / 2.0;
+    let hi = b.vec3_lit(h);
+    let lo = b.vec3_lit(-h);
+    let cl = b.clamp(p, lo, hi);
+    let q = b.sub(p, cl);
+    child(b, 0, q)
+}

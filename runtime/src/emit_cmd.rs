@@ -1,0 +1,63 @@
+//! `sdfc emit`: a scene to WGSL, SPIR-V, GLSL, MSL or HLSL, written whole or not at all.
+
+use crate::cli::load_scene;
+use sdfc_compiler::emit::{self, Output, Target};
+use sdfc_compiler::lower::{Entry, tracer::Options};
+use std::io::{IsTerminal, Write};
+use std::path::Path;
+
+/// Runs `sdfc emit`; returns the exit code.
+pub fn run(file: &Path, target: Target, entry: Entry, output: Option<&Path>) -> i32 {
+    let Some((name, _, scene)) = load_scene(file) else {
+        return 1;
+    };
+    let options = Options::from_scene(&scene);
+    let result = emit::module(&scene, entry, &options)
+        .and_then(|(m, info)| emit::write(&m, &info, target, entry));
+    let out = match result {
+        Ok(o) => o,
+        Err(e) => {
+            eprintln!("internal compiler error while compiling `{name}`: {}", e.0);
+            eprintln!(
+                "note: this is a bug in sdfc, not in the scene; please report it with the scene file"
+            );
+            return 2;
+        }
+    };
+    let bytes: Vec<u8> = match &out {
+        Output::Text(s) => s.clone().into_bytes(),
+        Output::Binary(words) => words.iter().flat_map(|w| w.to_le_bytes()).collect(),
+    };
+    match output {
+        Some(path) => write_whole(path, &bytes),
+        None => {
+            if matches!(out, Output::Binary(_)) && std::io::stdout().is_terminal() {
+                eprintln!("error: SPIR-V is binary; write it to a file with `-o FILE`");
+                return 1;
+            }
+            let mut stdout = std::io::stdout().lock();
+            match stdout.write_all(&bytes).and_then(|_| stdout.flush()) {
+                Ok(()) => 0,
+                Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => 0,
+                Err(e) => {
+                    eprintln!("error: cannot write to standard output: {e}");
+                    1
+                }
+            }
+        }
+    }
+}
+
+/// Writes a file through a temporary sibling and a rename, so a failure leaves no partial file.
+pub fn write_whole(path: &Path, bytes: &[u8]) -> i32 {
+    let tmp = path.with_extension("sdfc-partial");
+    let result = std::fs::write(&tmp, bytes).and_then(|_| std::fs::rename(&tmp, path));
+    match result {
+        Ok(()) => 0,
+        Err(e) => {
+            let _ = std::fs::remove_file(&tmp);
+            eprintln!("error: cannot write `{}`: {e}", path.display());
+            1
+        }
+    }
+}
