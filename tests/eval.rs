@@ -30,6 +30,15 @@ fn primitives_match_the_independent_reference() {
         let want = num(7);
         let got = at(&call, p);
         let tol = 1e-9 * (1.0 + want.abs());
+        if f[8].contains("IQ sdTorus") {
+            // Inside a spindle torus (minor > major) IQ's formula is a bound, not the distance.
+            assert!(
+                got <= 0.0 && got >= want - tol,
+                "{call} at {p}: got {got}, want a bound of {want}"
+            );
+            rows += 1;
+            continue;
+        }
         assert!(
             (got - want).abs() <= tol,
             "{call} at {p}: got {got}, want {want} ({})",

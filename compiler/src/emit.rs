@@ -86,6 +86,24 @@ pub fn write(
         _ => naga::ShaderStage::Fragment,
     };
     match target {
+        // SPIR-V for Vulkan and GLSL need an entry point: add an empty compute `main`; the
+        // library functions are written beside it.
+        Target::Glsl | Target::Spirv if entry == Entry::Library => {
+            let mut m = module.clone();
+            m.entry_points.push(naga::EntryPoint {
+                name: "main".into(),
+                stage: naga::ShaderStage::Compute,
+                early_depth_test: None,
+                workgroup_size: [1, 1, 1],
+                workgroup_size_overrides: None,
+                function: naga::Function::default(),
+                mesh_info: None,
+                task_payload: None,
+                incoming_ray_payload: None,
+            });
+            let info = validate(&m)?;
+            write(&m, &info, target, Entry::Compute)
+        }
         Target::Wgsl => back::wgsl::write_string(module, info, back::wgsl::WriterFlags::empty())
             .map(Output::Text)
             .map_err(|e| err(&e)),
@@ -101,24 +119,6 @@ pub fn write(
             back::spv::write_vec(module, info, &options, pipeline.as_ref())
                 .map(Output::Binary)
                 .map_err(|e| err(&e))
-        }
-        Target::Glsl if entry == Entry::Library => {
-            // GLSL needs an entry point: add an empty compute `main`; the library functions are
-            // written beside it.
-            let mut m = module.clone();
-            m.entry_points.push(naga::EntryPoint {
-                name: "main".into(),
-                stage: naga::ShaderStage::Compute,
-                early_depth_test: None,
-                workgroup_size: [1, 1, 1],
-                workgroup_size_overrides: None,
-                function: naga::Function::default(),
-                mesh_info: None,
-                task_payload: None,
-                incoming_ray_payload: None,
-            });
-            let info = validate(&m)?;
-            write(&m, &info, target, Entry::Compute)
         }
         Target::Glsl => {
             let options = back::glsl::Options {

@@ -182,7 +182,7 @@ pub fn parse(source: &str) -> Result<File, Diagnostic> {
             .note(format!("the limit is {MAX_SOURCE_BYTES} bytes")));
     }
     check_nesting(source)?;
-    let mut pairs = SdfParser::parse(Rule::file, source).map_err(syntax_error)?;
+    let mut pairs = SdfParser::parse(Rule::file, source).map_err(|e| syntax_error(source, e))?;
     let file = pairs.next().expect("the `file` rule matched");
     let items = file
         .into_inner()
@@ -192,20 +192,36 @@ pub fn parse(source: &str) -> Result<File, Diagnostic> {
     Ok(File { items })
 }
 
-/// Refuses input nested deeper than [`MAX_NESTING`] brackets (or `|>`-free postfix chains of
-/// prefix minus signs) before the recursive parser sees it.
+/// Positions and bytes of the code outside comments.
+fn code_bytes(source: &str) -> impl Iterator<Item = (usize, u8)> + '_ {
+    let bytes = source.as_bytes();
+    let mut i = 0;
+    std::iter::from_fn(move || {
+        while i < bytes.len() {
+            let rest = &bytes[i..];
+            if rest.starts_with(b"//") {
+                i += rest.iter().position(|&b| b == b'\n').unwrap_or(rest.len());
+            } else if rest.starts_with(b"/*") {
+                i += rest[2..]
+                    .windows(2)
+                    .position(|w| w == b"*/")
+                    .map_or(rest.len(), |p| p + 4);
+            } else {
+                i += 1;
+                return Some((i - 1, bytes[i - 1]));
+            }
+        }
+        None
+    })
+}
+
+/// Refuses input nested deeper than [`MAX_NESTING`] brackets, or with longer runs of prefix
+/// minus signs, before the recursive parser sees it.
 fn check_nesting(source: &str) -> Result<(), Diagnostic> {
     let mut depth = 0usize;
     let mut minus_run = 0usize;
-    let mut in_line_comment = false;
-    let bytes = source.as_bytes();
-    for (i, &b) in bytes.iter().enumerate() {
-        if in_line_comment {
-            in_line_comment = b != b'\n';
-            continue;
-        }
+    for (i, b) in code_bytes(source) {
         match b {
-            b'/' if bytes.get(i + 1) == Some(&b'/') => in_line_comment = true,
             b'(' | b'{' => depth += 1,
             b')' | b'}' => depth = depth.saturating_sub(1),
             _ => {}
@@ -226,27 +242,107 @@ fn check_nesting(source: &str) -> Result<(), Diagnostic> {
     Ok(())
 }
 
-fn syntax_error(e: pest::error::Error<Rule>) -> Diagnostic {
+/// A clearer message than the expected-token list for unbalanced brackets: an unclosed opener
+/// when the parser stopped at the end, an unmatched closer where it stopped on one.
+fn bracket_error(source: &str, at: usize) -> Option<Diagnostic> {
+    let mut open: Vec<(usize, u8)> = Vec::new();
+    for (i, b) in code_bytes(source) {
+        let want = match b {
+            b'(' | b'{' => {
+                open.push((i, b));
+                continue;
+            }
+            b')' => b'(',
+            b'}' => b'{',
+            _ => continue,
+        };
+        let closer = b as char;
+        match open.pop() {
+            Some((_, o)) if o == want => {}
+            Some((j, o)) => {
+                return Some(
+                    Diagnostic::error(
+                        Span::new(i, i + 1),
+                        format!("`{closer}` does not match `{}`", o as char),
+                    )
+                    .label("closes the wrong bracket")
+                    .also(Span::new(j, j + 1), "opened here"),
+                );
+            }
+            None => {
+                return Some(
+                    Diagnostic::error(Span::new(i, i + 1), format!("unmatched `{closer}`"))
+                        .label("nothing to close here"),
+                );
+            }
+        }
+    }
+    let rest_is_blank = code_bytes(source).all(|(i, b)| i < at || b.is_ascii_whitespace());
+    match open.last() {
+        Some(&(j, o)) if rest_is_blank => {
+            let closer = if o == b'(' { ')' } else { '}' };
+            Some(
+                Diagnostic::error(Span::new(j, j + 1), format!("unclosed `{}`", o as char))
+                    .label(format!("this `{}` is never closed", o as char))
+                    .also(
+                        Span::new(source.len(), source.len()),
+                        format!("expected `{closer}` before the end of the file"),
+                    ),
+            )
+        }
+        _ => None,
+    }
+}
+
+fn syntax_error(source: &str, e: pest::error::Error<Rule>) -> Diagnostic {
     use pest::error::{ErrorVariant, InputLocation};
     let span = match e.location {
         InputLocation::Pos(p) => Span::new(p, p),
         InputLocation::Span((a, b)) => Span::new(a, b),
     };
+    if let Some(d) = bracket_error(source, span.start) {
+        return d;
+    }
     let (message, label) = match &e.variant {
         ErrorVariant::ParsingError { positives, .. } => {
             let mut names: Vec<&str> = positives.iter().map(|r| rule_name(*r)).collect();
             names.sort();
             names.dedup();
+            // Colours, names and numbers are expressions; units are noise after a number.
+            if names.contains(&"an expression") {
+                names.retain(|n| !["a colour", "a name", "a number"].contains(n));
+            }
+            names.retain(|n| *n != "a unit");
             let expected = match names.as_slice() {
                 [] => "something else".to_string(),
                 [one] => one.to_string(),
-                [init @ .., last] => format!("{} or {}", init.join(", "), last),
+                [init @ .., last] => format!("{}, or {}", init.join(", "), last),
             };
             ("syntax error".to_string(), format!("expected {expected}"))
         }
         ErrorVariant::CustomError { message } => (message.clone(), String::new()),
     };
-    Diagnostic::error(span, message).label(label)
+    let mut d = Diagnostic::error(span, message).label(label);
+    if source[span.start..].starts_with(')') && vector_of_two(source, span.start) {
+        d = d.help("a vector has three components: `(x, y, z)`");
+    }
+    d
+}
+
+/// Whether the parenthesis closing at `close` holds exactly one top-level comma.
+fn vector_of_two(source: &str, close: usize) -> bool {
+    let mut depth = 0;
+    let mut commas = 0;
+    for &b in source.as_bytes()[..close].iter().rev() {
+        match b {
+            b')' | b'}' => depth += 1,
+            b'(' | b'{' if depth == 0 => return commas == 1,
+            b'(' | b'{' => depth -= 1,
+            b',' if depth == 0 => commas += 1,
+            _ => {}
+        }
+    }
+    false
 }
 
 /// Words a user understands for the grammar's rules.
@@ -262,7 +358,7 @@ fn rule_name(rule: Rule) -> &'static str {
         }
         Rule::add | Rule::sub | Rule::mul | Rule::div | Rule::pow => "an operator",
         Rule::pipe | Rule::tag | Rule::annotation | Rule::at | Rule::at_kw => {
-            "`|>`, `:`, `@` or `at`"
+            "`|>`, `:`, `@`, `at`"
         }
         Rule::args | Rule::arg_list => "`(`",
         Rule::block => "`{`",

@@ -136,9 +136,15 @@ pub fn read_source(path: &Path) -> Result<(String, String), String> {
         return Ok(("<stdin>".into(), s));
     }
     let name = path.display().to_string();
-    std::fs::read_to_string(path)
+    let bytes = std::fs::read(path).map_err(|e| format!("error: cannot read `{name}`: {e}"))?;
+    String::from_utf8(bytes)
         .map(|s| (name.clone(), s))
-        .map_err(|e| format!("error: cannot read `{name}`: {e}"))
+        .map_err(|e| {
+            let at = e.utf8_error().valid_up_to();
+            format!(
+                "error: cannot read `{name}`: it is not UTF-8 text (invalid byte at offset {at})"
+            )
+        })
 }
 
 fn check_command(path: &Path) -> i32 {

@@ -20,6 +20,21 @@ pub struct MathFn {
     pub partials: fn(&[Interval]) -> Vec<Interval>,
     /// The naga math function computing it.
     pub lower: naga::MathFunction,
+    /// How it treats angles.
+    pub units: Units,
+}
+
+/// How a math function treats angles (numbers with `deg`/`rad`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Units {
+    /// Plain numbers in, a plain number out.
+    Plain,
+    /// An angle or a plain number (radians) in, a plain number out (sin, cos).
+    AngleIn,
+    /// All arguments of one kind; the result is of that kind (abs, min, max).
+    Same,
+    /// Plain numbers in, an angle out (atan2).
+    AngleOut,
 }
 
 fn unit() -> Interval {
@@ -35,6 +50,7 @@ fn switch() -> Interval {
 pub static MATH_FUNCTIONS: &[MathFn] = &[
     MathFn {
         name: "abs",
+        units: Units::Same,
         lower: naga::MathFunction::Abs,
         arity: 1,
         doc: "|a|",
@@ -44,6 +60,7 @@ pub static MATH_FUNCTIONS: &[MathFn] = &[
     },
     MathFn {
         name: "sqrt",
+        units: Units::Plain,
         lower: naga::MathFunction::Sqrt,
         arity: 1,
         doc: "√a (a < 0 gives NaN, which is an error in constants)",
@@ -59,6 +76,7 @@ pub static MATH_FUNCTIONS: &[MathFn] = &[
     },
     MathFn {
         name: "sin",
+        units: Units::AngleIn,
         lower: naga::MathFunction::Sin,
         arity: 1,
         doc: "sine (radians)",
@@ -68,6 +86,7 @@ pub static MATH_FUNCTIONS: &[MathFn] = &[
     },
     MathFn {
         name: "cos",
+        units: Units::AngleIn,
         lower: naga::MathFunction::Cos,
         arity: 1,
         doc: "cosine (radians)",
@@ -77,6 +96,7 @@ pub static MATH_FUNCTIONS: &[MathFn] = &[
     },
     MathFn {
         name: "exp",
+        units: Units::Plain,
         lower: naga::MathFunction::Exp,
         arity: 1,
         doc: "eᵃ",
@@ -86,6 +106,7 @@ pub static MATH_FUNCTIONS: &[MathFn] = &[
     },
     MathFn {
         name: "log",
+        units: Units::Plain,
         lower: naga::MathFunction::Log,
         arity: 1,
         doc: "natural logarithm",
@@ -95,6 +116,7 @@ pub static MATH_FUNCTIONS: &[MathFn] = &[
     },
     MathFn {
         name: "min",
+        units: Units::Same,
         lower: naga::MathFunction::Min,
         arity: 2,
         doc: "the smaller of a and b",
@@ -104,6 +126,7 @@ pub static MATH_FUNCTIONS: &[MathFn] = &[
     },
     MathFn {
         name: "max",
+        units: Units::Same,
         lower: naga::MathFunction::Max,
         arity: 2,
         doc: "the larger of a and b",
@@ -113,6 +136,7 @@ pub static MATH_FUNCTIONS: &[MathFn] = &[
     },
     MathFn {
         name: "length",
+        units: Units::Plain,
         lower: naga::MathFunction::Length,
         arity: 3,
         doc: "√(a² + b² + c²): the length of a vector (its partials are bounded by 1)",
@@ -125,6 +149,7 @@ pub static MATH_FUNCTIONS: &[MathFn] = &[
     },
     MathFn {
         name: "atan2",
+        units: Units::AngleOut,
         lower: naga::MathFunction::Atan2,
         arity: 2,
         doc: "the angle of the point (b, a): atan2(a, b)",

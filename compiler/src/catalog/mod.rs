@@ -7,7 +7,7 @@ mod math;
 pub mod operators;
 pub mod primitives;
 
-pub use math::{MATH_FUNCTIONS, MathFn};
+pub use math::{MATH_FUNCTIONS, MathFn, Units};
 pub use operators::OPERATORS;
 pub use primitives::PRIMITIVES;
 
@@ -58,6 +58,10 @@ pub enum Ty {
     Angle,
     /// A whole number ≥ 1.
     Count,
+    /// A whole number from 1 to the limit.
+    CountTo(u32),
+    /// 0, or a number ≥ the limit.
+    ZeroOrAtLeast(f64),
     /// Any finite vector.
     Vec3,
     /// A size: one number ≥ 0 for all three axes, or a vector of them.
@@ -86,6 +90,8 @@ impl Ty {
             Ty::Fraction => "a number in [0, 1]".into(),
             Ty::Angle => "an angle (e.g. `30deg`)".into(),
             Ty::Count => "a whole number ≥ 1".into(),
+            Ty::CountTo(n) => format!("a whole number from 1 to {n}"),
+            Ty::ZeroOrAtLeast(lo) => format!("0 or a number ≥ {lo}"),
             Ty::Vec3 => "a vector `(x, y, z)`".into(),
             Ty::Size => "a size (number or vector, ≥ 0)".into(),
             Ty::Scale => "a scale (number or vector, > 0)".into(),

@@ -88,18 +88,45 @@ pub fn twist_stretch(rate: f64, rho: f64) -> f64 {
     (a + (a * a + 4.0).sqrt()) / 2.0
 }
 
-/// A domain bend or twist: the child at `q`, normalised by `stretch`, and outside the cylinder of
-/// radius `rho_max` (which holds the whole surface) the distance to that cylinder. With an
+/// A domain bend or twist. The child's surface lies inside the infinite cylinder of radius
+/// `rho_max` about the warp's axis (`radial` are the two coordinates across it), where the
+/// deformation stretches distances by at most `stretch`. A point outside is first projected
+/// radially onto the cylinder (a 1-Lipschitz map that brings it no nearer to anything inside),
+/// and the distance to the cylinder is a second bound: max(f(deform(proj p))/(λ·stretch),
+/// ρ − ρmax) is 1-Lipschitz and never exceeds the distance to the warped surface. With an
 /// unbounded child the raw field is returned (λ is then infinite and must be annotated).
-fn warp(c: &Ctx, child: ChildEval, q: DVec3, rho: f64, rho_max: f64, stretch: f64) -> f64 {
-    let d = child(0, q);
+pub fn warp(
+    c: &Ctx,
+    child: ChildEval,
+    p: DVec3,
+    radial: [usize; 2],
+    rho_max: f64,
+    stretch: f64,
+    deform: impl Fn(DVec3) -> DVec3,
+) -> f64 {
     if !rho_max.is_finite() {
-        d
-    } else if rho > rho_max {
-        rho - rho_max
-    } else {
-        d / (c.child_lambda[0] * stretch)
+        return child(0, deform(p));
     }
+    let rho = p[radial[0]].hypot(p[radial[1]]);
+    let mut q = p;
+    if rho > rho_max {
+        let s = rho_max / rho;
+        q[radial[0]] *= s;
+        q[radial[1]] *= s;
+    }
+    (child(0, deform(q)) / (c.child_lambda[0] * stretch)).max(rho - rho_max)
+}
+
+/// Twist about y by `rate`·y.
+pub fn twist_point(p: DVec3, rate: f64) -> DVec3 {
+    let (s, co) = (rate * p.y).sin_cos();
+    DVec3::new(co * p.x - s * p.z, p.y, s * p.x + co * p.z)
+}
+
+/// Bend in the xy plane by `rate`·x.
+pub fn bend_point(p: DVec3, rate: f64) -> DVec3 {
+    let (s, co) = (rate * p.x).sin_cos();
+    DVec3::new(co * p.x - s * p.y, s * p.x + co * p.y, p.z)
 }
 
 fn warp_lambda(c: &Ctx) -> f64 {
@@ -329,7 +356,8 @@ pub static OPERATORS: &[Operator] = &[
         lower: ir::twist,
         doc: "Twists its shape about the y axis by `rate` radians per unit of y; normalised by \
               the Jacobian bound (a + √(a²+4))/2, a = |rate|·ρ, inside the bounding cylinder of \
-              radius ρ (λ = 1; an unbounded shape needs an annotation).",
+              radius ρ, points outside projected onto it (λ = 1; an unbounded shape needs an \
+              annotation).",
         params: &[req("rate", Ty::Number)],
         arity: Arity::Exactly(1),
         lipschitz: warp_lambda,
@@ -343,10 +371,10 @@ pub static OPERATORS: &[Operator] = &[
         },
         eval: |c, p, child| {
             let rho_max = c.child_bound[0].cylinder_radius(DVec3::Y);
-            let (s, co) = (c.num(0) * p.y).sin_cos();
-            let q = DVec3::new(co * p.x - s * p.z, p.y, s * p.x + co * p.z);
-            let rho = p.x.hypot(p.z);
-            warp(c, child, q, rho, rho_max, twist_stretch(c.num(0), rho_max))
+            let stretch = twist_stretch(c.num(0), rho_max);
+            warp(c, child, p, [0, 2], rho_max, stretch, |q| {
+                twist_point(q, c.num(0))
+            })
         },
     },
     Operator {
@@ -368,10 +396,10 @@ pub static OPERATORS: &[Operator] = &[
         },
         eval: |c, p, child| {
             let rho_max = c.child_bound[0].cylinder_radius(DVec3::Z);
-            let (s, co) = (c.num(0) * p.x).sin_cos();
-            let q = DVec3::new(co * p.x - s * p.y, s * p.x + co * p.y, p.z);
-            let rho = p.x.hypot(p.y);
-            warp(c, child, q, rho, rho_max, 1.0 + c.num(0).abs() * rho_max)
+            let stretch = 1.0 + c.num(0).abs() * rho_max;
+            warp(c, child, p, [0, 1], rho_max, stretch, |q| {
+                bend_point(q, c.num(0))
+            })
         },
     },
     Operator {

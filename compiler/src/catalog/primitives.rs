@@ -43,7 +43,8 @@ pub static PRIMITIVES: &[Primitive] = &[
     Primitive {
         name: "rounded_box",
         lower: ir::rounded_box,
-        doc: "Box of full edge lengths `size` whose edges are rounded by `radius` (inside the size).",
+        doc: "Box of full edge lengths `size` whose edges are rounded by `radius` (inside the \
+              size; at most half the smallest edge).",
         params: &[
             opt("size", Ty::Size, num(1.0)),
             opt("radius", Ty::Length, num(0.1)),
@@ -73,7 +74,8 @@ pub static PRIMITIVES: &[Primitive] = &[
     Primitive {
         name: "torus",
         lower: ir::torus,
-        doc: "Torus in the xz plane: ring radius `major`, tube radius `minor`.",
+        doc: "Torus in the xz plane: ring radius `major`, tube radius `minor` (inside a spindle \
+              torus, minor > major, a bound).",
         params: &[
             opt("major", Ty::Length, num(1.0)),
             opt("minor", Ty::Length, num(0.25)),
@@ -158,18 +160,18 @@ pub static PRIMITIVES: &[Primitive] = &[
         name: "dodecahedron",
         lower: ir::dodecahedron,
         doc: "Dodecahedron of inradius `radius` as a generalised distance (Akleman; Keinert Fig. 11); \
-              `exponent` 0 is the sharp max form, ≥ 2 rounds it (λ = √2).",
+              `exponent` 0 is the sharp max form (λ = 1), e ≥ 1 the e-norm of the six face \
+              distances, rounder as e falls (λ = √2·6^max(0, 1/e − 1/2)).",
         params: &[
             opt("radius", Ty::Length, num(1.0)),
-            opt("exponent", Ty::Number, num(0.0)),
+            opt("exponent", Ty::ZeroOrAtLeast(1.0), num(0.0)),
         ],
         exact: false,
-        lipschitz: |c| {
-            if c.num(1) == 0.0 {
-                1.0
-            } else {
-                std::f64::consts::SQRT_2
-            }
+        // The six unit normals form a tight frame (Σ nnᵀ = 2I), so |Np|₂ ≤ √2|p|; and
+        // |v|_e ≤ 6^(1/e − 1/2)|v|₂ for e < 2, |v|_e ≤ |v|₂ for e ≥ 2.
+        lipschitz: |c| match c.num(1) {
+            0.0 => 1.0,
+            e => std::f64::consts::SQRT_2 * 6f64.powf((1.0 / e - 0.5).max(0.0)),
         },
         // The inradius-r dodecahedron has circumradius r·√3·tan(π/5)·φ ≈ 1.2584 r.
         bound: |c| Bound::origin(c.num(0) * 1.2585),
@@ -182,7 +184,11 @@ pub static PRIMITIVES: &[Primitive] = &[
               not a proven bound.",
         params: &[
             opt("power", Ty::Range(2.0, 32.0), num(8.0)),
-            opt("iterations", Ty::Count, num(8.0)),
+            opt(
+                "iterations",
+                Ty::CountTo(MANDELBULB_MAX_ITERATIONS),
+                num(8.0),
+            ),
         ],
         exact: false,
         lipschitz: ONE,
@@ -269,6 +275,9 @@ fn gdf_dodecahedron(p: DVec3, r: f64, e: f64) -> f64 {
         .powf(1.0 / e)
         - r
 }
+
+/// Most iterations a Mandelbulb may ask for (each evaluation loops this often).
+pub const MANDELBULB_MAX_ITERATIONS: u32 = 64;
 
 /// Radius beyond which every point escapes: |z|^(n−1) > 2 (then |z₁| ≥ |z|ⁿ − |z| > |z|).
 pub fn mandelbulb_radius(power: f64) -> f64 {

@@ -11,23 +11,52 @@ pub fn signature(name: &str, params: &[Param]) -> String {
     let ps: Vec<String> = params
         .iter()
         .map(|p| match p.default {
-            Some(d) => format!("{} = {}", p.name, show_val(d)),
+            Some(d) => format!("{} = {}", p.name, show_val(d, p.ty)),
             None => p.name.to_string(),
         })
         .collect();
     format!("{name}({})", ps.join(", "))
 }
 
+/// A settings block's shape for messages: `trace basic { steps 128  epsilon pixel }`.
+pub fn settings_signature(name: &str, params: &[Param]) -> String {
+    let ps: Vec<String> = params
+        .iter()
+        .map(|p| match p.default {
+            Some(d) => format!("{} {}", p.name, show_val(d, p.ty)),
+            None => format!("{} …", p.name),
+        })
+        .collect();
+    format!("{name} {{ {} }}", ps.join("  "))
+}
+
 /// A default value as the docs show it.
-pub fn show_val(v: Val) -> String {
-    match v {
-        Val::Num(x) => format!("{x}"),
-        Val::Vec3(v) => format!("({}, {}, {})", v.x, v.y, v.z),
-        Val::Word(_) => "…".into(),
+pub fn show_val(v: Val, ty: Ty) -> String {
+    match (v, ty) {
+        (Val::Num(x), Ty::Angle) => format!("{}deg", (x.to_degrees() * 1e6).round() / 1e6),
+        (Val::Num(x), _) => format!("{x}"),
+        (Val::Vec3(v), _) => format!("({}, {}, {})", v.x, v.y, v.z),
+        (Val::Word(i), Ty::PositiveOr(words)) => words[i].to_string(),
+        (Val::Word(_), _) => "…".into(),
     }
 }
 
+/// Whether `what` names a settings block rather than a call.
+fn is_settings(what: &str) -> bool {
+    ["camera", "light", "trace", "material"]
+        .iter()
+        .any(|k| what.split(' ').next() == Some(k))
+}
+
 impl Checker<'_> {
+    fn shape_of(what: &str, params: &[Param]) -> String {
+        if is_settings(what) {
+            settings_signature(what, params)
+        } else {
+            signature(what, params)
+        }
+    }
+
     /// Binds positional and named arguments to `params`; reports every problem found.
     pub(super) fn bind(
         &mut self,
@@ -55,7 +84,7 @@ impl Checker<'_> {
                                 Some(s) => d.help(format!("did you mean `{s}`?")),
                                 None => d.help(format!(
                                     "the parameters are: {}",
-                                    signature(what, params)
+                                    Self::shape_of(what, params)
                                 )),
                             };
                             self.diags.push(d);
@@ -68,7 +97,7 @@ impl Checker<'_> {
                     self.diags.push(
                         Diagnostic::error(arg.value.span, "positional argument after a named one")
                             .label("give this one a name too")
-                            .help(signature(what, params)),
+                            .help(Self::shape_of(what, params)),
                     );
                     ok = false;
                     continue;
@@ -81,7 +110,7 @@ impl Checker<'_> {
                         format!("`{what}` takes {n} argument{s}, but more were given"),
                     )
                     .label("unexpected argument")
-                    .help(signature(what, params));
+                    .help(Self::shape_of(what, params));
                     if matches!(arg.value.kind, ExprKind::Number { .. })
                         && params
                             .iter()
@@ -120,7 +149,7 @@ impl Checker<'_> {
                         self.diags.push(
                             Diagnostic::error(call_span, format!("missing argument `{}`", p.name))
                                 .label(format!("`{what}` needs `{}`", p.name))
-                                .help(signature(what, params)),
+                                .help(Self::shape_of(what, params)),
                         );
                     }
                     ok = false;
@@ -141,14 +170,40 @@ impl Checker<'_> {
                     if let Some(i) = ["x", "y", "z"].iter().position(|a| *a == id.name) {
                         return Some(Val::Vec3(DVec3::AXES[i]));
                     }
+                    if !self.declared.contains_key(&id.name) {
+                        let d = Diagnostic::error(id.span, format!("unknown axis `{}`", id.name))
+                            .label("not an axis")
+                            .help("the axes are `x`, `y` and `z` (lower case), or any vector `(x, y, z)`");
+                        self.diags.push(d);
+                        return None;
+                    }
                 }
                 Ty::PositiveOr(words) => {
                     if let Some(i) = words.iter().position(|w| *w == id.name) {
                         return Some(Val::Word(i));
                     }
+                    if !self.declared.contains_key(&id.name) {
+                        let mut d = Diagnostic::error(
+                            id.span,
+                            format!("`{param}` must be {}", ty.describe()),
+                        )
+                        .label(format!("`{}` is not a word it knows", id.name));
+                        if let Some(w) = did_you_mean(&id.name, words.iter().copied()) {
+                            d = d.help(format!("did you mean `{w}`?"));
+                        }
+                        self.diags.push(d);
+                        return None;
+                    }
                 }
                 _ => {}
             }
+        }
+        if let (Ty::Axis, ExprKind::Neg(inner)) = (ty, &e.kind)
+            && let ExprKind::Name(id) = &inner.kind
+            && !self.lets.contains_key(&id.name)
+            && let Some(i) = ["x", "y", "z"].iter().position(|a| *a == id.name)
+        {
+            return Some(Val::Vec3(-DVec3::AXES[i]));
         }
         let value = self.value(e)?;
         let found = value.describe();
@@ -178,6 +233,10 @@ impl Checker<'_> {
             (Ty::Fraction, Value::Num(x, _)) if (0.0..=1.0).contains(&x) => Some(Val::Num(x)),
             (Ty::Range(lo, hi), Value::Num(x, _)) if x >= lo && x < hi => Some(Val::Num(x)),
             (Ty::Count, Value::Num(x, _)) if x >= 1.0 && x.fract() == 0.0 => Some(Val::Num(x)),
+            (Ty::CountTo(n), Value::Num(x, _)) if x >= 1.0 && x <= n as f64 && x.fract() == 0.0 => {
+                Some(Val::Num(x))
+            }
+            (Ty::ZeroOrAtLeast(lo), Value::Num(x, _)) if x == 0.0 || x >= lo => Some(Val::Num(x)),
             (Ty::Size, Value::Num(x, _)) if x >= 0.0 => Some(Val::Vec3(DVec3::splat(x))),
             (Ty::Size, Value::Vec3(v)) if v.min_element() >= 0.0 => Some(Val::Vec3(v)),
             (Ty::Counts, Value::Num(x, _)) if x >= 0.0 && x.fract() == 0.0 => {

@@ -30,29 +30,27 @@ impl Checker<'_> {
     /// Checks any expression; `None` means an error was reported.
     pub(super) fn value(&mut self, e: &Expr) -> Option<Value> {
         if self.depth >= MAX_DEPTH {
-            if self.depth == MAX_DEPTH {
+            if !self.depth_reported {
                 self.diags.push(
                     Diagnostic::error(e.span, "expression nested too deeply")
-                        .note(format!("the limit is {MAX_DEPTH} levels"))
+                        .label(format!(
+                            "more than {MAX_DEPTH} levels of operators or calls"
+                        ))
                         .help("split it into `let` bindings"),
                 );
-                // Report once per chain.
-                self.depth += 1;
+                self.depth_reported = true;
             }
             return None;
         }
         self.depth += 1;
         let v = self.value_inner(e);
         self.depth -= 1;
-        if self.depth == MAX_DEPTH {
-            self.depth -= 1;
-        }
         v
     }
 
     fn value_inner(&mut self, e: &Expr) -> Option<Value> {
         match &e.kind {
-            ExprKind::Number { value, unit } => self.number(*value, unit.as_ref()),
+            ExprKind::Number { value, unit } => self.number(*value, unit.as_ref(), e.span),
             ExprKind::Color(text) => self.color(text, e.span),
             ExprKind::Vector(parts) => {
                 let mut v = DVec3::ZERO;
@@ -129,7 +127,15 @@ impl Checker<'_> {
         }
     }
 
-    fn number(&mut self, value: f64, unit: Option<&Ident>) -> Option<Value> {
+    fn number(&mut self, value: f64, unit: Option<&Ident>, span: Span) -> Option<Value> {
+        if !value.is_finite() {
+            self.diags.push(
+                Diagnostic::error(span, "this number is too large")
+                    .label("beyond the range of a 64-bit float")
+                    .note("every number in a scene must be finite"),
+            );
+            return None;
+        }
         let Some(unit) = unit else {
             return Some(Value::Num(value, Dim::None));
         };
@@ -177,10 +183,17 @@ impl Checker<'_> {
                 Binding::Failed => None,
             };
         }
-        let d = if self.defining == Some(id.name.as_str()) {
-            Diagnostic::error(id.span, format!("`{}` refers to itself", id.name))
+        if self.failed.contains(&id.name) {
+            return None;
+        }
+        let d = if let Some((name, def)) = self.defining.filter(|(n, _)| *n == id.name) {
+            let mut d = Diagnostic::error(id.span, format!("`{name}` refers to itself"))
                 .label("used inside its own definition")
-                .note("definitions cannot be recursive")
+                .note("definitions cannot be recursive");
+            if self.line_of(id.span.start) > self.line_of(def.start) {
+                d = d.help(format!("if the value of `let {name} =` is missing, add it: a line break does not end a `let`"));
+            }
+            d
         } else if let Some(def) = self.declared.get(&id.name) {
             let what = if self.materials.iter().any(|m| m.name == id.name)
                 || self.is_material_declared_at(*def)
@@ -196,6 +209,13 @@ impl Checker<'_> {
             .label(what)
             .also(*def, "defined here")
             .help("move the definition above its first use")
+        } else if catalog::operator(&id.name).is_some() {
+            Diagnostic::error(id.span, format!("`{}` needs a block of shapes", id.name))
+                .label("an operator, written without its shapes")
+                .help(format!(
+                    "write `{} {{ a b }}` or `a |> {}`",
+                    id.name, id.name
+                ))
         } else if catalog::all_names().any(|n| n == id.name) {
             Diagnostic::error(id.span, format!("`{}` needs arguments", id.name))
                 .label("a call, written without parentheses")
@@ -247,6 +267,17 @@ impl Checker<'_> {
                     }
                     (BinOp::Div, Dim::Angle, Dim::None) => Dim::Angle,
                     (BinOp::Div, Dim::Angle, Dim::Angle) => Dim::None,
+                    (_, Dim::Angle, Dim::Angle) => {
+                        self.diags.push(
+                            Diagnostic::error(
+                                span,
+                                format!("`{}` of two angles is not an angle", op.symbol()),
+                            )
+                            .label("angle times angle, or a power of an angle")
+                            .help("give one operand a unit, or neither"),
+                        );
+                        return None;
+                    }
                     _ => {
                         self.diags.push(
                             Diagnostic::error(span, "mixed units")
@@ -361,6 +392,17 @@ impl Checker<'_> {
                 .operator_node(name, args?, children, call.span)
                 .map(Value::Shape);
         }
+        if let Some((binding, def)) = self.lets.get(name) {
+            let what = match binding {
+                Binding::Value(v) => v.describe(),
+                Binding::Failed => "a failed definition".into(),
+            };
+            let d = Diagnostic::error(call.name.span, format!("`{name}` cannot be called"))
+                .label(format!("`{name}` is {what}"))
+                .also(*def, "defined here");
+            self.diags.push(d);
+            return None;
+        }
         let mut d = Diagnostic::error(
             call.name.span,
             format!("unknown function or shape `{name}`"),
@@ -461,6 +503,44 @@ impl Checker<'_> {
             args.push(self.value(&a.value));
         }
         let args: Vec<Value> = args.into_iter().collect::<Option<_>>()?;
+        if let Some((bad, arg)) = args
+            .iter()
+            .zip(&call.args)
+            .find(|(a, _)| !matches!(a, Value::Num(..) | Value::Field(_)))
+        {
+            return self.no_arithmetic(arg.value.span, f.name, bad);
+        }
+        let dims: Vec<Dim> = args
+            .iter()
+            .map(|a| {
+                if let Value::Num(_, d) = a {
+                    *d
+                } else {
+                    Dim::None
+                }
+            })
+            .collect();
+        let out = match f.units {
+            catalog::Units::AngleIn => Dim::None,
+            catalog::Units::Same if dims.iter().all(|d| *d == dims[0]) => dims[0],
+            catalog::Units::AngleOut | catalog::Units::Plain | catalog::Units::Same => {
+                if let Some(i) = dims.iter().position(|d| *d == Dim::Angle) {
+                    let d = Diagnostic::error(
+                        call.args[i].value.span,
+                        format!("`{}` takes plain numbers", f.name),
+                    )
+                    .label("this is an angle")
+                    .help("drop the unit, or divide by `1rad` to get the plain number of radians");
+                    self.diags.push(d);
+                    return None;
+                }
+                if f.units == catalog::Units::AngleOut {
+                    Dim::Angle
+                } else {
+                    Dim::None
+                }
+            }
+        };
         if args.iter().all(|a| matches!(a, Value::Num(..))) {
             let xs: Vec<f64> = args
                 .iter()
@@ -468,14 +548,7 @@ impl Checker<'_> {
                 .collect();
             return self
                 .finite((f.eval)(&xs), call.span)
-                .map(|r| Value::Num(r, Dim::None));
-        }
-        if let Some((bad, arg)) = args
-            .iter()
-            .zip(&call.args)
-            .find(|(a, _)| !matches!(a, Value::Num(..) | Value::Field(_)))
-        {
-            return self.no_arithmetic(arg.value.span, f.name, bad);
+                .map(|r| Value::Num(r, out));
         }
         Some(Value::Field(Field::Call(
             f,
@@ -555,6 +628,9 @@ impl Checker<'_> {
     fn material_ref(&mut self, id: &Ident) -> Option<u32> {
         if let Some(i) = self.materials.iter().position(|m| m.name == id.name) {
             return Some(i as u32);
+        }
+        if self.failed.contains(&id.name) {
+            return None;
         }
         let d = match self.declared.get(&id.name) {
             Some(def) if self.material_spans.contains(def) => Diagnostic::error(

@@ -17,6 +17,8 @@ use std::collections::HashMap;
 
 /// Most shape nodes a scene may have.
 pub const MAX_NODES: usize = 100_000;
+/// Smallest Lipschitz bound a node gets (a constant field has slope 0, and the tracer divides by λ).
+pub const MIN_LAMBDA: f64 = 1e-9;
 /// Deepest expression nesting the checker follows.
 pub const MAX_DEPTH: usize = 256;
 
@@ -32,7 +34,7 @@ pub struct Checked {
 /// Parses and checks source text.
 pub fn compile(source: &str) -> Checked {
     match syntax::parse(source) {
-        Ok(file) => check(&file),
+        Ok(file) => check_with_lines(&file, source),
         Err(d) => Checked {
             scene: None,
             diagnostics: vec![d],
@@ -42,9 +44,17 @@ pub fn compile(source: &str) -> Checked {
 
 /// Checks a parsed file.
 pub fn check(file: &syntax::File) -> Checked {
+    check_with_lines(file, "")
+}
+
+fn check_with_lines(file: &syntax::File, source: &str) -> Checked {
     let mut c = Checker::new(file);
+    c.line_starts = std::iter::once(0)
+        .chain(source.match_indices('\n').map(|(i, _)| i + 1))
+        .collect();
     let mut roots = Vec::new();
     for item in &file.items {
+        c.depth_reported = false;
         match item {
             Item::Let { name, value } => c.let_binding(name, value),
             Item::Block {
@@ -157,8 +167,14 @@ pub(crate) struct Checker<'a> {
     /// Definition spans of the file's material names.
     material_spans: Vec<Span>,
     materials: Vec<Material>,
-    /// The `let` being checked, to catch self-reference.
-    defining: Option<&'a str>,
+    /// The `let` being checked and where its name is, to catch self-reference.
+    defining: Option<(&'a str, Span)>,
+    /// Names whose definitions failed (errors already reported): uses stay quiet.
+    failed: std::collections::HashSet<String>,
+    /// Whether "nested too deeply" was reported for the current statement.
+    depth_reported: bool,
+    /// Byte offsets of line starts, for messages that compare lines.
+    line_starts: Vec<usize>,
     /// Inside an `implicit` body: x, y and z are coordinates.
     in_implicit: bool,
     depth: usize,
@@ -193,6 +209,9 @@ impl<'a> Checker<'a> {
             material_spans,
             materials: Vec::new(),
             defining: None,
+            failed: Default::default(),
+            depth_reported: false,
+            line_starts: Vec::new(),
             in_implicit: false,
             depth: 0,
             settings: settings::Settings::default(),
@@ -202,6 +221,7 @@ impl<'a> Checker<'a> {
     fn let_binding(&mut self, name: &'a syntax::Ident, value: &'a Expr) {
         if let Some(d) = self.reserved_name(name) {
             self.diags.push(d);
+            self.failed.insert(name.name.clone());
             return;
         }
         if let Some((_, first)) = self.lets.get(&name.name) {
@@ -212,7 +232,7 @@ impl<'a> Checker<'a> {
             );
             return;
         }
-        self.defining = Some(&name.name);
+        self.defining = Some((&name.name, name.span));
         let binding = match self.value(value) {
             Some(Value::Shape(n)) => {
                 self.nodes[n].name.get_or_insert_with(|| name.name.clone());
@@ -265,6 +285,8 @@ impl<'a> Checker<'a> {
             }
             return None;
         }
+        // A zero slope (a constant field) would divide by zero; any larger λ is still a bound.
+        let lambda = lambda.max(MIN_LAMBDA);
         self.nodes.push(Node {
             kind,
             span,
@@ -293,12 +315,34 @@ impl<'a> Checker<'a> {
         };
         let lambda = (op.lipschitz)(&ctx);
         let bound = (op.bound)(&ctx);
+        if name == "repeat" {
+            self.check_repeat_cell(&ctx, span);
+        }
         self.push_node(
             NodeKind::Operator { op, ctx, children },
             lambda,
             bound,
             span,
         )
+    }
+
+    /// A repeated shape that does not fit its cell makes the field jump between cells, and
+    /// stepping by it can pass through a neighbour's surface: warn.
+    fn check_repeat_cell(&mut self, ctx: &Ctx, span: Span) {
+        let (b, spacing) = (ctx.child_bound[0], ctx.vec(0));
+        for i in 0..3 {
+            let s = spacing[i];
+            let reach = (b.center[i].abs() + b.radius) * 2.0;
+            if s > 0.0 && reach > s {
+                self.diags.push(
+                    Diagnostic::warning(span, "the repeated shape does not fit its cell")
+                        .label(format!("it spans up to {reach:.3} along {}, the spacing is {s}", ["x", "y", "z"][i]))
+                        .note("distances across cell borders are then not bounds, and rays may pass through surfaces")
+                        .help(format!("use a spacing of at least {reach:.3}")),
+                );
+                return;
+            }
+        }
     }
 
     /// Every reachable node needs a finite λ; report those that have none.
@@ -331,6 +375,13 @@ impl<'a> Checker<'a> {
             }
             stack.extend(self.nodes[n].children().iter().copied());
         }
+    }
+
+    /// The 0-based line of a byte offset (0 when the source is unknown).
+    fn line_of(&self, offset: usize) -> usize {
+        self.line_starts
+            .partition_point(|&s| s <= offset)
+            .saturating_sub(1)
     }
 
     fn finish(self, root: NodeId) -> Scene {

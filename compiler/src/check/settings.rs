@@ -244,6 +244,7 @@ impl Checker<'_> {
         };
         if let Some(d) = self.reserved_name(name) {
             self.diags.push(d);
+            self.failed.insert(name.name.clone());
             return;
         }
         if let Some(first) = self.materials.iter().find(|m| m.name == name.name) {
@@ -259,6 +260,7 @@ impl Checker<'_> {
             return;
         }
         let Some(a) = self.bind(&format!("material {}", name.name), MATERIAL, args, span) else {
+            self.failed.insert(name.name.clone());
             return;
         };
         self.materials.push(Material {

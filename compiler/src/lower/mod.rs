@@ -67,7 +67,7 @@ fn has_materials(scene: &Scene, reachable: &[NodeId]) -> bool {
 /// The IR type of a parameter of type `ty`.
 fn param_type(mb: &mut ModuleBuilder, ty: Ty) -> Handle<Type> {
     match ty {
-        Ty::Count => mb.u32(),
+        Ty::Count | Ty::CountTo(_) => mb.u32(),
         Ty::Vec3 | Ty::Size | Ty::Scale | Ty::Axis | Ty::Color | Ty::Counts => mb.vec3(),
         _ => mb.f32(),
     }
@@ -273,7 +273,7 @@ fn pick_material(
 /// A checked argument as an IR literal of its parameter's type.
 fn literal(b: &mut FnBuilder, ty: Ty, v: crate::catalog::Val) -> Ex {
     match ty {
-        Ty::Count => b.u(v.num() as u32),
+        Ty::Count | Ty::CountTo(_) => b.u(v.num() as u32),
         Ty::Vec3 | Ty::Size | Ty::Scale | Ty::Axis | Ty::Color | Ty::Counts => b.vec3_lit(v.vec()),
         _ => b.f(v.num()),
     }

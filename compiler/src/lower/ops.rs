@@ -254,67 +254,96 @@ pub fn mirror(b: &mut FnBuilder, c: &Ctx, p: Ex, child: ChildLower) -> Ex {
     child(b, 0, q)
 }
 
-/// The warped child normalised by `stretch`, or the distance to the bounding cylinder outside it.
+/// A warp as `catalog::operators::warp`: project onto the bounding cylinder, deform, normalise
+/// by `stretch`, and take the max with the distance to the cylinder.
+/// Where a warp's surface lies: the cylinder across coordinates `radial` of radius `rho_max`,
+/// inside which the deformation stretches distances by at most `stretch`.
+struct Cylinder {
+    radial: [u32; 2],
+    rho_max: f64,
+    stretch: f64,
+}
+
 fn warp(
     b: &mut FnBuilder,
     c: &Ctx,
-    q: Ex,
-    rho: Ex,
-    rho_max: f64,
-    stretch: f64,
+    p: Ex,
+    cyl: Cylinder,
+    deform: &dyn Fn(&mut FnBuilder, Ex) -> Ex,
     child: ChildLower,
 ) -> Ex {
-    let d = child(b, 0, q);
+    let Cylinder {
+        radial,
+        rho_max,
+        stretch,
+    } = cyl;
     if !rho_max.is_finite() {
-        return d;
+        let q = deform(b, p);
+        return child(b, 0, q);
     }
-    let inside = scale_by(b, d, 1.0 / (c.child_lambda[0] * stretch));
+    let across = b.swizzle(p, &radial);
+    let rho = b.length(across);
     let rm = b.f(rho_max);
-    let outside = b.sub(rho, rm);
     let out = b.gt(rho, rm);
-    b.select(out, outside, inside)
+    let ratio = b.div(rm, rho);
+    let one = b.f(1.0);
+    let s = b.select(out, ratio, one);
+    let mut scale = [one; 3];
+    scale[radial[0] as usize] = s;
+    scale[radial[1] as usize] = s;
+    let scale = b.compose_vec3(scale);
+    let projected = b.mul(p, scale);
+    let q = deform(b, projected);
+    let d = child(b, 0, q);
+    let inside = scale_by(b, d, 1.0 / (c.child_lambda[0] * stretch));
+    let outside = b.sub(rho, rm);
+    b.max(inside, outside)
 }
 
 /// Rotation of the xz plane by rate·y.
 pub fn twist(b: &mut FnBuilder, c: &Ctx, p: Ex, child: ChildLower) -> Ex {
     let rho_max = c.child_bound[0].cylinder_radius(DVec3::Y);
-    let [x, y, z] = b.xyz(p);
-    let k = b.f(c.num(0));
-    let a = b.mul(k, y);
-    let (s, co) = (b.math(M::Sin, &[a]), b.math(M::Cos, &[a]));
-    let (cx, sz) = (b.mul(co, x), b.mul(s, z));
-    let qx = b.sub(cx, sz);
-    let (sx, cz) = (b.mul(s, x), b.mul(co, z));
-    let qz = b.add(sx, cz);
-    let q = b.compose_vec3([qx, y, qz]);
-    let xz = b.swizzle(p, &[0, 2]);
-    let rho = b.length(xz);
-    warp(
-        b,
-        c,
-        q,
-        rho,
+    let rate = c.num(0);
+    let deform = move |b: &mut FnBuilder, p: Ex| {
+        let [x, y, z] = b.xyz(p);
+        let k = b.f(rate);
+        let a = b.mul(k, y);
+        let (s, co) = (b.math(M::Sin, &[a]), b.math(M::Cos, &[a]));
+        let (cx, sz) = (b.mul(co, x), b.mul(s, z));
+        let qx = b.sub(cx, sz);
+        let (sx, cz) = (b.mul(s, x), b.mul(co, z));
+        let qz = b.add(sx, cz);
+        b.compose_vec3([qx, y, qz])
+    };
+    let cyl = Cylinder {
+        radial: [0, 2],
         rho_max,
-        twist_stretch(c.num(0), rho_max),
-        child,
-    )
+        stretch: twist_stretch(rate, rho_max),
+    };
+    warp(b, c, p, cyl, &deform, child)
 }
 
 /// Rotation of the xy plane by rate·x.
 pub fn bend(b: &mut FnBuilder, c: &Ctx, p: Ex, child: ChildLower) -> Ex {
     let rho_max = c.child_bound[0].cylinder_radius(DVec3::Z);
-    let [x, y, z] = b.xyz(p);
-    let k = b.f(c.num(0));
-    let a = b.mul(k, x);
-    let (s, co) = (b.math(M::Sin, &[a]), b.math(M::Cos, &[a]));
-    let (cx, sy) = (b.mul(co, x), b.mul(s, y));
-    let qx = b.sub(cx, sy);
-    let (sx, cy) = (b.mul(s, x), b.mul(co, y));
-    let qy = b.add(sx, cy);
-    let q = b.compose_vec3([qx, qy, z]);
-    let xy = b.swizzle(p, &[0, 1]);
-    let rho = b.length(xy);
-    warp(b, c, q, rho, rho_max, 1.0 + c.num(0).abs() * rho_max, child)
+    let rate = c.num(0);
+    let deform = move |b: &mut FnBuilder, p: Ex| {
+        let [x, y, z] = b.xyz(p);
+        let k = b.f(rate);
+        let a = b.mul(k, x);
+        let (s, co) = (b.math(M::Sin, &[a]), b.math(M::Cos, &[a]));
+        let (cx, sy) = (b.mul(co, x), b.mul(s, y));
+        let qx = b.sub(cx, sy);
+        let (sx, cy) = (b.mul(s, x), b.mul(co, y));
+        let qy = b.add(sx, cy);
+        b.compose_vec3([qx, qy, z])
+    };
+    let cyl = Cylinder {
+        radial: [0, 1],
+        rho_max,
+        stretch: 1.0 + rate.abs() * rho_max,
+    };
+    warp(b, c, p, cyl, &deform, child)
 }
 
 /// f/λ − r

@@ -1,0 +1,167 @@
+//! The command line as users run it: exit codes, diagnostics on standard error, and no partial
+//! output files.
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+fn sdfc(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_sdfc"))
+        .args(args)
+        .output()
+        .expect("run sdfc")
+}
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .unwrap()
+        .to_path_buf()
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("sdfc-cli-{}-{name}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn write(dir: &std::path::Path, name: &str, text: &str) -> String {
+    let p = dir.join(name);
+    std::fs::write(&p, text).unwrap();
+    p.display().to_string()
+}
+
+#[test]
+fn check_reports_a_summary_or_the_errors() {
+    let d = scratch("check");
+    let good = write(
+        &d,
+        "good.sdf",
+        "material red { color #f00 }\nsphere(1) : red\n",
+    );
+    let out = sdfc(&["check", &good]);
+    assert_eq!(out.status.code(), Some(0));
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        text.contains("nodes: 1") && text.contains("materials: 1") && text.contains("root λ: 1"),
+        "{text}"
+    );
+
+    let bad = write(&d, "bad.sdf", "shpere(1)\nbox(-1)\n");
+    let out = sdfc(&["check", &bad]);
+    assert_eq!(out.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("bad.sdf:1:1")
+            && err.contains("did you mean `sphere`")
+            && err.contains("bad.sdf:2:5"),
+        "{err}"
+    );
+    assert!(err.contains("^^^^^^"), "no caret:\n{err}");
+}
+
+#[test]
+fn check_reads_standard_input() {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_sdfc"))
+        .args(["check", "-"])
+        .stdin(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    use std::io::Write;
+    child
+        .stdin
+        .take()
+        .unwrap()
+        .write_all(b"torus(1, 0.25)")
+        .unwrap();
+    let out = child.wait_with_output().unwrap();
+    assert_eq!(out.status.code(), Some(0));
+    assert!(String::from_utf8_lossy(&out.stdout).contains("<stdin>: ok"));
+}
+
+#[test]
+fn a_missing_file_is_a_user_error() {
+    let out = sdfc(&["check", "/nonexistent/scene.sdf"]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("cannot read"));
+}
+
+#[test]
+fn emit_of_a_bad_file_prints_diagnostics_and_writes_nothing() {
+    let d = scratch("emit-bad");
+    let bad = write(&d, "bad.sdf", "sphere(1) : gold\n");
+    let target = d.join("out.wgsl");
+    let out = sdfc(&[
+        "emit",
+        &bad,
+        "--target",
+        "wgsl",
+        "-o",
+        target.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("unknown material `gold`"));
+    assert!(!target.exists(), "a partial output file was left behind");
+}
+
+#[test]
+fn emit_writes_every_target_to_a_file() {
+    let d = scratch("emit-good");
+    let scene = root().join("examples/jewel.sdf");
+    for (t, ext) in [
+        ("wgsl", "wgsl"),
+        ("spirv", "spv"),
+        ("glsl", "comp"),
+        ("msl", "metal"),
+        ("hlsl", "hlsl"),
+    ] {
+        let target = d.join(format!("out.{ext}"));
+        let out = sdfc(&[
+            "emit",
+            scene.to_str().unwrap(),
+            "--target",
+            t,
+            "-o",
+            target.to_str().unwrap(),
+        ]);
+        assert_eq!(
+            out.status.code(),
+            Some(0),
+            "{t}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        assert!(
+            std::fs::metadata(&target).unwrap().len() > 100,
+            "{t}: empty output"
+        );
+    }
+    let spv = std::fs::read(d.join("out.spv")).unwrap();
+    assert_eq!(
+        &spv[..4],
+        &0x0723_0203u32.to_le_bytes(),
+        "SPIR-V magic number"
+    );
+}
+
+#[test]
+fn emit_to_an_unwritable_path_fails_cleanly() {
+    let scene = root().join("examples/jewel.sdf");
+    let out = sdfc(&[
+        "emit",
+        scene.to_str().unwrap(),
+        "-o",
+        "/nonexistent/dir/out.wgsl",
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("cannot write"));
+}
+
+#[test]
+fn bad_flags_are_user_errors() {
+    assert_eq!(
+        sdfc(&["emit", "x.sdf", "--target", "cobol"]).status.code(),
+        Some(1)
+    );
+    assert_eq!(sdfc(&["frobnicate"]).status.code(), Some(1));
+    assert_eq!(sdfc(&["--help"]).status.code(), Some(0));
+}

@@ -1,0 +1,190 @@
+//! Emitted code: snapshots of every example's WGSL and GLSL, every example × target × entry
+//! validated by naga and by the external validators, "only what the scene requires", and the
+//! library output used from a host shader.
+
+use sdfc_compiler::emit::{self, Output, Target};
+use sdfc_compiler::lower::{Entry, tracer::Options};
+use sdfc_compiler::scene::Scene;
+use std::path::Path;
+use std::process::Command;
+
+const TARGETS: [Target; 5] = [
+    Target::Wgsl,
+    Target::Spirv,
+    Target::Glsl,
+    Target::Msl,
+    Target::Hlsl,
+];
+const ENTRIES: [Entry; 3] = [Entry::Compute, Entry::Fragment, Entry::Library];
+
+fn emit(scene: &Scene, target: Target, entry: Entry) -> Output {
+    let (m, info) = emit::module(scene, entry, &Options::from_scene(scene))
+        .unwrap_or_else(|e| panic!("{}", e.0));
+    emit::write(&m, &info, target, entry).unwrap_or_else(|e| panic!("{}", e.0))
+}
+
+fn text(scene: &Scene, target: Target, entry: Entry) -> String {
+    match emit(scene, target, entry) {
+        Output::Text(s) => s,
+        Output::Binary(_) => unreachable!("text target"),
+    }
+}
+
+#[test]
+fn example_snapshots() {
+    insta::glob!("..", "examples/*.sdf", |path| {
+        let scene = sdfc_tests::example(path);
+        insta::assert_snapshot!("wgsl", text(&scene, Target::Wgsl, Entry::Compute));
+        insta::assert_snapshot!("glsl", text(&scene, Target::Glsl, Entry::Compute));
+    });
+}
+
+/// Whether an external tool is installed; says so loudly when it is not.
+fn have(tool: &str) -> bool {
+    let ok = Command::new(tool).arg("--version").output().is_ok();
+    if !ok {
+        eprintln!(
+            "\n*** {tool} is not installed: its checks are SKIPPED (`.ci/run` installs it) ***\n"
+        );
+    }
+    ok
+}
+
+fn run_tool(tool: &str, args: &[&str], file: &Path, what: &str) {
+    let out = Command::new(tool)
+        .args(args)
+        .arg(file)
+        .output()
+        .expect("run validator");
+    assert!(
+        out.status.success(),
+        "{tool} rejected {what}:\n{}{}",
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+#[test]
+fn every_example_target_and_entry_validates() {
+    let dir = tempdir();
+    let (spirv_val, glslang) = (have("spirv-val"), have("glslangValidator"));
+    let mut checked = 0;
+    for path in sdfc_tests::examples() {
+        let scene = sdfc_tests::example(&path);
+        let stem = path.file_stem().unwrap().to_string_lossy().to_string();
+        for entry in ENTRIES {
+            for target in TARGETS {
+                let what = format!("{stem} {target:?} {entry:?}");
+                let out = emit(&scene, target, entry);
+                checked += 1;
+                let stage = if entry == Entry::Fragment {
+                    "frag"
+                } else {
+                    "comp"
+                };
+                match (target, out) {
+                    (Target::Spirv, Output::Binary(words)) if spirv_val => {
+                        let f = dir.join(format!("{stem}-{entry:?}.spv"));
+                        std::fs::write(
+                            &f,
+                            words
+                                .iter()
+                                .flat_map(|w| w.to_le_bytes())
+                                .collect::<Vec<u8>>(),
+                        )
+                        .unwrap();
+                        run_tool("spirv-val", &["--target-env", "vulkan1.1"], &f, &what);
+                    }
+                    (Target::Glsl, Output::Text(s)) if glslang => {
+                        let f = dir.join(format!("{stem}-{entry:?}.{stage}"));
+                        std::fs::write(&f, s).unwrap();
+                        run_tool("glslangValidator", &["-V", "-o", "/dev/null"], &f, &what);
+                    }
+                    (Target::Hlsl, Output::Text(s)) if glslang && entry != Entry::Library => {
+                        let f = dir.join(format!("{stem}-{entry:?}.hlsl"));
+                        std::fs::write(&f, s).unwrap();
+                        run_tool(
+                            "glslangValidator",
+                            &["-D", "-e", "main", "-S", stage, "-V", "-o", "/dev/null"],
+                            &f,
+                            &what,
+                        );
+                    }
+                    _ => {}
+                }
+            }
+        }
+    }
+    assert!(checked >= 150, "only {checked} combinations");
+}
+
+fn tempdir() -> std::path::PathBuf {
+    let d = std::env::temp_dir().join(format!("sdfc-emit-{}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn functions(wgsl: &str) -> Vec<String> {
+    wgsl.lines()
+        .filter_map(|l| l.strip_prefix("fn "))
+        .map(|l| l.split('(').next().unwrap().to_string())
+        .collect()
+}
+
+#[test]
+fn only_what_the_scene_requires() {
+    let one = sdfc_tests::scene("sphere", "sphere(1)");
+    let wgsl = text(&one, Target::Wgsl, Entry::Compute);
+    for absent in ["sd_box", "map_material", "op_", "pow(", "shadow"] {
+        assert!(
+            !wgsl.contains(absent),
+            "a sphere-only scene emits `{absent}`:\n{wgsl}"
+        );
+    }
+    let two = sdfc_tests::scene("sphere and box", "union { sphere(1) box(1) }");
+    let wgsl2 = text(&two, Target::Wgsl, Entry::Compute);
+    let (f1, f2) = (functions(&wgsl), functions(&wgsl2));
+    let added: Vec<&String> = f2.iter().filter(|f| !f1.contains(f)).collect();
+    assert_eq!(added, ["sd_box"], "adding a box added {added:?}");
+    assert!(f1.iter().all(|f| f2.contains(f)));
+    // A material adds `map_material`; a specular one adds the highlight.
+    let mat = sdfc_tests::scene("m", "material red { color #f00 }\nsphere(1) : red");
+    let wgsl = text(&mat, Target::Wgsl, Entry::Compute);
+    assert!(wgsl.contains("fn map_material") && !wgsl.contains("pow("));
+    let spec = sdfc_tests::scene(
+        "s",
+        "material red { color #f00 specular 0.5 }\nsphere(1) : red",
+    );
+    assert!(text(&spec, Target::Wgsl, Entry::Compute).contains("pow("));
+    // Constants are folded: the step budget appears as a literal, not a uniform.
+    let steps = sdfc_tests::scene("t", "trace basic { steps 77 }\nsphere(1)");
+    assert!(text(&steps, Target::Wgsl, Entry::Compute).contains(">= 77u"));
+}
+
+#[test]
+fn library_output_is_usable_from_a_host_shader() {
+    for path in sdfc_tests::examples() {
+        let scene = sdfc_tests::example(&path);
+        let lib = text(&scene, Target::Wgsl, Entry::Library);
+        let pixel = if lib.contains("fn trace(ro_1: vec3<f32>, rd_2: vec3<f32>, pixel") {
+            ", 0.001"
+        } else {
+            ""
+        };
+        let host = format!(
+            "{lib}\n@group(0) @binding(0) var<storage, read_write> result: array<vec4<f32>>;\n\
+             @compute @workgroup_size(1)\nfn host_main(@builtin(global_invocation_id) id: vec3<u32>) {{\n\
+             let ro = vec3<f32>(0.0, 1.0, -5.0);\n  let rd = normalize(vec3<f32>(0.0, -0.1, 1.0));\n\
+             let r = trace(ro, rd{pixel});\n  let n = normal(ro + rd * r.t, 0.001);\n\
+             result[id.x] = vec4<f32>(n, map(ro));\n}}\n"
+        );
+        let module = naga::front::wgsl::parse_str(&host).unwrap_or_else(|e| {
+            panic!(
+                "{}: host shader does not parse:\n{}",
+                path.display(),
+                e.emit_to_string(&host)
+            )
+        });
+        emit::validate(&module).unwrap_or_else(|e| panic!("{}: {}", path.display(), e.0));
+    }
+}
