@@ -98,8 +98,9 @@ pub fn smooth_subtract(b: &mut FnBuilder, c: &Ctx, p: Ex, child: ChildLower) -> 
     smooth(b, c, p, child, "op_smooth_intersect", true)
 }
 
-/// Body of `op_smooth_union(a, b, k)`: IQ's quadratic polynomial smooth minimum.
-pub fn smooth_min_body(b: &mut FnBuilder) -> Ex {
+/// The blend term h²k/4 of IQ's quadratic smooth minimum, h = max(k − |a − b|, 0)/k, of the
+/// helper's three arguments; with them.
+fn blend_term(b: &mut FnBuilder) -> (Ex, Ex, Ex) {
     let (x, y, k) = (b.arg(0), b.arg(1), b.arg(2));
     let diff = b.sub(x, y);
     let diff = b.abs(diff);
@@ -107,28 +108,23 @@ pub fn smooth_min_body(b: &mut FnBuilder) -> Ex {
     let zero = b.f(0.0);
     let kd = b.max(kd, zero);
     let h = b.div(kd, k);
-    let m = b.min(x, y);
     let hh = b.mul(h, h);
     let hhk = b.mul(hh, k);
     let quarter = b.f(0.25);
-    let dip = b.mul(hhk, quarter);
+    (x, y, b.mul(hhk, quarter))
+}
+
+/// Body of `op_smooth_union(a, b, k)`: min(a, b) − h²k/4.
+pub fn smooth_min_body(b: &mut FnBuilder) -> Ex {
+    let (x, y, dip) = blend_term(b);
+    let m = b.min(x, y);
     b.sub(m, dip)
 }
 
-/// Body of `op_smooth_intersect(a, b, k)`: −smin(−a, −b, k).
+/// Body of `op_smooth_intersect(a, b, k)`: −smin(−a, −b, k) = max(a, b) + h²k/4.
 pub fn smooth_max_body(b: &mut FnBuilder) -> Ex {
-    let (x, y, k) = (b.arg(0), b.arg(1), b.arg(2));
-    let diff = b.sub(x, y);
-    let diff = b.abs(diff);
-    let kd = b.sub(k, diff);
-    let zero = b.f(0.0);
-    let kd = b.max(kd, zero);
-    let h = b.div(kd, k);
+    let (x, y, bump) = blend_term(b);
     let m = b.max(x, y);
-    let hh = b.mul(h, h);
-    let hhk = b.mul(hh, k);
-    let quarter = b.f(0.25);
-    let bump = b.mul(hhk, quarter);
     b.add(m, bump)
 }
 
@@ -300,21 +296,26 @@ fn warp(
     b.max(inside, outside)
 }
 
+/// Rotates coordinates `plane` of `p` by `rate` times coordinate `by` (twist: xz by y; bend: xy
+/// by x), as `catalog::operators::twist_point` and `bend_point`.
+fn plane_rotation(b: &mut FnBuilder, p: Ex, plane: [usize; 2], by: usize, rate: f64) -> Ex {
+    let mut c = b.xyz(p);
+    let k = b.f(rate);
+    let a = b.mul(k, c[by]);
+    let (s, co) = (b.math(M::Sin, &[a]), b.math(M::Cos, &[a]));
+    let [i, j] = plane;
+    let (ci, sj) = (b.mul(co, c[i]), b.mul(s, c[j]));
+    let (si, cj) = (b.mul(s, c[i]), b.mul(co, c[j]));
+    c[i] = b.sub(ci, sj);
+    c[j] = b.add(si, cj);
+    b.compose_vec3(c)
+}
+
 /// Rotation of the xz plane by rate·y.
 pub fn twist(b: &mut FnBuilder, c: &Ctx, p: Ex, child: ChildLower) -> Ex {
     let rho_max = c.child_bound[0].cylinder_radius(DVec3::Y);
     let rate = c.num(0);
-    let deform = move |b: &mut FnBuilder, p: Ex| {
-        let [x, y, z] = b.xyz(p);
-        let k = b.f(rate);
-        let a = b.mul(k, y);
-        let (s, co) = (b.math(M::Sin, &[a]), b.math(M::Cos, &[a]));
-        let (cx, sz) = (b.mul(co, x), b.mul(s, z));
-        let qx = b.sub(cx, sz);
-        let (sx, cz) = (b.mul(s, x), b.mul(co, z));
-        let qz = b.add(sx, cz);
-        b.compose_vec3([qx, y, qz])
-    };
+    let deform = move |b: &mut FnBuilder, p: Ex| plane_rotation(b, p, [0, 2], 1, rate);
     let cyl = Cylinder {
         radial: [0, 2],
         rho_max,
@@ -327,17 +328,7 @@ pub fn twist(b: &mut FnBuilder, c: &Ctx, p: Ex, child: ChildLower) -> Ex {
 pub fn bend(b: &mut FnBuilder, c: &Ctx, p: Ex, child: ChildLower) -> Ex {
     let rho_max = c.child_bound[0].cylinder_radius(DVec3::Z);
     let rate = c.num(0);
-    let deform = move |b: &mut FnBuilder, p: Ex| {
-        let [x, y, z] = b.xyz(p);
-        let k = b.f(rate);
-        let a = b.mul(k, x);
-        let (s, co) = (b.math(M::Sin, &[a]), b.math(M::Cos, &[a]));
-        let (cx, sy) = (b.mul(co, x), b.mul(s, y));
-        let qx = b.sub(cx, sy);
-        let (sx, cy) = (b.mul(s, x), b.mul(co, y));
-        let qy = b.add(sx, cy);
-        b.compose_vec3([qx, qy, z])
-    };
+    let deform = move |b: &mut FnBuilder, p: Ex| plane_rotation(b, p, [0, 1], 0, rate);
     let cyl = Cylinder {
         radial: [0, 1],
         rho_max,
