@@ -12,3 +12,5 @@ pub mod lipschitz;
 pub mod lower;
 pub mod scene;
 pub mod syntax;
+pub mod trace;
+pub mod view;

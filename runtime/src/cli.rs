@@ -42,6 +42,36 @@ enum Command {
         #[arg(short, long)]
         output: Option<PathBuf>,
     },
+    /// Render a scene to a PNG (or depth to `.npy`) on the GPU, headless.
+    Render {
+        /// The scene file (`-` for standard input).
+        file: PathBuf,
+        /// Output file: `.png`, or `.npy` for raw f32 depth.
+        #[arg(short = 'o', long = "out")]
+        output: PathBuf,
+        /// Image size.
+        #[arg(long, default_value = "1280x720")]
+        size: String,
+        /// Tracer to use instead of the scene's (basic, relaxed, enhanced, hybrid, auto).
+        #[arg(long)]
+        tracer: Option<String>,
+        /// Graphics API: Vulkan, then GL, or one of them.
+        #[arg(long, value_enum, default_value = "auto")]
+        backend: BackendArg,
+        /// What to write.
+        #[arg(long = "output", value_enum, default_value = "color")]
+        kind: sdfc::images::Channel,
+        /// Samples per pixel for anti-aliasing: a square number (a stratified grid).
+        #[arg(long, default_value_t = 1)]
+        samples: u32,
+    },
+}
+
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum BackendArg {
+    Auto,
+    Vulkan,
+    Gl,
 }
 
 #[derive(Clone, Copy, clap::ValueEnum)]
@@ -88,6 +118,27 @@ pub fn run() -> i32 {
             entry,
             output,
         } => crate::emit_cmd::run(&file, target.into(), entry.into(), output.as_deref()),
+        Command::Render {
+            file,
+            output,
+            size,
+            tracer,
+            backend,
+            kind,
+            samples,
+        } => crate::render_cmd::run(&crate::render_cmd::RenderArgs {
+            file: &file,
+            output: &output,
+            size: &size,
+            tracer: tracer.as_deref(),
+            backend: match backend {
+                BackendArg::Auto => sdfc::gpu::BackendChoice::Auto,
+                BackendArg::Vulkan => sdfc::gpu::BackendChoice::Vulkan,
+                BackendArg::Gl => sdfc::gpu::BackendChoice::Gl,
+            },
+            channel: kind,
+            samples,
+        }),
     }
 }
 

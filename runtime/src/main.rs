@@ -2,8 +2,14 @@
 
 mod cli;
 mod emit_cmd;
+mod render_cmd;
 
 fn main() {
+    // Mesa's drivers complain on every start when this is unset; nothing else reads it here.
+    if std::env::var_os("XDG_RUNTIME_DIR").is_none() {
+        // SAFETY: no other thread exists yet.
+        unsafe { std::env::set_var("XDG_RUNTIME_DIR", std::env::temp_dir()) };
+    }
     // The front end recurses over the syntax tree; a large stack keeps pathological input (which
     // it rejects past its nesting limits) from overflowing before it is rejected.
     let code = std::thread::Builder::new()

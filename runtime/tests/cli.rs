@@ -165,3 +165,128 @@ fn bad_flags_are_user_errors() {
     assert_eq!(sdfc(&["frobnicate"]).status.code(), Some(1));
     assert_eq!(sdfc(&["--help"]).status.code(), Some(0));
 }
+
+#[test]
+fn render_writes_a_png_for_every_output_kind() {
+    let d = scratch("render");
+    let scene = root().join("examples/jewel.sdf");
+    for kind in ["color", "depth", "normal", "steps", "material"] {
+        let out_path = d.join(format!("{kind}.png"));
+        let out = sdfc(&[
+            "render",
+            scene.to_str().unwrap(),
+            "-o",
+            out_path.to_str().unwrap(),
+            "--size",
+            "64x40",
+            "--output",
+            kind,
+        ]);
+        assert_eq!(
+            out.status.code(),
+            Some(0),
+            "{kind}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let bytes = std::fs::read(&out_path).unwrap();
+        assert_eq!(&bytes[1..4], b"PNG", "{kind}: not a PNG");
+    }
+    let npy = d.join("depth.npy");
+    let out = sdfc(&[
+        "render",
+        scene.to_str().unwrap(),
+        "-o",
+        npy.to_str().unwrap(),
+        "--size",
+        "64x40",
+        "--output",
+        "depth",
+    ]);
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let bytes = std::fs::read(&npy).unwrap();
+    assert!(
+        bytes.starts_with(b"\x93NUMPY")
+            && bytes.len().is_multiple_of(64)
+            && bytes.len() > 64 * 40 * 4
+    );
+    let ss = d.join("aa.png");
+    let out = sdfc(&[
+        "render",
+        scene.to_str().unwrap(),
+        "-o",
+        ss.to_str().unwrap(),
+        "--size",
+        "64x40",
+        "--samples",
+        "4",
+    ]);
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+#[test]
+fn render_refuses_bad_input_cleanly() {
+    let d = scratch("render-bad");
+    let scene = root().join("examples/jewel.sdf");
+    let scene = scene.to_str().unwrap();
+    let out_path = d.join("out.png");
+    let out = out_path.to_str().unwrap();
+    let cases: [(&[&str], &str); 7] = [
+        (&["render", "/nonexistent.sdf", "-o", out], "cannot read"),
+        (
+            &[
+                "render",
+                scene,
+                "-o",
+                "/nonexistent/dir/out.png",
+                "--size",
+                "8x8",
+            ],
+            "cannot write",
+        ),
+        (&["render", scene, "-o", out, "--size", "0x10"], "empty"),
+        (
+            &["render", scene, "-o", out, "--size", "100000x100000"],
+            "too large",
+        ),
+        (
+            &["render", scene, "-o", out, "--size", "big"],
+            "WIDTHxHEIGHT",
+        ),
+        (
+            &[
+                "render", scene, "-o", out, "--size", "8x8", "--tracer", "fast",
+            ],
+            "unknown tracer",
+        ),
+        (
+            &[
+                "render",
+                scene,
+                "-o",
+                out,
+                "--size",
+                "8x8",
+                "--samples",
+                "3",
+            ],
+            "square number",
+        ),
+    ];
+    for (args, message) in cases {
+        let o = sdfc(args);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(1), "{args:?}: {err}");
+        assert!(err.contains(message), "{args:?}: {err}");
+        assert!(!out_path.exists(), "{args:?} left a file behind");
+    }
+}

@@ -1,0 +1,266 @@
+//! The wgpu runtime: a headless device (Vulkan, then GL), and a tiled dispatch of a compiled
+//! compute module that reads back colour, depth, normal, material and step count.
+
+use sdfc_compiler::view::View;
+use std::borrow::Cow;
+
+/// Which graphics API to use.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BackendChoice {
+    /// Vulkan, then GL.
+    Auto,
+    /// Vulkan only (lavapipe on machines without a GPU).
+    Vulkan,
+    /// GL only (llvmpipe over EGL on machines without a GPU).
+    Gl,
+}
+
+/// Largest image side accepted.
+pub const MAX_SIDE: u32 = 16384;
+
+/// Side of the square tiles a render is split into, so that no single dispatch runs long
+/// enough for a driver to kill it.
+pub const TILE: u32 = 256;
+
+/// A device and its queue.
+pub struct Gpu {
+    device: wgpu::Device,
+    queue: wgpu::Queue,
+    /// What the adapter says it is.
+    pub info: wgpu::AdapterInfo,
+    limits: wgpu::Limits,
+}
+
+/// The per-pixel outputs of a render, row-major, y down.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Frame {
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// RGBA8, packed little-endian (r in the low byte).
+    pub color: Vec<u32>,
+    /// Distance t to the hit, −1 for a miss.
+    pub depth: Vec<f32>,
+    /// Unit normal (xyz) at the hit, 0 for a miss.
+    pub normal: Vec<[f32; 4]>,
+    /// Material id (0 default, i + 1 the i-th declared).
+    pub material: Vec<u32>,
+    /// Evaluations of the field.
+    pub steps: Vec<u32>,
+}
+
+const NO_ADAPTER: &str = "no GPU adapter was found (tried Vulkan and GL).\n\
+     help: on a machine without a GPU, install Mesa's software drivers: \
+     `apt-get install mesa-vulkan-drivers` (Vulkan through lavapipe) or \
+     `apt-get install libegl1 libegl-mesa0 libgl1-mesa-dri` (GL through llvmpipe)";
+
+impl Gpu {
+    /// Opens a device on the first backend that has an adapter.
+    pub fn new(choice: BackendChoice) -> Result<Gpu, String> {
+        let order = match choice {
+            BackendChoice::Auto => vec![wgpu::Backends::VULKAN, wgpu::Backends::GL],
+            BackendChoice::Vulkan => vec![wgpu::Backends::VULKAN],
+            BackendChoice::Gl => vec![wgpu::Backends::GL],
+        };
+        for backends in order {
+            let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
+            desc.backends = backends;
+            let instance = wgpu::Instance::new(desc);
+            let options = wgpu::RequestAdapterOptions {
+                power_preference: wgpu::PowerPreference::HighPerformance,
+                force_fallback_adapter: false,
+                compatible_surface: None,
+                ..Default::default()
+            };
+            let Ok(adapter) = pollster::block_on(instance.request_adapter(&options)) else {
+                continue;
+            };
+            let limits = adapter.limits();
+            let desc = wgpu::DeviceDescriptor {
+                label: Some("sdfc"),
+                required_limits: limits.clone(),
+                ..Default::default()
+            };
+            let (device, queue) = pollster::block_on(adapter.request_device(&desc))
+                .map_err(|e| format!("the GPU adapter refused a device: {e}"))?;
+            return Ok(Gpu {
+                device,
+                queue,
+                info: adapter.get_info(),
+                limits,
+            });
+        }
+        Err(match choice {
+            BackendChoice::Auto => NO_ADAPTER.to_string(),
+            BackendChoice::Vulkan => "no Vulkan adapter was found.\nhelp: `apt-get install mesa-vulkan-drivers` gives lavapipe".into(),
+            BackendChoice::Gl => "no GL adapter was found.\nhelp: `apt-get install libegl1 libegl-mesa0 libgl1-mesa-dri` gives llvmpipe over EGL".into(),
+        })
+    }
+
+    /// The backend in use, as a word.
+    pub fn backend(&self) -> String {
+        format!("{:?}", self.info.backend).to_lowercase()
+    }
+
+    /// Renders a compiled compute module (`emit` with `Entry::Compute`) for `view`, tile by
+    /// tile; `progress` is told how many tiles are done.
+    pub fn render(
+        &self,
+        module: &naga::Module,
+        view: &View,
+        mut progress: impl FnMut(u32, u32),
+    ) -> Result<Frame, String> {
+        let (w, h) = (view.width, view.height);
+        let pixels = w as u64 * h as u64;
+        let largest = pixels * 16;
+        if w == 0
+            || h == 0
+            || w > MAX_SIDE
+            || h > MAX_SIDE
+            || largest > self.limits.max_storage_buffer_binding_size
+        {
+            return Err(format!(
+                "an image of {w}×{h} is too large for this device (at most {MAX_SIDE} per side and {} pixels)",
+                self.limits.max_storage_buffer_binding_size / 16
+            ));
+        }
+        let device = &self.device;
+        let validation = device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let memory = device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
+        let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("scene"),
+            source: wgpu::ShaderSource::Naga(Cow::Owned(module.clone())),
+        });
+        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some("scene"),
+            layout: None,
+            module: &shader,
+            entry_point: Some("main"),
+            compilation_options: Default::default(),
+            cache: None,
+        });
+        let uniform = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("view"),
+            size: 96,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let sizes = [4, 4, 16, 4, 4].map(|b| pixels * b);
+        let outputs: Vec<wgpu::Buffer> = sizes
+            .iter()
+            .map(|&size| {
+                device.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some("output"),
+                    size,
+                    usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+                    mapped_at_creation: false,
+                })
+            })
+            .collect();
+        let layout = pipeline.get_bind_group_layout(0);
+        let mut entries = vec![wgpu::BindGroupEntry {
+            binding: 0,
+            resource: uniform.as_entire_binding(),
+        }];
+        for (i, b) in outputs.iter().enumerate() {
+            entries.push(wgpu::BindGroupEntry {
+                binding: i as u32 + 1,
+                resource: b.as_entire_binding(),
+            });
+        }
+        let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("scene"),
+            layout: &layout,
+            entries: &entries,
+        });
+        let (tx, ty) = (w.div_ceil(TILE), h.div_ceil(TILE));
+        let groups = TILE / sdfc_compiler::lower::tracer::WORKGROUP;
+        for j in 0..ty {
+            for i in 0..tx {
+                self.queue
+                    .write_buffer(&uniform, 0, &view.uniform(i * TILE, j * TILE));
+                let mut enc = device.create_command_encoder(&Default::default());
+                {
+                    let mut pass = enc.begin_compute_pass(&Default::default());
+                    pass.set_pipeline(&pipeline);
+                    pass.set_bind_group(0, &bind, &[]);
+                    pass.dispatch_workgroups(groups, groups, 1);
+                }
+                self.queue.submit([enc.finish()]);
+                self.wait()?;
+                progress(j * tx + i + 1, tx * ty);
+            }
+        }
+        if let Some(e) = pollster::block_on(memory.pop()) {
+            return Err(format!("the GPU ran out of memory: {e}"));
+        }
+        if let Some(e) = pollster::block_on(validation.pop()) {
+            return Err(format!(
+                "internal error: the GPU rejected the compiled shader: {e}"
+            ));
+        }
+        let bytes: Vec<Vec<u8>> = outputs
+            .iter()
+            .zip(sizes)
+            .map(|(b, s)| self.read(b, s))
+            .collect::<Result<_, _>>()?;
+        let words = |b: &[u8]| -> Vec<u32> {
+            b.chunks_exact(4)
+                .map(|c| u32::from_le_bytes(c.try_into().unwrap()))
+                .collect()
+        };
+        let floats = |b: &[u8]| -> Vec<f32> {
+            b.chunks_exact(4)
+                .map(|c| f32::from_le_bytes(c.try_into().unwrap()))
+                .collect()
+        };
+        let n = floats(&bytes[2]);
+        Ok(Frame {
+            width: w,
+            height: h,
+            color: words(&bytes[0]),
+            depth: floats(&bytes[1]),
+            normal: n
+                .chunks_exact(4)
+                .map(|c| [c[0], c[1], c[2], c[3]])
+                .collect(),
+            material: words(&bytes[3]),
+            steps: words(&bytes[4]),
+        })
+    }
+
+    fn wait(&self) -> Result<(), String> {
+        self.device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .map(|_| ())
+            .map_err(|e| format!("the GPU device was lost or timed out: {e}"))
+    }
+
+    fn read(&self, buffer: &wgpu::Buffer, size: u64) -> Result<Vec<u8>, String> {
+        let staging = self.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("readback"),
+            size,
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let mut enc = self.device.create_command_encoder(&Default::default());
+        enc.copy_buffer_to_buffer(buffer, 0, &staging, 0, size);
+        self.queue.submit([enc.finish()]);
+        let slice = staging.slice(..);
+        let (send, recv) = std::sync::mpsc::channel();
+        slice.map_async(wgpu::MapMode::Read, move |r| {
+            let _ = send.send(r);
+        });
+        self.wait()?;
+        recv.recv()
+            .map_err(|e| e.to_string())?
+            .map_err(|e| format!("cannot read the result back from the GPU: {e}"))?;
+        let data = slice
+            .get_mapped_range()
+            .map_err(|e| format!("cannot map the result: {e:?}"))?
+            .to_vec();
+        staging.unmap();
+        Ok(data)
+    }
+}

@@ -1,0 +1,4 @@
+//! sdfc's runtime: the headless wgpu renderer and the pictures it writes.
+
+pub mod gpu;
+pub mod images;

@@ -1,0 +1,137 @@
+//! `sdfc render`: a scene file in, a PNG (or `.npy` depth) out, through the wgpu runtime.
+
+use crate::cli::load_scene;
+use crate::emit_cmd::write_whole;
+use sdfc::gpu::{BackendChoice, Gpu};
+use sdfc::images::{self, Channel};
+use sdfc_compiler::check::TRACE_METHODS;
+use sdfc_compiler::emit;
+use sdfc_compiler::lower::{Entry, tracer::Options};
+use sdfc_compiler::view::View;
+use std::io::IsTerminal;
+use std::path::Path;
+
+/// What `sdfc render` was asked for.
+pub struct RenderArgs<'a> {
+    /// Scene file.
+    pub file: &'a Path,
+    /// Output file.
+    pub output: &'a Path,
+    /// `WxH`.
+    pub size: &'a str,
+    /// Tracer override.
+    pub tracer: Option<&'a str>,
+    /// Backend.
+    pub backend: BackendChoice,
+    /// Channel to write.
+    pub channel: Channel,
+    /// Samples per pixel (a square number).
+    pub samples: u32,
+}
+
+/// Parses `WxH`.
+pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
+    let bad = || format!("error: `--size {s}` is not WIDTHxHEIGHT, e.g. `--size 1280x720`");
+    let (w, h) = s.split_once(['x', 'X']).ok_or_else(bad)?;
+    let (w, h): (u32, u32) = (
+        w.trim().parse().map_err(|_| bad())?,
+        h.trim().parse().map_err(|_| bad())?,
+    );
+    if w == 0 || h == 0 {
+        return Err(format!("error: the image size {w}x{h} is empty"));
+    }
+    if w > sdfc::gpu::MAX_SIDE || h > sdfc::gpu::MAX_SIDE {
+        return Err(format!(
+            "error: the image size {w}x{h} is too large (at most {} per side)",
+            sdfc::gpu::MAX_SIDE
+        ));
+    }
+    Ok((w, h))
+}
+
+/// Runs `sdfc render`; returns the exit code.
+pub fn run(args: &RenderArgs) -> i32 {
+    match render(args) {
+        Ok(()) => 0,
+        Err(e) => {
+            if !e.is_empty() {
+                eprintln!("{e}");
+            }
+            1
+        }
+    }
+}
+
+fn render(args: &RenderArgs) -> Result<(), String> {
+    let (w, h) = parse_size(args.size)?;
+    let s = (args.samples as f64).sqrt().round() as u32;
+    if args.samples == 0 || s * s != args.samples || s > 8 {
+        return Err(format!(
+            "error: `--samples {}` must be a square number from 1 to 64 (1, 4, 9, 16, ...)",
+            args.samples
+        ));
+    }
+    if (w * s) > sdfc::gpu::MAX_SIDE || (h * s) > sdfc::gpu::MAX_SIDE {
+        return Err("error: the image is too large with this many samples".into());
+    }
+    let Some((_, _, mut scene)) = load_scene(args.file) else {
+        return Err(String::new());
+    };
+    if let Some(name) = args.tracer {
+        let Some(m) = TRACE_METHODS.iter().find(|m| m.0 == name) else {
+            let names: Vec<&str> = TRACE_METHODS.iter().map(|m| m.0).collect();
+            return Err(format!(
+                "error: unknown tracer `{name}`; the tracers are: {}",
+                names.join(", ")
+            ));
+        };
+        scene.trace.method = m.1;
+    }
+    let options = Options::from_scene(&scene);
+    let (module, _) = emit::module(&scene, Entry::Compute, &options)
+        .map_err(|e| format!("internal compiler error: {}", e.0))?;
+    let gpu = Gpu::new(args.backend)?;
+    let view = View::new(&scene.camera, w * s, h * s);
+    let bar = progress_bar();
+    let frame = gpu.render(&module, &view, |done, total| {
+        if let Some(b) = &bar {
+            b.set_length(total as u64);
+            b.set_position(done as u64);
+        }
+    })?;
+    if let Some(b) = bar {
+        b.finish_and_clear();
+    }
+    let wants_npy = args.output.extension().is_some_and(|e| e == "npy");
+    let bytes = if wants_npy {
+        if args.channel != Channel::Depth || s != 1 {
+            return Err(
+                "error: `.npy` output is for `--output depth` with one sample per pixel".into(),
+            );
+        }
+        images::npy(&frame.depth, w, h)
+    } else {
+        let px = images::rgba(&frame, args.channel, scene.trace.steps);
+        images::png(images::downsample(&px, w * s, h * s, s), w, h)?
+    };
+    match write_whole(args.output, &bytes) {
+        0 => Ok(()),
+        _ => Err(String::new()),
+    }
+}
+
+/// A progress bar on standard error, only when it is a terminal.
+fn progress_bar() -> Option<indicatif::ProgressBar> {
+    if !std::io::stderr().is_terminal() {
+        return None;
+    }
+    let bar = indicatif::ProgressBar::new(1);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template(
+            "{spinner} rendering tiles {pos}/{len} {wide_bar} {elapsed}",
+        )
+        .ok()?,
+    );
+    bar.enable_steady_tick(std::time::Duration::from_millis(200));
+    Some(bar)
+}

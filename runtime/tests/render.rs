@@ -1,0 +1,179 @@
+//! Rendering for real on the machine's (software) GPU: every example's hit mask and depth
+//! against the f64 CPU reference tracer on the same rays, and Vulkan against GL.
+
+use sdfc::gpu::{BackendChoice, Frame, Gpu};
+use sdfc_compiler::emit;
+use sdfc_compiler::lower::{Entry, tracer::Options};
+use sdfc_compiler::scene::{Epsilon, Scene};
+use sdfc_compiler::trace::{self, Traced};
+use sdfc_compiler::view::View;
+use std::path::PathBuf;
+
+const W: u32 = 96;
+const H: u32 = 64;
+
+fn examples() -> Vec<PathBuf> {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../examples");
+    let mut v: Vec<PathBuf> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "sdf"))
+        .collect();
+    v.sort();
+    v
+}
+
+fn scene(path: &PathBuf) -> Scene {
+    let source = std::fs::read_to_string(path).unwrap();
+    sdfc_compiler::check::compile(&source)
+        .scene
+        .expect("example compiles")
+}
+
+fn render(gpu: &Gpu, scene: &Scene, view: &View) -> Frame {
+    let (module, _) = emit::module(scene, Entry::Compute, &Options::from_scene(scene))
+        .unwrap_or_else(|e| panic!("{}", e.0));
+    gpu.render(&module, view, |_, _| {}).unwrap()
+}
+
+fn gpu(choice: BackendChoice) -> Gpu {
+    Gpu::new(choice).unwrap_or_else(|e| panic!("{e}\n(CI installs Mesa's drivers in .ci/run)"))
+}
+
+/// The CPU reference on the shader's rays (pixel centres).
+fn reference(scene: &Scene, view: &View) -> Vec<Traced> {
+    let mut out = Vec::with_capacity((view.width * view.height) as usize);
+    for y in 0..view.height {
+        for x in 0..view.width {
+            let rd = view.ray(x as f64 + 0.5, y as f64 + 0.5);
+            out.push(trace::basic(scene, &scene.trace, view.eye, rd, view.pixel));
+        }
+    }
+    out
+}
+
+/// `#` both hit, `.` both miss, `G` only the GPU hit, `C` only the CPU hit.
+fn ascii_diff(frame: &Frame, cpu: &[Traced]) -> String {
+    let mut s = String::new();
+    for y in 0..frame.height {
+        for x in 0..frame.width {
+            let i = (y * frame.width + x) as usize;
+            s.push(match (frame.depth[i] >= 0.0, cpu[i].hit) {
+                (true, true) => '#',
+                (false, false) => '.',
+                (true, false) => 'G',
+                (false, true) => 'C',
+            });
+        }
+        s.push('\n');
+    }
+    s
+}
+
+#[test]
+fn every_example_matches_the_cpu_reference() {
+    let gpu = gpu(BackendChoice::Vulkan);
+    let mut report = String::new();
+    for path in examples() {
+        let scene = scene(&path);
+        let view = View::new(&scene.camera, W, H);
+        let frame = render(&gpu, &scene, &view);
+        let cpu = reference(&scene, &view);
+        let n = cpu.len();
+        let same = (0..n)
+            .filter(|&i| (frame.depth[i] >= 0.0) == cpu[i].hit)
+            .count();
+        let share = same as f64 / n as f64;
+        let name = path.file_name().unwrap().to_string_lossy().to_string();
+        assert!(
+            share >= 0.995,
+            "{name}: hit masks agree on {:.2}% of pixels\n{}",
+            share * 100.0,
+            ascii_diff(&frame, &cpu)
+        );
+        // Depth where both hit: within the hit threshold, allowing for the ray's angle to the
+        // surface (a grazing ray stops further along for the same field value).
+        let (mut both, mut close, mut worst) = (0, 0, 0.0f64);
+        for i in 0..n {
+            if frame.depth[i] < 0.0 || !cpu[i].hit {
+                continue;
+            }
+            both += 1;
+            let t = cpu[i].t;
+            let eps = match scene.trace.epsilon {
+                Epsilon::Pixel => {
+                    (view.pixel * t).max(1e-5 * (scene.camera.eye - scene.camera.target).length())
+                }
+                Epsilon::Absolute(e) => e,
+            };
+            let dt = (frame.depth[i] as f64 - t).abs();
+            worst = worst.max(dt / t.max(1e-9));
+            if dt <= 4.0 * eps + 2e-6 * t {
+                close += 1;
+            }
+        }
+        let depth_share = close as f64 / both.max(1) as f64;
+        report += &format!(
+            "{name}: masks {:.2}%, depth within 4ε on {:.2}% of {both} hits, worst |Δt|/t {worst:.2e}\n",
+            share * 100.0,
+            depth_share * 100.0
+        );
+        assert!(
+            depth_share >= 0.99,
+            "{name}: depth within 4ε on only {:.2}% of pixels",
+            depth_share * 100.0
+        );
+        assert!(
+            frame.depth.iter().all(|d| d.is_finite())
+                && frame.normal.iter().flatten().all(|c| c.is_finite())
+        );
+    }
+    println!("{report}");
+}
+
+#[test]
+fn vulkan_and_gl_give_the_same_image() {
+    let (vk, gl) = (gpu(BackendChoice::Vulkan), gpu(BackendChoice::Gl));
+    for path in examples() {
+        let scene = scene(&path);
+        let view = View::new(&scene.camera, W, H);
+        let (a, b) = (render(&vk, &scene, &view), render(&gl, &scene, &view));
+        let close = a
+            .color
+            .iter()
+            .zip(&b.color)
+            .filter(|(x, y)| {
+                x.to_le_bytes()
+                    .iter()
+                    .zip(y.to_le_bytes())
+                    .all(|(p, q)| p.abs_diff(q) <= 1)
+            })
+            .count();
+        let share = close as f64 / a.color.len() as f64;
+        assert!(
+            share >= 0.999,
+            "{}: Vulkan and GL agree within 1/255 on {:.2}%",
+            path.display(),
+            share * 100.0
+        );
+    }
+}
+
+#[test]
+fn a_render_splits_into_tiles_without_seams() {
+    // 300×200 needs 2×1 tiles of 256: the tiled image equals the CPU reference mask too.
+    let gpu = gpu(BackendChoice::Vulkan);
+    let scene = scene(
+        &examples()
+            .into_iter()
+            .find(|p| p.ends_with("jewel.sdf"))
+            .unwrap(),
+    );
+    let view = View::new(&scene.camera, 300, 200);
+    let frame = render(&gpu, &scene, &view);
+    let cpu = reference(&scene, &view);
+    let same = (0..cpu.len())
+        .filter(|&i| (frame.depth[i] >= 0.0) == cpu[i].hit)
+        .count();
+    assert!(same as f64 / cpu.len() as f64 >= 0.995);
+}
