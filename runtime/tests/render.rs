@@ -94,19 +94,19 @@ fn every_example_matches_the_cpu_reference() {
         // Depth where both hit: within the hit threshold, allowing for the ray's angle to the
         // surface (a grazing ray stops further along for the same field value).
         let (mut both, mut close, mut worst) = (0, 0, 0.0f64);
-        for i in 0..n {
-            if frame.depth[i] < 0.0 || !cpu[i].hit {
+        for (c, &g) in cpu.iter().zip(&frame.depth) {
+            if g < 0.0 || !c.hit {
                 continue;
             }
             both += 1;
-            let t = cpu[i].t;
+            let t = c.t;
             let eps = match scene.trace.epsilon {
                 Epsilon::Pixel => {
                     (view.pixel * t).max(1e-5 * (scene.camera.eye - scene.camera.target).length())
                 }
                 Epsilon::Absolute(e) => e,
             };
-            let dt = (frame.depth[i] as f64 - t).abs();
+            let dt = (g as f64 - t).abs();
             worst = worst.max(dt / t.max(1e-9));
             if dt <= 4.0 * eps + 2e-6 * t {
                 close += 1;
