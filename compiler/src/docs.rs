@@ -56,14 +56,7 @@ pub fn summary(name: &str, scene: &Scene, warnings: usize) -> String {
         Epsilon::Pixel => "pixel".to_string(),
         Epsilon::Absolute(e) => format!("{e}"),
     };
-    let mut method = crate::check::TRACE_METHODS
-        .iter()
-        .find(|m| m.1 == t.method)
-        .map_or("?", |m| m.0)
-        .to_string();
-    if t.method != crate::scene::Method::Basic {
-        method += ", not implemented yet: basic tracing is emitted";
-    }
+    let method = crate::check::tracer::method_entry(t.method).0;
     let bound = scene.root_node().bound;
     let bound = if bound.radius.is_finite() {
         format!("radius {:.3}", bound.radius)

@@ -223,17 +223,27 @@ pub enum Epsilon {
     Pixel,
 }
 
-/// Tracer settings.
+/// Tracer settings: the variant and every parameter (each variant reads its own; the table
+/// `check::TRACE_METHODS` says which a variant accepts and their defaults).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Trace {
     /// Variant.
     pub method: Method,
-    /// Step budget.
+    /// Step budget: evaluations of the field the search may spend.
     pub steps: u32,
     /// Hit condition.
     pub epsilon: Epsilon,
-    /// Over-relaxation factor ω (relaxed, enhanced, auto).
-    pub omega: f64,
     /// Rays stop beyond this distance.
     pub max_distance: f64,
+    /// Relaxation ω: the over-relaxation factor (relaxed, ω ∈ [1, 2)) or the scale of the
+    /// inferred planar step (enhanced, Bálint Alg. 3).
+    pub omega: f64,
+    /// Weight β of the slope's moving average (auto).
+    pub beta: f64,
+    /// Linear-search step below the distance bound, in units of ε(t) (hybrid).
+    pub linear: f64,
+    /// Regula falsi iterations after a sign change (hybrid).
+    pub refine: u32,
+    /// Fixed-point iterations of discontinuity reduction after a hit (Keinert §3.4, Eq. 3).
+    pub discontinuity: u32,
 }

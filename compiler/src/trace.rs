@@ -1,50 +1,279 @@
-//! The CPU reference tracer in f64: the same rays, hit condition and step counting as the
-//! shader's `trace_basic`, for checking the GPU and as ground truth.
+//! The CPU reference tracers in f64: every variant the shader can inline, with the same hit
+//! conditions, fallbacks and evaluation counting, for checking the GPU and as ground truth.
+//!
+//! Each variant marches a one-dimensional function `f(t)` (the field along the ray), so the
+//! same code traces scenes and the closed-form cases of the tests (the grazing plane).
 
 use crate::eval;
 use crate::lower::tracer::EPSILON_FLOOR;
-use crate::scene::{Epsilon, Scene, Trace};
+use crate::scene::{Epsilon, Method, Scene, Trace};
 use glam::DVec3;
 
 /// Where a ray went.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Traced {
-    /// Distance along the ray where it stopped.
+    /// Distance along the ray where it stopped (the hit, or the selected candidate).
     pub t: f64,
-    /// Evaluations of the field.
+    /// Evaluations of the field, all of them (failed relaxed steps and refinement included).
     pub steps: u32,
-    /// Whether f < ε was reached.
+    /// Whether the ray is taken to have hit a surface.
     pub hit: bool,
+    /// Whether the step budget ran out before the ray hit or left (a relaxed ray then still
+    /// hits at its best candidate, Keinert §3.2).
+    pub exhausted: bool,
 }
 
-/// Basic sphere tracing (Hart; Bálint Alg. 1): t += f/λ until f < ε(t), t > t_max or the budget
-/// runs out; every evaluation counts. `pixel` is the footprint per unit distance for ε `pixel`.
-pub fn basic(scene: &Scene, trace: &Trace, ro: DVec3, rd: DVec3, pixel: f64) -> Traced {
-    let floor = EPSILON_FLOOR * (scene.camera.eye - scene.camera.target).length();
-    let mut t = 0.0;
-    let mut steps = 0;
-    while steps < trace.steps {
-        let d = eval::distance(scene, ro + rd * t);
-        steps += 1;
-        let eps = match trace.epsilon {
-            Epsilon::Pixel => (pixel * t).max(floor),
-            Epsilon::Absolute(e) => e,
-        };
-        if d < eps {
-            return Traced {
-                t,
-                steps,
-                hit: true,
-            };
-        }
-        t += d;
-        if t > trace.max_distance {
-            break;
+/// Smallest denominator of the enhanced step, relative to the previous step length: keeps the
+/// inferred radius finite when the field grows as fast as the Lipschitz bound allows.
+pub const ENHANCED_GUARD: f64 = 1e-5;
+
+/// Relative margin of the overlap test of consecutive unbounding spheres (relaxed, enhanced,
+/// auto): spheres whose gap is below this fraction of the step count as touching. On a plane
+/// the auto step makes consecutive spheres exactly tangent, so without a margin rounding
+/// decides each fallback, differently in f32 and f64; the margin is far below any ε.
+pub const TOUCH: f64 = 1e-5;
+
+/// Largest over-relaxation the auto tracer infers (its ω = 2 / (1 − m) grows without bound as
+/// the slope average m approaches 1, a ray leaving a surface head-on).
+pub const AUTO_MAX_OMEGA: f64 = 1000.0;
+
+/// The hit threshold ε(t): absolute, or the pixel footprint `pixel·t` kept above `floor`.
+#[derive(Clone, Copy, Debug)]
+pub struct Threshold {
+    /// The scene's ε mode.
+    pub epsilon: Epsilon,
+    /// The pixel footprint per unit distance.
+    pub pixel: f64,
+    /// The smallest ε in pixel mode.
+    pub floor: f64,
+}
+
+impl Threshold {
+    /// The scene's threshold for a camera with pixel footprint `pixel`.
+    pub fn new(scene: &Scene, trace: &Trace, pixel: f64) -> Threshold {
+        Threshold {
+            epsilon: trace.epsilon,
+            pixel,
+            floor: EPSILON_FLOOR * (scene.camera.eye - scene.camera.target).length(),
         }
     }
+
+    /// ε at distance `t`.
+    pub fn at(&self, t: f64) -> f64 {
+        match self.epsilon {
+            Epsilon::Pixel => (self.pixel * t).max(self.floor),
+            Epsilon::Absolute(e) => e,
+        }
+    }
+}
+
+/// Traces the ray `ro + t·rd` through the scene with its chosen variant.
+pub fn ray(scene: &Scene, trace: &Trace, ro: DVec3, rd: DVec3, pixel: f64) -> Traced {
+    let eps = Threshold::new(scene, trace, pixel);
+    march(trace, &eps, |t| eval::distance(scene, ro + rd * t))
+}
+
+/// Marches `f` (the field along a ray, already divided by its Lipschitz bound) with the
+/// variant of `trace`, then applies discontinuity reduction if asked.
+pub fn march(trace: &Trace, eps: &Threshold, mut f: impl FnMut(f64) -> f64) -> Traced {
+    let mut r = match trace.method {
+        Method::Basic => basic(trace, eps, &mut f),
+        Method::Relaxed => relaxed(trace, eps, &mut f),
+        Method::Enhanced => enhanced(trace, eps, &mut f),
+        Method::Hybrid => hybrid(trace, eps, &mut f),
+        Method::Auto => auto(trace, eps, &mut f),
+    };
+    if r.hit {
+        for _ in 0..trace.discontinuity {
+            // Keinert §3.4, Eq. 3: t ← t + (f(t) − err(t)), towards the level set f = ε(t).
+            let d = f(r.t);
+            r.steps += 1;
+            r.t = (r.t + d - eps.at(r.t)).max(0.0);
+        }
+    }
+    r
+}
+
+fn stop(t: f64, steps: u32, hit: bool, exhausted: bool) -> Traced {
     Traced {
         t,
         steps,
-        hit: false,
+        hit,
+        exhausted,
+    }
+}
+
+/// Basic sphere tracing (Hart; Bálint Alg. 1; Munini Fig. 9): t += f until f < ε(t),
+/// t > t_max or the budget runs out.
+fn basic(trace: &Trace, eps: &Threshold, f: &mut impl FnMut(f64) -> f64) -> Traced {
+    let mut t = 0.0;
+    let mut steps = 0;
+    loop {
+        if steps >= trace.steps {
+            return stop(t, steps, false, true);
+        }
+        let d = f(t);
+        steps += 1;
+        if d < eps.at(t) {
+            return stop(t, steps, true, false);
+        }
+        t += d;
+        if t > trace.max_distance {
+            return stop(t, steps, false, false);
+        }
+    }
+}
+
+/// Over-relaxed sphere tracing as in Keinert §3.1–3.2, Listing 2: steps of ω·f; when two
+/// consecutive unbounding spheres stop overlapping the step is taken back by the listing's
+/// `step −= ω·step` and ω drops to 1 for the rest of the ray. The candidate with the smallest
+/// f/ε(t) (f/t in pixel mode: radius in screen space) is the hit if the budget runs out.
+fn relaxed(trace: &Trace, eps: &Threshold, f: &mut impl FnMut(f64) -> f64) -> Traced {
+    let mut omega = trace.omega;
+    let (mut t, mut step, mut prev_radius) = (0.0, 0.0, 0.0);
+    let (mut candidate_t, mut candidate_error) = (0.0, f64::INFINITY);
+    let mut steps = 0;
+    loop {
+        if steps >= trace.steps {
+            return stop(candidate_t, steps, candidate_error.is_finite(), true);
+        }
+        let r = f(t);
+        steps += 1;
+        let radius = r.abs();
+        let fail = omega > 1.0 && (radius + prev_radius) * (1.0 + TOUCH) < step;
+        if fail {
+            step -= omega * step;
+            omega = 1.0;
+        } else {
+            step = r * omega;
+        }
+        prev_radius = radius;
+        if !fail {
+            let e = eps.at(t);
+            if radius / e < candidate_error {
+                candidate_t = t;
+                candidate_error = radius / e;
+            }
+            if r < e {
+                return stop(t, steps, true, false);
+            }
+            if t > trace.max_distance {
+                return stop(t, steps, false, false);
+            }
+        }
+        t += step;
+    }
+}
+
+/// Enhanced (planar) sphere tracing, Bálint Alg. 3: the next radius is inferred from the last
+/// two as if the surface were a plane, r·(d − r₋ + r)/(d + r₋ − r), scaled by ω; if the new
+/// unbounding sphere does not overlap the current one the step is not taken and the next one
+/// is a plain sphere-tracing step (the failed evaluation counts).
+fn enhanced(trace: &Trace, eps: &Threshold, f: &mut impl FnMut(f64) -> f64) -> Traced {
+    let (mut t, mut d, mut r_prev, mut r) = (0.0_f64, 0.0_f64, 0.0_f64, 0.0_f64);
+    let mut steps = 0;
+    loop {
+        if steps >= trace.steps {
+            return stop(t, steps, false, true);
+        }
+        let dn = if d == 0.0 {
+            r
+        } else {
+            let den = (d + r_prev - r).max(ENHANCED_GUARD * d);
+            r + trace.omega * r * (d - r_prev + r) / den
+        };
+        let rn = f(t + dn);
+        steps += 1;
+        if dn > (r + rn.abs()) * (1.0 + TOUCH) {
+            d = 0.0;
+            continue;
+        }
+        t += dn;
+        d = dn;
+        r_prev = r;
+        r = rn;
+        if r < eps.at(t) {
+            return stop(t, steps, true, false);
+        }
+        if t > trace.max_distance {
+            return stop(t, steps, false, false);
+        }
+    }
+}
+
+/// Auto-relaxed sphere tracing (Bán & Valasek 2023): the slope m of f along the ray is kept
+/// as a moving average with weight β, the step is f·ω with ω = 2/(1 − m) (at least 1), and a
+/// step whose unbounding spheres do not overlap is taken back with m reset to −1.
+fn auto(trace: &Trace, eps: &Threshold, f: &mut impl FnMut(f64) -> f64) -> Traced {
+    let mut t = 0.0;
+    let mut r = f(t);
+    let mut steps = 1;
+    let mut z = r;
+    let mut m = -1.0;
+    loop {
+        if r < eps.at(t) {
+            return stop(t, steps, true, false);
+        }
+        if t > trace.max_distance {
+            return stop(t, steps, false, false);
+        }
+        if steps >= trace.steps {
+            return stop(t, steps, false, true);
+        }
+        let tn = t + z;
+        let rn = f(tn);
+        steps += 1;
+        let back = z > (rn.abs() + r) * (1.0 + TOUCH);
+        let slope = (rn - r) / z;
+        if back {
+            m = -1.0;
+        } else {
+            m += trace.beta * (slope - m);
+            t = tn;
+            r = rn;
+        }
+        let omega = (2.0 / (1.0 - m).max(2.0 / AUTO_MAX_OMEGA)).max(1.0);
+        z = (r * omega).max(eps.at(t));
+    }
+}
+
+/// Sphere tracing / linear search hybrid, Liktor §5.4: sphere steps while f is above
+/// `linear`·ε(t), fixed steps of that length below it (longer than sphere steps near the
+/// surface), a hit when f < ε(t); when a step lands inside (f < 0) the crossing is refined by a
+/// fixed number of regula falsi iterations between the last outside and the inside point.
+fn hybrid(trace: &Trace, eps: &Threshold, f: &mut impl FnMut(f64) -> f64) -> Traced {
+    let (mut t, mut t_out, mut f_out) = (0.0, 0.0, 0.0);
+    let mut steps = 0;
+    loop {
+        if steps >= trace.steps {
+            return stop(t, steps, false, true);
+        }
+        let d = f(t);
+        steps += 1;
+        if d < 0.0 && steps > 1 {
+            let (mut a, mut fa, mut b, mut fb) = (t_out, f_out, t, d);
+            for _ in 0..trace.refine {
+                let tm = a + (b - a) * fa / (fa - fb);
+                let fm = f(tm);
+                steps += 1;
+                if fm > 0.0 {
+                    (a, fa) = (tm, fm);
+                } else {
+                    (b, fb) = (tm, fm);
+                }
+            }
+            return stop(a + (b - a) * fa / (fa - fb), steps, true, false);
+        }
+        let e = eps.at(t);
+        if d < e {
+            return stop(t, steps, true, false);
+        }
+        if t >= trace.max_distance {
+            return stop(t, steps, false, false);
+        }
+        (t_out, f_out) = (t, d);
+        // The last step is clamped to t_max so that a long linear step cannot skip the end of
+        // the ray, where ε(t) is largest.
+        t = (t + d.max(trace.linear * e)).min(trace.max_distance);
     }
 }

@@ -1,6 +1,6 @@
 //! Command-line parsing and the subcommands' drivers.
 
-use clap::{Parser, Subcommand};
+use clap::{Args, Parser, Subcommand};
 use sdfc_compiler::check::{self, Checked};
 use sdfc_compiler::diag::{self, Diagnostic};
 use sdfc_compiler::emit::Target;
@@ -41,6 +41,8 @@ enum Command {
         /// Output file (default: standard output; SPIR-V needs a file).
         #[arg(short, long)]
         output: Option<PathBuf>,
+        #[command(flatten)]
+        tracer: TracerArgs,
     },
     /// Render a scene to a PNG (or depth to `.npy`) on the GPU, headless.
     Render {
@@ -52,9 +54,8 @@ enum Command {
         /// Image size.
         #[arg(long, default_value = "1280x720")]
         size: String,
-        /// Tracer to use instead of the scene's (basic, relaxed, enhanced, hybrid, auto).
-        #[arg(long)]
-        tracer: Option<String>,
+        #[command(flatten)]
+        tracer: TracerArgs,
         /// Graphics API: Vulkan, then GL, or one of them.
         #[arg(long, value_enum, default_value = "auto")]
         backend: BackendArg,
@@ -117,7 +118,14 @@ pub fn run() -> i32 {
             target,
             entry,
             output,
-        } => crate::emit_cmd::run(&file, target.into(), entry.into(), output.as_deref()),
+            tracer,
+        } => crate::emit_cmd::run(
+            &file,
+            target.into(),
+            entry.into(),
+            output.as_deref(),
+            &tracer,
+        ),
         Command::Render {
             file,
             output,
@@ -130,7 +138,7 @@ pub fn run() -> i32 {
             file: &file,
             output: &output,
             size: &size,
-            tracer: tracer.as_deref(),
+            tracer: &tracer,
             backend: match backend {
                 BackendArg::Auto => sdfc::gpu::BackendChoice::Auto,
                 BackendArg::Vulkan => sdfc::gpu::BackendChoice::Vulkan,
@@ -139,6 +147,62 @@ pub fn run() -> i32 {
             channel: kind,
             samples,
         }),
+    }
+}
+
+/// Tracer settings that override the scene's `trace` block (emit and render).
+#[derive(Args, Debug, Default)]
+pub struct TracerArgs {
+    /// Tracer to use instead of the scene's: basic, relaxed, enhanced, hybrid, auto.
+    #[arg(long)]
+    pub tracer: Option<String>,
+    /// Step budget (evaluations of the field per ray).
+    #[arg(long)]
+    pub steps: Option<String>,
+    /// Hit threshold: a distance, or `pixel` for the pixel footprint.
+    #[arg(long)]
+    pub epsilon: Option<String>,
+    /// Rays stop beyond this distance.
+    #[arg(long)]
+    pub max_distance: Option<String>,
+    /// Relaxation ω (relaxed: [1, 2); enhanced: [0.5, 2)).
+    #[arg(long)]
+    pub omega: Option<String>,
+    /// Weight of the slope average (auto).
+    #[arg(long)]
+    pub beta: Option<String>,
+    /// Linear-search step in units of ε (hybrid).
+    #[arg(long)]
+    pub linear: Option<String>,
+    /// Regula falsi iterations (hybrid).
+    #[arg(long)]
+    pub refine: Option<String>,
+    /// Discontinuity-reduction iterations after a hit (Keinert §3.4).
+    #[arg(long)]
+    pub discontinuity: Option<String>,
+}
+
+impl TracerArgs {
+    /// The scene's tracer settings with these overrides, or an error for the user.
+    pub fn apply(
+        &self,
+        scene: sdfc_compiler::scene::Trace,
+    ) -> Result<sdfc_compiler::scene::Trace, String> {
+        let values: Vec<(&str, &str)> = [
+            ("steps", &self.steps),
+            ("epsilon", &self.epsilon),
+            ("max_distance", &self.max_distance),
+            ("omega", &self.omega),
+            ("beta", &self.beta),
+            ("linear", &self.linear),
+            ("refine", &self.refine),
+            ("discontinuity", &self.discontinuity),
+        ]
+        .iter()
+        .filter_map(|(k, v)| v.as_deref().map(|v| (*k, v)))
+        .collect();
+        check::tracer::with_overrides(scene, self.tracer.as_deref(), &values)
+            .map_err(|e| format!("error: {e}"))
     }
 }
 

@@ -7,10 +7,23 @@ use std::io::{IsTerminal, Write};
 use std::path::Path;
 
 /// Runs `sdfc emit`; returns the exit code.
-pub fn run(file: &Path, target: Target, entry: Entry, output: Option<&Path>) -> i32 {
-    let Some((name, _, scene)) = load_scene(file) else {
+pub fn run(
+    file: &Path,
+    target: Target,
+    entry: Entry,
+    output: Option<&Path>,
+    tracer: &crate::cli::TracerArgs,
+) -> i32 {
+    let Some((name, _, mut scene)) = load_scene(file) else {
         return 1;
     };
+    match tracer.apply(scene.trace) {
+        Ok(t) => scene.trace = t,
+        Err(e) => {
+            eprintln!("{e}");
+            return 1;
+        }
+    }
     let options = Options::from_scene(&scene);
     let result = emit::module(&scene, entry, &options)
         .and_then(|(m, info)| emit::write(&m, &info, target, entry));

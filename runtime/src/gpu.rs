@@ -128,18 +128,7 @@ impl Gpu {
         let device = &self.device;
         let validation = device.push_error_scope(wgpu::ErrorFilter::Validation);
         let memory = device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
-        let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("scene"),
-            source: wgpu::ShaderSource::Naga(Cow::Owned(module.clone())),
-        });
-        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some("scene"),
-            layout: None,
-            module: &shader,
-            entry_point: Some("main"),
-            compilation_options: Default::default(),
-            cache: None,
-        });
+        let pipeline = self.pipeline(module);
         let uniform = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("view"),
             size: 96,
@@ -228,6 +217,93 @@ impl Gpu {
             material: words(&bytes[3]),
             steps: words(&bytes[4]),
         })
+    }
+
+    /// Traces a list of rays with a module compiled for `Entry::Rays`: each ray is an origin,
+    /// a direction and the pixel footprint (for ε `pixel`); returns (t, steps, flags) per ray.
+    pub fn trace_rays(
+        &self,
+        module: &naga::Module,
+        rays: &[([f32; 3], [f32; 3], f32)],
+    ) -> Result<Vec<(f32, u32, u32)>, String> {
+        if rays.is_empty() {
+            return Ok(Vec::new());
+        }
+        let device = &self.device;
+        let validation = device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let pipeline = self.pipeline(module);
+        let input: Vec<u8> = rays
+            .iter()
+            .flat_map(|(o, d, px)| [o[0], o[1], o[2], *px, d[0], d[1], d[2], 0.0])
+            .flat_map(f32::to_le_bytes)
+            .collect();
+        let size = rays.len() as u64 * 16;
+        let rays_buf = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("rays"),
+            size: size * 2,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        self.queue.write_buffer(&rays_buf, 0, &input);
+        let hits = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("hits"),
+            size,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
+        });
+        let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("rays"),
+            layout: &pipeline.get_bind_group_layout(0),
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: rays_buf.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: hits.as_entire_binding(),
+                },
+            ],
+        });
+        let mut enc = device.create_command_encoder(&Default::default());
+        {
+            let mut pass = enc.begin_compute_pass(&Default::default());
+            pass.set_pipeline(&pipeline);
+            pass.set_bind_group(0, &bind, &[]);
+            let groups = (rays.len() as u32).div_ceil(sdfc_compiler::lower::tracer::RAYS_WORKGROUP);
+            pass.dispatch_workgroups(groups, 1, 1);
+        }
+        self.queue.submit([enc.finish()]);
+        self.wait()?;
+        if let Some(e) = pollster::block_on(validation.pop()) {
+            return Err(format!("internal error: the GPU rejected the shader: {e}"));
+        }
+        let bytes = self.read(&hits, size)?;
+        Ok(bytes
+            .chunks_exact(16)
+            .map(|c| {
+                let f = |i: usize| f32::from_le_bytes(c[i * 4..i * 4 + 4].try_into().unwrap());
+                (f(0), f(1) as u32, f(2) as u32)
+            })
+            .collect())
+    }
+
+    fn pipeline(&self, module: &naga::Module) -> wgpu::ComputePipeline {
+        let shader = self
+            .device
+            .create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some("scene"),
+                source: wgpu::ShaderSource::Naga(Cow::Owned(module.clone())),
+            });
+        self.device
+            .create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some("scene"),
+                layout: None,
+                module: &shader,
+                entry_point: Some("main"),
+                compilation_options: Default::default(),
+                cache: None,
+            })
     }
 
     fn wait(&self) -> Result<(), String> {

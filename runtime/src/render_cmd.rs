@@ -4,7 +4,6 @@ use crate::cli::load_scene;
 use crate::emit_cmd::write_whole;
 use sdfc::gpu::{BackendChoice, Gpu};
 use sdfc::images::{self, Channel};
-use sdfc_compiler::check::TRACE_METHODS;
 use sdfc_compiler::emit;
 use sdfc_compiler::lower::{Entry, tracer::Options};
 use sdfc_compiler::view::View;
@@ -19,8 +18,8 @@ pub struct RenderArgs<'a> {
     pub output: &'a Path,
     /// `WxH`.
     pub size: &'a str,
-    /// Tracer override.
-    pub tracer: Option<&'a str>,
+    /// Tracer overrides.
+    pub tracer: &'a crate::cli::TracerArgs,
     /// Backend.
     pub backend: BackendChoice,
     /// Channel to write.
@@ -77,16 +76,7 @@ fn render(args: &RenderArgs) -> Result<(), String> {
     let Some((_, _, mut scene)) = load_scene(args.file) else {
         return Err(String::new());
     };
-    if let Some(name) = args.tracer {
-        let Some(m) = TRACE_METHODS.iter().find(|m| m.0 == name) else {
-            let names: Vec<&str> = TRACE_METHODS.iter().map(|m| m.0).collect();
-            return Err(format!(
-                "error: unknown tracer `{name}`; the tracers are: {}",
-                names.join(", ")
-            ));
-        };
-        scene.trace.method = m.1;
-    }
+    scene.trace = args.tracer.apply(scene.trace)?;
     let options = Options::from_scene(&scene);
     let (module, _) = emit::module(&scene, Entry::Compute, &options)
         .map_err(|e| format!("internal compiler error: {}", e.0))?;

@@ -7,21 +7,12 @@ use sdfc_compiler::lower::{Entry, tracer::Options};
 use sdfc_compiler::scene::{Epsilon, Scene};
 use sdfc_compiler::trace::{self, Traced};
 use sdfc_compiler::view::View;
+mod common;
+use common::examples;
 use std::path::PathBuf;
 
 const W: u32 = 96;
 const H: u32 = 64;
-
-fn examples() -> Vec<PathBuf> {
-    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../examples");
-    let mut v: Vec<PathBuf> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e == "sdf"))
-        .collect();
-    v.sort();
-    v
-}
 
 fn scene(path: &PathBuf) -> Scene {
     let source = std::fs::read_to_string(path).unwrap();
@@ -46,7 +37,7 @@ fn reference(scene: &Scene, view: &View) -> Vec<Traced> {
     for y in 0..view.height {
         for x in 0..view.width {
             let rd = view.ray(x as f64 + 0.5, y as f64 + 0.5);
-            out.push(trace::basic(scene, &scene.trace, view.eye, rd, view.pixel));
+            out.push(trace::ray(scene, &scene.trace, view.eye, rd, view.pixel));
         }
     }
     out

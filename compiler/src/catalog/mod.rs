@@ -60,6 +60,8 @@ pub enum Ty {
     Count,
     /// A whole number from 1 to the limit.
     CountTo(u32),
+    /// A whole number from 0 to the limit.
+    UpTo(u32),
     /// 0, or a number ≥ the limit.
     ZeroOrAtLeast(f64),
     /// Any finite vector.
@@ -91,6 +93,7 @@ impl Ty {
             Ty::Angle => "an angle (e.g. `30deg`)".into(),
             Ty::Count => "a whole number ≥ 1".into(),
             Ty::CountTo(n) => format!("a whole number from 1 to {n}"),
+            Ty::UpTo(n) => format!("a whole number from 0 to {n}"),
             Ty::ZeroOrAtLeast(lo) => format!("0 or a number ≥ {lo}"),
             Ty::Vec3 => "a vector `(x, y, z)`".into(),
             Ty::Size => "a size (number or vector, ≥ 0)".into(),
@@ -103,6 +106,24 @@ impl Ty {
                 format!("a number > 0 or {}", w.join(" or "))
             }
             Ty::Range(lo, hi) => format!("a number in [{lo}, {hi})"),
+        }
+    }
+
+    /// Whether a plain number is a value of this type (false for the vector-valued types,
+    /// which the checker converts separately, and for NaN).
+    pub fn accepts_number(self, x: f64) -> bool {
+        let whole = x.fract() == 0.0;
+        match self {
+            Ty::Number => x.is_finite(),
+            Ty::Length => x >= 0.0 && x.is_finite(),
+            Ty::Positive | Ty::PositiveOr(_) => x > 0.0 && x.is_finite(),
+            Ty::Fraction => (0.0..=1.0).contains(&x),
+            Ty::Range(lo, hi) => x >= lo && x < hi,
+            Ty::Count => x >= 1.0 && whole,
+            Ty::CountTo(n) => x >= 1.0 && x <= n as f64 && whole,
+            Ty::UpTo(n) => x >= 0.0 && x <= n as f64 && whole,
+            Ty::ZeroOrAtLeast(lo) => x == 0.0 || (x >= lo && x.is_finite()),
+            _ => false,
         }
     }
 }

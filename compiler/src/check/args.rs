@@ -227,16 +227,7 @@ impl Checker<'_> {
             (_, Value::Num(_, Dim::Angle)) if !matches!(ty, Ty::Angle) => {
                 bad(self, "found an angle".into())
             }
-            (Ty::Number, Value::Num(x, _)) => Some(Val::Num(x)),
-            (Ty::Length, Value::Num(x, _)) if x >= 0.0 => Some(Val::Num(x)),
-            (Ty::Positive | Ty::PositiveOr(_), Value::Num(x, _)) if x > 0.0 => Some(Val::Num(x)),
-            (Ty::Fraction, Value::Num(x, _)) if (0.0..=1.0).contains(&x) => Some(Val::Num(x)),
-            (Ty::Range(lo, hi), Value::Num(x, _)) if x >= lo && x < hi => Some(Val::Num(x)),
-            (Ty::Count, Value::Num(x, _)) if x >= 1.0 && x.fract() == 0.0 => Some(Val::Num(x)),
-            (Ty::CountTo(n), Value::Num(x, _)) if x >= 1.0 && x <= n as f64 && x.fract() == 0.0 => {
-                Some(Val::Num(x))
-            }
-            (Ty::ZeroOrAtLeast(lo), Value::Num(x, _)) if x == 0.0 || x >= lo => Some(Val::Num(x)),
+            (ty, Value::Num(x, _)) if ty.accepts_number(x) => Some(Val::Num(x)),
             (Ty::Size, Value::Num(x, _)) if x >= 0.0 => Some(Val::Vec3(DVec3::splat(x))),
             (Ty::Size, Value::Vec3(v)) if v.min_element() >= 0.0 => Some(Val::Vec3(v)),
             (Ty::Counts, Value::Num(x, _)) if x >= 0.0 && x.fract() == 0.0 => {

@@ -4,9 +4,11 @@
 mod args;
 mod expr;
 mod settings;
+pub mod tracer;
 
 pub use args::signature;
-pub use settings::{LIGHT_KINDS, TRACE_METHODS};
+pub use settings::LIGHT_KINDS;
+pub use tracer::TRACE_METHODS;
 
 use crate::catalog::{Bound, Ctx};
 use crate::diag::{Diagnostic, Span};

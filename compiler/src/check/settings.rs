@@ -4,14 +4,9 @@
 use super::Checker;
 use crate::catalog::{Param, Ty, Val, opt, req};
 use crate::diag::{Diagnostic, Span, did_you_mean};
-use crate::scene::{
-    Camera, Epsilon, Light, LightKind, Material, Method, Node, NodeId, Scene, Trace,
-};
+use crate::scene::{Camera, Light, LightKind, Material, Method, Node, NodeId, Scene, Trace};
 use crate::syntax::{Arg, Expr, Ident, Setting};
 use glam::DVec3;
-
-/// Largest step budget a tracer accepts.
-pub const MAX_STEPS: f64 = 100_000.0;
 
 const fn v(x: f64, y: f64, z: f64) -> Val {
     Val::Vec3(DVec3::new(x, y, z))
@@ -49,28 +44,6 @@ pub const LIGHT_KINDS: &[(&str, &[Param])] = &[
     ),
 ];
 
-const STEPS: Param = opt("steps", Ty::Count, Val::Num(128.0));
-const EPSILON: Param = opt("epsilon", Ty::PositiveOr(&["pixel"]), Val::Word(0));
-const MAX_DISTANCE: Param = opt("max_distance", Ty::Positive, Val::Num(100.0));
-const OMEGA: Param = opt("omega", Ty::Range(1.0, 2.0), Val::Num(1.2));
-
-/// Tracing methods (`trace enhanced { .. }`) and their parameters; the first is the default.
-pub const TRACE_METHODS: &[(&str, Method, &[Param])] = &[
-    ("basic", Method::Basic, &[STEPS, EPSILON, MAX_DISTANCE]),
-    (
-        "relaxed",
-        Method::Relaxed,
-        &[STEPS, EPSILON, MAX_DISTANCE, OMEGA],
-    ),
-    (
-        "enhanced",
-        Method::Enhanced,
-        &[STEPS, EPSILON, MAX_DISTANCE, OMEGA],
-    ),
-    ("hybrid", Method::Hybrid, &[STEPS, EPSILON, MAX_DISTANCE]),
-    ("auto", Method::Auto, &[STEPS, EPSILON, MAX_DISTANCE, OMEGA]),
-];
-
 /// Settings collected while checking, with where each was first given.
 #[derive(Default)]
 pub(super) struct Settings {
@@ -106,16 +79,9 @@ impl Settings {
             background: self
                 .background
                 .map_or(DVec3::new(0.08, 0.09, 0.12), |b| b.0),
-            trace: self.trace.map_or(
-                Trace {
-                    method: Method::Basic,
-                    steps: 128,
-                    epsilon: Epsilon::Pixel,
-                    omega: 1.2,
-                    max_distance: 100.0,
-                },
-                |t| t.0,
-            ),
+            trace: self
+                .trace
+                .map_or_else(super::tracer::default_trace, |t| t.0),
         }
     }
 }
@@ -199,11 +165,13 @@ impl Checker<'_> {
                 });
             }
             "trace" => {
-                let methods = TRACE_METHODS.iter().map(|(n, _, p)| (*n, *p));
+                let methods = super::tracer::TRACE_METHODS
+                    .iter()
+                    .map(|(n, _, p)| (*n, *p));
                 let Some((name, params)) = self.kind_of(methods, kind, "trace") else {
                     return;
                 };
-                let method = TRACE_METHODS
+                let method = super::tracer::TRACE_METHODS
                     .iter()
                     .find(|m| m.0 == name)
                     .map(|m| m.1)
@@ -211,23 +179,9 @@ impl Checker<'_> {
                 let Some(a) = self.bind(&format!("trace {name}"), params, &args, span) else {
                     return;
                 };
-                if a[0].num() > MAX_STEPS {
-                    self.diags.push(
-                        Diagnostic::error(setting_span(settings, "steps", span), "too many steps")
-                            .label(format!("the limit is {MAX_STEPS}")),
-                    );
-                    return;
-                }
-                let trace = Trace {
-                    method,
-                    steps: a[0].num() as u32,
-                    epsilon: match a[1] {
-                        Val::Word(_) => Epsilon::Pixel,
-                        other => Epsilon::Absolute(other.num()),
-                    },
-                    max_distance: a[2].num(),
-                    omega: a.get(3).map_or(1.0, |o| o.num()),
-                };
+                let trace = super::tracer::build(method, |n| {
+                    params.iter().position(|p| p.name == n).map(|i| a[i])
+                });
                 self.once(|s| &mut s.trace, trace, span, "trace");
             }
             _ => self.material(kind, &args, span),

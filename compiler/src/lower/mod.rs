@@ -4,6 +4,7 @@
 //! `tracer.rs`.
 
 pub mod builder;
+pub mod march;
 pub mod ops;
 pub mod prims;
 pub mod tracer;

@@ -3,6 +3,7 @@
 //! fragment or library interface.
 
 use super::builder::{Ex, FnBuilder, ModuleBuilder};
+use super::march::{self, HIT, epsilon};
 use crate::scene::{Epsilon, LightKind, Scene};
 use glam::DVec3;
 use naga::{
@@ -21,6 +22,10 @@ pub enum Entry {
     Fragment,
     /// No entry point: `map`, `trace`, `normal` (and `shade`) for other shaders.
     Library,
+    /// `main` compute entry point tracing a list of rays (for tests and benchmarks): binding 0
+    /// holds two vec4 per ray (origin and pixel footprint, direction), binding 1 receives
+    /// `vec4(t, steps, flags, 0)` per ray. Not offered on the command line.
+    Rays,
 }
 
 /// Tracer settings after command-line overrides.
@@ -67,8 +72,8 @@ pub fn add(
     options: &Options,
 ) {
     let floor = EPSILON_FLOOR * (scene.camera.eye - scene.camera.target).length();
-    let result_ty = trace_result_type(mb);
-    let trace = add_trace(mb, map, result_ty, options, floor);
+    let result_ty = march::trace_result_type(mb);
+    let trace = march::add_trace(mb, map, result_ty, &options.trace, floor);
     let normal = add_normal(mb, map);
     let shade = add_shade(mb, scene);
     match entry {
@@ -88,6 +93,7 @@ pub fn add(
             let f = b.finish();
             mb.add_function(f);
         }
+        Entry::Rays => add_rays(mb, trace),
         Entry::Compute | Entry::Fragment => {
             let view = add_view(mb);
             let ray = add_camera_ray(mb, view);
@@ -117,7 +123,7 @@ struct Fns {
     view: Handle<naga::GlobalVariable>,
 }
 
-fn struct_ty(
+pub(super) fn struct_ty(
     mb: &mut ModuleBuilder,
     name: &str,
     members: &[(&str, Handle<Type>, u32)],
@@ -133,96 +139,6 @@ fn struct_ty(
         })
         .collect();
     mb.named_ty(name, TypeInner::Struct { members, span })
-}
-
-/// `struct TraceResult { t: f32, steps: u32, hit: u32 }` (hit is 0 or 1).
-fn trace_result_type(mb: &mut ModuleBuilder) -> Handle<Type> {
-    let (f, u) = (mb.f32(), mb.u32());
-    struct_ty(
-        mb,
-        "TraceResult",
-        &[("t", f, 0), ("steps", u, 4), ("hit", u, 8)],
-        12,
-    )
-}
-
-/// The hit threshold at distance `t`.
-fn epsilon(b: &mut FnBuilder, options: &Options, t: Ex, pixel: Option<Ex>, floor: f64) -> Ex {
-    match (options.trace.epsilon, pixel) {
-        (Epsilon::Pixel, Some(px)) => {
-            let e = b.mul(px, t);
-            let fl = b.f(floor);
-            b.max(e, fl)
-        }
-        (Epsilon::Absolute(e), _) => b.f(e.max(f64::MIN_POSITIVE)),
-        (Epsilon::Pixel, None) => b.f(floor),
-    }
-}
-
-/// `trace_<method>(ro, rd[, pixel])`. Basic sphere tracing (Hart; Bálint Alg. 1; Munini Fig. 9):
-/// step by f/λ (map already divides) until f < ε, t > t_max or the step budget runs out; every
-/// evaluation of `map` counts as a step.
-fn add_trace(
-    mb: &mut ModuleBuilder,
-    map: Handle<Function>,
-    result_ty: Handle<Type>,
-    options: &Options,
-    floor: f64,
-) -> Handle<Function> {
-    let v3 = mb.vec3();
-    let f32t = mb.f32();
-    let u32t = mb.u32();
-    let pixel = matches!(options.trace.epsilon, Epsilon::Pixel);
-    let mut args = vec![("ro", v3), ("rd", v3)];
-    if pixel {
-        args.push(("pixel", f32t));
-    }
-    // Only basic tracing is lowered so far; the other variants (relaxed, enhanced, hybrid, auto)
-    // are parsed and checked, and `sdfc check` says that basic is emitted for them.
-    let _ = options.trace.method;
-    let mut b = FnBuilder::new(mb, "trace_basic", &args, Some(result_ty));
-    let (ro, rd) = (b.arg(0), b.arg(1));
-    let px = pixel.then(|| b.arg(2));
-    let zero = b.f(0.0);
-    let t = b.local("t", f32t, Some(zero));
-    let zero_u = b.u(0);
-    let steps = b.local("steps", u32t, Some(zero_u));
-    let hit = b.local("hit", u32t, Some(zero_u));
-    b.loop_(|b| {
-        let s = b.load(steps);
-        let budget = b.u(options.trace.steps);
-        let out = b.ge(s, budget);
-        b.break_if(out);
-        let tv = b.load(t);
-        let step = b.mul(rd, tv);
-        let p = b.add(ro, step);
-        let d = b.call(map, vec![p]);
-        b.name(d, "d");
-        let one = b.u(1);
-        let s1 = b.add(s, one);
-        b.store(steps, s1);
-        let eps = epsilon(b, options, tv, px, floor);
-        let close = b.lt(d, eps);
-        b.if_(
-            close,
-            |b| {
-                let one = b.u(1);
-                b.store(hit, one);
-                b.brk();
-            },
-            |_| {},
-        );
-        let nt = b.add(tv, d);
-        b.store(t, nt);
-        let far = b.f(options.trace.max_distance);
-        let gone = b.gt(nt, far);
-        b.break_if(gone);
-    });
-    let (tv, s, h) = (b.load(t), b.load(steps), b.load(hit));
-    let r = b.compose(result_ty, vec![tv, s, h]);
-    b.ret(Some(r));
-    let f = b.finish();
-    mb.add_function(f)
 }
 
 /// `normal(p, h)`: central differences of `map` (Munini §2.3); a zero gradient gives zero, not NaN.
@@ -424,8 +340,7 @@ fn shade_pixel(
     let normal = b.local("n", v3, Some(zero3));
     let zero_u = b.u(0);
     let material = b.local("material", u32t, Some(zero_u));
-    let hit = b.at(result, 2);
-    let is_hit = b.bin(naga::BinaryOperator::NotEqual, hit, zero_u);
+    let is_hit = hit_bit(b, result);
     b.if_(
         is_hit,
         |b| {
@@ -433,7 +348,7 @@ fn shade_pixel(
             let step = b.mul(rd, t);
             let p = b.add(ro, step);
             let h = if pixel_mode { Some(px) } else { None };
-            let h = epsilon(b, options, t, h, floor);
+            let h = epsilon(b, &options.trace, t, h, floor);
             let n = b.call(fns.normal, vec![p, h]);
             b.store(normal, n);
             let m = match fns.material {
@@ -452,6 +367,86 @@ fn shade_pixel(
         normal: b.load(normal),
         material: b.load(material),
     }
+}
+
+/// The ray-list compute entry ([`Entry::Rays`]), 64 rays per workgroup.
+fn add_rays(mb: &mut ModuleBuilder, trace: Handle<Function>) {
+    let v4 = mb.vec(VectorSize::Quad);
+    let u3 = mb.uvec(VectorSize::Tri);
+    let arr = mb.ty(TypeInner::Array {
+        base: v4,
+        size: naga::ArraySize::Dynamic,
+        stride: 16,
+    });
+    let pixel_mode = mb.module.functions[trace].arguments.len() == 3;
+    let rays = global(
+        mb,
+        "rays",
+        arr,
+        AddressSpace::Storage {
+            access: StorageAccess::LOAD,
+        },
+        0,
+    );
+    let hits = global(
+        mb,
+        "hits",
+        arr,
+        AddressSpace::Storage {
+            access: StorageAccess::LOAD | StorageAccess::STORE,
+        },
+        1,
+    );
+    let mut b = FnBuilder::new(mb, "main", &[("gid", u3)], None);
+    b.func.arguments[0].binding = Some(Binding::BuiltIn(BuiltIn::GlobalInvocationId));
+    let gid = b.arg(0);
+    let i = b.at(gid, 0);
+    let out = b.expr(Expression::GlobalVariable(hits));
+    let n = b.expr(Expression::ArrayLength(out));
+    let beyond = b.ge(i, n);
+    b.if_(beyond, |b| b.ret(None), |_| {});
+    let two = b.u(2);
+    let first = b.mul(i, two);
+    let one = b.u(1);
+    let second = b.add(first, one);
+    let input = b.expr(Expression::GlobalVariable(rays));
+    let [o, d] = [first, second].map(|index| {
+        let ptr = b.expr(Expression::Access { base: input, index });
+        b.load(ptr)
+    });
+    let ro = b.swizzle(o, &[0, 1, 2]);
+    let rd = b.swizzle(d, &[0, 1, 2]);
+    let mut args = vec![ro, rd];
+    if pixel_mode {
+        args.push(b.at(o, 3));
+    }
+    let r = b.call(trace, args);
+    let t = b.at(r, 0);
+    let s = b.at(r, 1);
+    let s = b.cast(s, ScalarKind::Float);
+    let fl = b.at(r, 2);
+    let fl = b.cast(fl, ScalarKind::Float);
+    let zero = b.f(0.0);
+    let v = b.compose(v4, vec![t, s, fl, zero]);
+    let ptr = b.expr(Expression::Access {
+        base: out,
+        index: i,
+    });
+    b.store(ptr, v);
+    let f = b.finish();
+    compute_main(mb, f, [RAYS_WORKGROUP, 1, 1]);
+}
+
+/// Workgroup size of the ray-list entry.
+pub const RAYS_WORKGROUP: u32 = 64;
+
+/// Whether a `TraceResult` has its hit bit.
+fn hit_bit(b: &mut FnBuilder, result: Ex) -> Ex {
+    let flags = b.at(result, 2);
+    let bit = b.u(HIT);
+    let masked = b.bin(naga::BinaryOperator::And, flags, bit);
+    let zero = b.u(0);
+    b.bin(naga::BinaryOperator::NotEqual, masked, zero)
 }
 
 /// `@compute @workgroup_size(8, 8)` `main`: one pixel per invocation, offset by the tile origin
@@ -518,9 +513,7 @@ fn add_compute(mb: &mut ModuleBuilder, scene: &Scene, fns: &Fns, options: &Optio
     let v4t = b.m.vec(VectorSize::Quad);
     let rgba = b.compose(v4t, vec![r, g, bl, one]);
     let packed = b.math(M::Pack4x8unorm, &[rgba]);
-    let hit = b.at(s.result, 2);
-    let zero_u = b.u(0);
-    let is_hit = b.bin(naga::BinaryOperator::NotEqual, hit, zero_u);
+    let is_hit = hit_bit(&mut b, s.result);
     let t = b.at(s.result, 0);
     let miss = b.f(-1.0);
     let depth = b.select(is_hit, t, miss);
@@ -533,13 +526,18 @@ fn add_compute(mb: &mut ModuleBuilder, scene: &Scene, fns: &Fns, options: &Optio
         b.store(ptr, v);
     }
     let f = b.finish();
+    compute_main(mb, f, [WORKGROUP, WORKGROUP, 1]);
+}
+
+/// Adds `f` as the compute entry point `main`.
+fn compute_main(mb: &mut ModuleBuilder, function: Function, workgroup_size: [u32; 3]) {
     mb.module.entry_points.push(EntryPoint {
         name: "main".into(),
         stage: ShaderStage::Compute,
         early_depth_test: None,
-        workgroup_size: [WORKGROUP, WORKGROUP, 1],
+        workgroup_size,
         workgroup_size_overrides: None,
-        function: f,
+        function,
         mesh_info: None,
         task_payload: None,
         incoming_ray_payload: None,

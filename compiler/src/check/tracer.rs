@@ -1,0 +1,186 @@
+//! The tracing methods' parameter table, and building [`Trace`] settings from a scene's `trace`
+//! block or from command-line overrides with the same types and ranges.
+
+use crate::catalog::{Param, Ty, Val, opt};
+use crate::scene::{Epsilon, Method, Trace};
+
+/// Largest step budget a tracer accepts.
+pub const MAX_STEPS: f64 = 100_000.0;
+
+/// Most regula falsi or discontinuity-reduction iterations.
+pub const MAX_ITERATIONS: u32 = 16;
+
+const STEPS: Param = opt("steps", Ty::CountTo(MAX_STEPS as u32), Val::Num(128.0));
+const EPSILON: Param = opt("epsilon", Ty::PositiveOr(&["pixel"]), Val::Word(0));
+const MAX_DISTANCE: Param = opt("max_distance", Ty::Positive, Val::Num(100.0));
+const DISCONTINUITY: Param = opt("discontinuity", Ty::UpTo(MAX_ITERATIONS), Val::Num(0.0));
+
+/// Tracing methods (`trace enhanced { .. }`) and their parameters; the first is the default.
+/// ω is Keinert's over-relaxation factor for `relaxed` and Bálint's relaxation of the inferred
+/// planar step for `enhanced` (the reference runs use 0.9); β is the weight of the
+/// auto tracer's moving slope average (Bán & Valasek use 0.3).
+pub const TRACE_METHODS: &[(&str, Method, &[Param])] = &[
+    (
+        "basic",
+        Method::Basic,
+        &[STEPS, EPSILON, MAX_DISTANCE, DISCONTINUITY],
+    ),
+    (
+        "relaxed",
+        Method::Relaxed,
+        &[
+            STEPS,
+            EPSILON,
+            MAX_DISTANCE,
+            DISCONTINUITY,
+            opt("omega", Ty::Range(1.0, 2.0), Val::Num(1.2)),
+        ],
+    ),
+    (
+        "enhanced",
+        Method::Enhanced,
+        &[
+            STEPS,
+            EPSILON,
+            MAX_DISTANCE,
+            DISCONTINUITY,
+            opt("omega", Ty::Range(0.5, 2.0), Val::Num(0.9)),
+        ],
+    ),
+    (
+        "hybrid",
+        Method::Hybrid,
+        &[
+            STEPS,
+            EPSILON,
+            MAX_DISTANCE,
+            DISCONTINUITY,
+            opt("linear", Ty::Range(1.0, 1000.0), Val::Num(4.0)),
+            opt("refine", Ty::UpTo(MAX_ITERATIONS), Val::Num(4.0)),
+        ],
+    ),
+    (
+        "auto",
+        Method::Auto,
+        &[
+            STEPS,
+            EPSILON,
+            MAX_DISTANCE,
+            DISCONTINUITY,
+            opt("beta", Ty::Fraction, Val::Num(0.3)),
+        ],
+    ),
+];
+
+/// The name and parameters of a method.
+pub fn method_entry(method: Method) -> (&'static str, &'static [Param]) {
+    let m = TRACE_METHODS
+        .iter()
+        .find(|m| m.1 == method)
+        .unwrap_or(&TRACE_METHODS[0]);
+    (m.0, m.2)
+}
+
+/// Settings of `method` from values by parameter name (missing ones take the table's defaults).
+pub fn build(method: Method, get: impl Fn(&str) -> Option<Val>) -> Trace {
+    let (_, params) = method_entry(method);
+    let val = |name: &str| {
+        get(name).or_else(|| {
+            params
+                .iter()
+                .find(|p| p.name == name)
+                .and_then(|p| p.default)
+        })
+    };
+    let num = |name: &str, fallback: f64| val(name).map_or(fallback, Val::num);
+    Trace {
+        method,
+        steps: num("steps", 128.0) as u32,
+        epsilon: match val("epsilon") {
+            Some(Val::Num(e)) => Epsilon::Absolute(e),
+            _ => Epsilon::Pixel,
+        },
+        max_distance: num("max_distance", 100.0),
+        omega: num("omega", 1.0),
+        beta: num("beta", 0.3),
+        linear: num("linear", 4.0),
+        refine: num("refine", 0.0) as u32,
+        discontinuity: num("discontinuity", 0.0) as u32,
+    }
+}
+
+/// The default settings (basic tracing).
+pub fn default_trace() -> Trace {
+    build(Method::Basic, |_| None)
+}
+
+/// Applies command-line overrides to a scene's settings: a new method keeps the scene's budget,
+/// ε, distance and discontinuity reduction and takes its own defaults for the rest; each value
+/// is checked against the method's parameter table. The error names the flag's parameter.
+pub fn with_overrides(
+    scene: Trace,
+    method: Option<&str>,
+    values: &[(&str, &str)],
+) -> Result<Trace, String> {
+    let method = match method {
+        None => scene.method,
+        Some(name) => match TRACE_METHODS.iter().find(|m| m.0 == name) {
+            Some(m) => m.1,
+            None => {
+                let names: Vec<&str> = TRACE_METHODS.iter().map(|m| m.0).collect();
+                return Err(format!(
+                    "unknown tracer `{name}`; the tracers are: {}",
+                    names.join(", ")
+                ));
+            }
+        },
+    };
+    let (name, params) = method_entry(method);
+    let mut given: Vec<(&str, Val)> = Vec::new();
+    for (key, text) in values {
+        let Some(p) = params.iter().find(|p| p.name == *key) else {
+            return Err(format!("the `{name}` tracer has no parameter `{key}`"));
+        };
+        let v = match (p.ty, *text) {
+            (Ty::PositiveOr(words), w) if words.contains(&w) => {
+                Val::Word(words.iter().position(|x| *x == w).unwrap_or(0))
+            }
+            (ty, t) => match t.trim().parse::<f64>() {
+                Ok(x) if ty.accepts_number(x) => Val::Num(x),
+                _ => {
+                    return Err(format!(
+                        "`--{}` must be {}; found `{text}`",
+                        key.replace('_', "-"),
+                        p.ty.describe()
+                    ));
+                }
+            },
+        };
+        given.push((p.name, v));
+    }
+    let kept = |name: &str| -> Option<Val> {
+        match name {
+            "steps" => Some(Val::Num(scene.steps as f64)),
+            "epsilon" => Some(match scene.epsilon {
+                Epsilon::Pixel => Val::Word(0),
+                Epsilon::Absolute(e) => Val::Num(e),
+            }),
+            "max_distance" => Some(Val::Num(scene.max_distance)),
+            "discontinuity" => Some(Val::Num(scene.discontinuity as f64)),
+            _ if method == scene.method => Some(Val::Num(match name {
+                "omega" => scene.omega,
+                "beta" => scene.beta,
+                "linear" => scene.linear,
+                _ => scene.refine as f64,
+            })),
+            _ => None,
+        }
+    };
+    Ok(build(method, |n| {
+        given
+            .iter()
+            .find(|g| g.0 == n)
+            .map(|g| g.1)
+            .or_else(|| kept(n))
+    }))
+}

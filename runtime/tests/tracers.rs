@@ -1,0 +1,252 @@
+//! Every tracing variant on the CPU reference and on the GPU: the grazing-plane table, GPU
+//! against CPU on the same rays, and safety against a 10 000-step ground truth.
+
+use sdfc::gpu::{BackendChoice, Gpu};
+use sdfc_compiler::check::tracer::TRACE_METHODS;
+use sdfc_compiler::emit;
+use sdfc_compiler::lower::{Entry, tracer::Options};
+use sdfc_compiler::scene::{Epsilon, Method, Scene, Trace};
+use sdfc_compiler::trace::{self, Threshold};
+use sdfc_compiler::view::View;
+mod common;
+use common::examples;
+
+/// The angles of the grazing-plane table, in degrees.
+const ANGLES: [f64; 4] = [45.0, 10.0, 1.0, 0.1];
+
+/// Our evaluation counts for the grazing plane (ε = 1e-3, start at height 10). `basic` is the
+/// closed form; the others follow from each variant's conventions, explained in
+/// docs/tracers.md (an independent Python transcription of the same rules gives the same).
+const GRAZING: [(&str, [u32; 4]); 5] = [
+    ("basic", [9, 50, 525, 5274]),
+    ("relaxed", [10, 41, 437, 4395]),
+    ("enhanced", [7, 30, 280, 2779]),
+    ("hybrid", [13, 47, 489, 4910]),
+    ("auto", [8, 30, 268, 2642]),
+];
+
+fn compile(source: &str) -> Scene {
+    let checked = sdfc_compiler::check::compile(source);
+    checked.scene.unwrap_or_else(|| {
+        panic!(
+            "{}",
+            sdfc_compiler::diag::render(&checked.diagnostics, "test", source)
+        )
+    })
+}
+
+fn grazing_scene(method: &str) -> Scene {
+    let omega = match method {
+        "enhanced" => "omega 0.9",
+        "relaxed" => "omega 1.2",
+        _ => "",
+    };
+    compile(&format!(
+        "trace {method} {{ steps 100000 epsilon 0.001 max_distance 100000 {omega} }}\nplane(y, 0)"
+    ))
+}
+
+fn grazing_ray(degrees: f64) -> ([f64; 3], [f64; 3]) {
+    let a = degrees.to_radians();
+    ([0.0, 10.0, 0.0], [a.cos(), -a.sin(), 0.0])
+}
+
+/// Closed form of basic sphere tracing towards a plane: the height shrinks by (1 − sin θ) per
+/// evaluation, so the count is the first n with 10·(1 − sin θ)^(n−1) < ε.
+fn closed_form(degrees: f64) -> u32 {
+    let q = 1.0 - degrees.to_radians().sin();
+    let n = ((1e-3_f64 / 10.0).ln() / q.ln()).floor() as u32 + 1;
+    // The first n with 10·q^(n−1) < ε.
+    (1..=n + 2)
+        .find(|k| 10.0 * q.powi(*k as i32 - 1) < 1e-3)
+        .unwrap()
+}
+
+fn cpu_grazing(method: &str) -> [u32; 4] {
+    let scene = grazing_scene(method);
+    let eps = Threshold {
+        epsilon: scene.trace.epsilon,
+        pixel: 0.0,
+        floor: 0.0,
+    };
+    ANGLES.map(|deg| {
+        let (o, d) = grazing_ray(deg);
+        let r = trace::march(&scene.trace, &eps, |t| o[1] + t * d[1]);
+        assert!(r.hit, "{method} at {deg}° did not hit: {r:?}");
+        r.steps
+    })
+}
+
+fn gpu() -> Gpu {
+    Gpu::new(BackendChoice::Vulkan)
+        .unwrap_or_else(|e| panic!("{e}\n(CI installs Mesa's drivers in .ci/run)"))
+}
+
+fn gpu_trace(gpu: &Gpu, scene: &Scene, rays: &[([f32; 3], [f32; 3], f32)]) -> Vec<(f32, u32, u32)> {
+    let (module, _) = emit::module(scene, Entry::Rays, &Options::from_scene(scene))
+        .unwrap_or_else(|e| panic!("{}", e.0));
+    gpu.trace_rays(&module, rays).unwrap()
+}
+
+#[test]
+fn grazing_plane_table() {
+    for (deg, want) in ANGLES.iter().zip(GRAZING[0].1) {
+        assert_eq!(closed_form(*deg), want, "closed form at {deg}°");
+    }
+    let gpu = gpu();
+    let mut table =
+        String::from("| tracer | 45° | 10° | 1° | 0.1° |\n| --- | --- | --- | --- | --- |\n");
+    for (method, want) in GRAZING {
+        let cpu = cpu_grazing(method);
+        let scene = grazing_scene(method);
+        let rays: Vec<_> = ANGLES
+            .iter()
+            .map(|deg| {
+                let (o, d) = grazing_ray(*deg);
+                (o.map(|x| x as f32), d.map(|x| x as f32), 0.0)
+            })
+            .collect();
+        let on_gpu: Vec<u32> = gpu_trace(&gpu, &scene, &rays)
+            .iter()
+            .map(|r| {
+                assert_eq!(r.2 & 1, 1, "{method}: the GPU ray did not hit");
+                r.1
+            })
+            .collect();
+        table += &format!(
+            "| {method} | {} |\n",
+            (0..4)
+                .map(|i| format!("{} / {}", cpu[i], on_gpu[i]))
+                .collect::<Vec<_>>()
+                .join(" | ")
+        );
+        assert_eq!(cpu, want, "{method}: CPU counts");
+        if method == "basic" {
+            assert_eq!(on_gpu, want, "basic on the GPU must match the closed form");
+        }
+        for i in 0..4 {
+            assert!(
+                cpu[i].abs_diff(on_gpu[i]) <= 1,
+                "{method} at {}°: CPU {} vs GPU {}",
+                ANGLES[i],
+                cpu[i],
+                on_gpu[i]
+            );
+        }
+    }
+    println!("evaluations until f < 1e-3 (CPU / GPU):\n{table}");
+}
+
+fn with_method(scene: &Scene, method: Method) -> Trace {
+    let name = TRACE_METHODS.iter().find(|m| m.1 == method).unwrap().0;
+    sdfc_compiler::check::tracer::with_overrides(scene.trace, Some(name), &[]).unwrap()
+}
+
+/// Camera rays of a coarse grid over the image.
+fn grid(scene: &Scene, w: u32, h: u32) -> (View, Vec<(f64, f64)>) {
+    let view = View::new(&scene.camera, w, h);
+    let pts = (0..h)
+        .flat_map(|y| (0..w).map(move |x| (x as f64 + 0.5, y as f64 + 0.5)))
+        .collect();
+    (view, pts)
+}
+
+#[test]
+fn gpu_agrees_with_cpu_on_every_variant() {
+    let gpu = gpu();
+    let mut report = String::new();
+    let (mut total, mut disagree) = (0usize, 0usize);
+    for path in examples() {
+        let source = std::fs::read_to_string(&path).unwrap();
+        let base = compile(&source);
+        for &(name, method, _) in TRACE_METHODS {
+            let mut scene = base.clone();
+            scene.trace = with_method(&base, method);
+            let (view, pts) = grid(&scene, 32, 20);
+            let rays: Vec<_> = pts
+                .iter()
+                .map(|&(x, y)| {
+                    let d = view.ray(x, y);
+                    (
+                        view.eye.to_array().map(|v| v as f32),
+                        d.to_array().map(|v| v as f32),
+                        view.pixel as f32,
+                    )
+                })
+                .collect();
+            let on_gpu = gpu_trace(&gpu, &scene, &rays);
+            let mut bad = 0;
+            for (i, &(x, y)) in pts.iter().enumerate() {
+                let c = trace::ray(&scene, &scene.trace, view.eye, view.ray(x, y), view.pixel);
+                let g = on_gpu[i];
+                let same_hit = c.hit == (g.2 & 1 == 1);
+                if !same_hit || c.steps.abs_diff(g.1) > 1 {
+                    bad += 1;
+                }
+            }
+            total += pts.len();
+            disagree += bad;
+            report += &format!(
+                "{:>14} {name:>8}: {bad:>3} of {} rays differ\n",
+                path.file_stem().unwrap().to_string_lossy(),
+                pts.len()
+            );
+        }
+    }
+    println!("{report}");
+    let share = disagree as f64 / total as f64;
+    println!(
+        "hit/miss or steps (±1) differ on {disagree} of {total} rays ({:.3}%)",
+        share * 100.0
+    );
+    assert!(share <= 0.01, "more than 1% of rays disagree:\n{report}");
+}
+
+#[test]
+fn no_variant_misses_what_the_ground_truth_hits() {
+    let mut report = String::new();
+    for path in examples() {
+        let source = std::fs::read_to_string(&path).unwrap();
+        let base = compile(&source);
+        let mut truth_trace = base.trace;
+        truth_trace.method = Method::Basic;
+        truth_trace.steps = 10_000;
+        truth_trace.discontinuity = 0;
+        let (view, pts) = grid(&base, 48, 30);
+        // The same rays with a hit threshold far below the scene's: whether a ray really
+        // reaches the surface, or only passes within the scene's ε of it.
+        let mut fine_trace = truth_trace;
+        fine_trace.epsilon =
+            Epsilon::Absolute(1e-7 * (base.camera.eye - base.camera.target).length());
+        let truth: Vec<_> = pts
+            .iter()
+            .map(|&(x, y)| trace::ray(&base, &truth_trace, view.eye, view.ray(x, y), view.pixel))
+            .collect();
+        for &(name, method, _) in TRACE_METHODS {
+            let mut scene = base.clone();
+            scene.trace = with_method(&base, method);
+            let (mut missed, mut grazed, mut exhausted) = (0, 0, 0);
+            for (i, &(x, y)) in pts.iter().enumerate() {
+                let rd = view.ray(x, y);
+                let r = trace::ray(&scene, &scene.trace, view.eye, rd, view.pixel);
+                if r.exhausted {
+                    exhausted += 1;
+                } else if truth[i].hit && !r.hit {
+                    let fine = trace::ray(&base, &fine_trace, view.eye, rd, view.pixel);
+                    if fine.hit || fine.exhausted {
+                        missed += 1;
+                    } else {
+                        grazed += 1;
+                    }
+                }
+            }
+            report += &format!(
+                "{:>14} {name:>8}: missed {missed}, passed within ε without touching {grazed}, budget ran out on {exhausted} of {}\n",
+                path.file_stem().unwrap().to_string_lossy(),
+                pts.len()
+            );
+            assert_eq!(missed, 0, "{name} missed surfaces:\n{report}");
+        }
+    }
+    println!("{report}");
+}
