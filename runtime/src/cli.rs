@@ -157,28 +157,28 @@ pub struct TracerArgs {
     #[arg(long)]
     pub tracer: Option<String>,
     /// Step budget (evaluations of the field per ray).
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     pub steps: Option<String>,
     /// Hit threshold: a distance, or `pixel` for the pixel footprint.
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     pub epsilon: Option<String>,
     /// Rays stop beyond this distance.
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     pub max_distance: Option<String>,
     /// Relaxation ω (relaxed: [1, 2); enhanced: [0.5, 2)).
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     pub omega: Option<String>,
     /// Weight of the slope average (auto).
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     pub beta: Option<String>,
     /// Linear-search step in units of ε (hybrid).
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     pub linear: Option<String>,
     /// Regula falsi iterations (hybrid).
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     pub refine: Option<String>,
     /// Discontinuity-reduction iterations after a hit (Keinert §3.4).
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     pub discontinuity: Option<String>,
 }
 

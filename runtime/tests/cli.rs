@@ -240,7 +240,7 @@ fn render_refuses_bad_input_cleanly() {
     let scene = scene.to_str().unwrap();
     let out_path = d.join("out.png");
     let out = out_path.to_str().unwrap();
-    let cases: [(&[&str], &str); 7] = [
+    let cases: [(&[&str], &str); 12] = [
         (&["render", "/nonexistent.sdf", "-o", out], "cannot read"),
         (
             &[
@@ -280,6 +280,30 @@ fn render_refuses_bad_input_cleanly() {
                 "3",
             ],
             "square number",
+        ),
+        (
+            &[
+                "render", scene, "-o", out, "--tracer", "relaxed", "--omega", "2",
+            ],
+            "`--omega` must be a number in [1, 2)",
+        ),
+        (
+            &[
+                "render", scene, "-o", out, "--tracer", "auto", "--omega", "1.5",
+            ],
+            "has no parameter `omega`",
+        ),
+        (
+            &["render", scene, "-o", out, "--steps", "0"],
+            "`--steps` must be a whole number from 1 to 100000",
+        ),
+        (
+            &["render", scene, "-o", out, "--epsilon", "-1"],
+            "`--epsilon` must be a number > 0 or `pixel`",
+        ),
+        (
+            &["render", scene, "-o", out, "--epsilon", "NaN"],
+            "`--epsilon` must be",
         ),
     ];
     for (args, message) in cases {

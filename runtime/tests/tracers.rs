@@ -186,8 +186,9 @@ fn gpu_agrees_with_cpu_on_every_variant() {
             }
             total += pts.len();
             disagree += bad;
+            let mean = on_gpu.iter().map(|r| r.1 as f64).sum::<f64>() / on_gpu.len() as f64;
             report += &format!(
-                "{:>14} {name:>8}: {bad:>3} of {} rays differ\n",
+                "{:>14} {name:>8}: {bad:>3} of {} rays differ; {mean:.1} evaluations per ray\n",
                 path.file_stem().unwrap().to_string_lossy(),
                 pts.len()
             );
