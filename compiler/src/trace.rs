@@ -135,7 +135,8 @@ fn relaxed(trace: &Trace, eps: &Threshold, f: &mut impl FnMut(f64) -> f64) -> Tr
     let mut steps = 0;
     loop {
         if steps >= trace.steps {
-            return stop(candidate_t, steps, candidate_error.is_finite(), true);
+            // The first evaluation always makes a candidate, and the budget is at least 1.
+            return stop(candidate_t, steps, true, true);
         }
         let r = f(t);
         steps += 1;

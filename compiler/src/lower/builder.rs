@@ -397,6 +397,31 @@ impl<'m> FnBuilder<'m> {
         });
     }
 
+    /// `*pointer += 1u` on a u32 variable.
+    pub fn increment(&mut self, pointer: Ex) {
+        let v = self.load(pointer);
+        let one = self.u(1);
+        let v1 = self.add(v, one);
+        self.store(pointer, v1);
+    }
+
+    /// A counted loop: `var name = 0u; loop { if name >= count { break; } body(name); name += 1u; }`.
+    /// The body may `break` early.
+    pub fn repeat(&mut self, name: &str, count: Ex, body: impl FnOnce(&mut Self)) {
+        let u32t = self.m.u32();
+        let zero = self.u(0);
+        let i = self.local(name, u32t, Some(zero));
+        self.loop_(|b| {
+            let iv = b.load(i);
+            let done = b.ge(iv, count);
+            b.break_if(done);
+            body(b);
+            let one = b.u(1);
+            let next = b.add(iv, one);
+            b.store(i, next);
+        });
+    }
+
     /// `break`
     pub fn brk(&mut self) {
         self.stmt(Statement::Break);

@@ -70,10 +70,7 @@ impl Cx {
     /// `map(point)`, counted as a step.
     fn field_at(&self, b: &mut FnBuilder, point: Ex) -> Ex {
         let d = b.call(self.map, vec![point]);
-        let n = b.load(self.steps);
-        let one = b.u(1);
-        let n1 = b.add(n, one);
-        b.store(self.steps, n1);
+        b.increment(self.steps);
         d
     }
 
@@ -428,14 +425,8 @@ fn hybrid(b: &mut FnBuilder, cx: &Cx) {
                 let c = b.local("hi", f32t, Some(t));
                 let fc = b.local("f_hi", f32t, Some(d));
                 if cx.trace.refine > 0 {
-                    let u = b.m.u32();
-                    let zu = b.u(0);
-                    let k = b.local("k", u, Some(zu));
-                    b.loop_(|b| {
-                        let kv = b.load(k);
-                        let limit = b.u(cx.trace.refine);
-                        let done = b.ge(kv, limit);
-                        b.break_if(done);
+                    let limit = b.u(cx.trace.refine);
+                    b.repeat("k", limit, |b| {
                         let tm = falsi(b, a, fa, c, fc);
                         let fm = cx.field(b, tm);
                         let outside = b.gt(fm, zero);
@@ -450,9 +441,6 @@ fn hybrid(b: &mut FnBuilder, cx: &Cx) {
                                 b.store(fc, fm);
                             },
                         );
-                        let one = b.u(1);
-                        let k1 = b.add(kv, one);
-                        b.store(k, k1);
                     });
                 }
                 let root = falsi(b, a, fa, c, fc);
@@ -500,13 +488,8 @@ fn discontinuity(b: &mut FnBuilder, cx: &Cx) {
     b.if_(
         hit,
         |b| {
-            let u = b.m.u32();
-            let k = b.local("i", u, Some(zero_u));
-            b.loop_(|b| {
-                let kv = b.load(k);
-                let limit = b.u(cx.trace.discontinuity);
-                let done = b.ge(kv, limit);
-                b.break_if(done);
+            let limit = b.u(cx.trace.discontinuity);
+            b.repeat("i", limit, |b| {
                 let t = b.load(cx.t);
                 let d = cx.field(b, t);
                 let e = cx.eps(b, t);
@@ -515,9 +498,6 @@ fn discontinuity(b: &mut FnBuilder, cx: &Cx) {
                 let zero = b.f(0.0);
                 let nt = b.max(nt, zero);
                 b.store(cx.t, nt);
-                let one = b.u(1);
-                let k1 = b.add(kv, one);
-                b.store(k, k1);
             });
         },
         |_| {},

@@ -243,18 +243,12 @@ pub fn mandelbulb(b: &mut FnBuilder, p: Ex, a: &[Ex]) -> Ex {
     let escape = b.math(M::Pow, &[two, inv]);
     let f32t = b.m.f32();
     let v3 = b.m.vec3();
-    let u32t = b.m.u32();
     let z = b.local("z", v3, Some(p));
     let one = b.f(1.0);
     let dr = b.local("dr", f32t, Some(one));
     let r0 = b.length(p);
     let r = b.local("r", f32t, Some(r0));
-    let zero_u = b.u(0);
-    let i = b.local("i", u32t, Some(zero_u));
-    b.loop_(|b| {
-        let iv = b.load(i);
-        let done = b.ge(iv, iterations);
-        b.break_if(done);
+    b.repeat("i", iterations, |b| {
         let zv = b.load(z);
         let rv = b.length(zv);
         b.store(r, rv);
@@ -287,9 +281,6 @@ pub fn mandelbulb(b: &mut FnBuilder, p: Ex, a: &[Ex]) -> Ex {
         b.store(z, nz);
         let nr = b.length(nz);
         b.store(r, nr);
-        let one_u = b.u(1);
-        let ni = b.add(iv, one_u);
-        b.store(i, ni);
     });
     let rv = b.load(r);
     let tiny = b.f(1e-20);
