@@ -58,11 +58,23 @@ pub fn summary(name: &str, scene: &Scene, warnings: usize) -> String {
     };
     let method = crate::check::tracer::method_entry(t.method).0;
     let bound = scene.root_node().bound;
-    let bound = if bound.radius.is_finite() {
+    let mut bound = if bound.radius.is_finite() {
         format!("radius {:.3}", bound.radius)
     } else {
         "unbounded".to_string()
     };
+    if let Some(c) = &scene.bound {
+        let shape = match c.shape {
+            crate::scene::BoundShape::Sphere { center, radius } => {
+                format!("sphere at {center} radius {radius:.3}")
+            }
+            crate::scene::BoundShape::Box { center, half } => {
+                format!("box at {center} size {}", half * 2.0)
+            }
+        };
+        let convex = if c.convex { ", convex object" } else { "" };
+        bound += &format!("; rays clipped to a {shape}{convex}");
+    }
     format!(
         "{name}: ok\n  nodes: {reachable}\n  materials: {}\n  root λ: {}\n  bound: {bound}\n  lights: {}\n  tracer: {method} ({} steps, ε {eps})\n  warnings: {warnings}",
         scene.materials.len(),

@@ -10,6 +10,7 @@ pub mod eval;
 pub mod interval;
 pub mod lipschitz;
 pub mod lower;
+pub mod passes;
 pub mod scene;
 pub mod syntax;
 pub mod trace;

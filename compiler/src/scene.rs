@@ -26,6 +26,8 @@ pub struct Scene {
     pub background: DVec3,
     /// Tracer choice and parameters.
     pub trace: Trace,
+    /// A convex volume enclosing every surface, if the file declares one (`bound`).
+    pub bound: Option<Convex>,
 }
 
 impl Scene {
@@ -178,6 +180,72 @@ pub struct Camera {
     /// Vertical field of view, radians.
     pub fov: f64,
 }
+
+/// A convex volume declared to enclose the scene's surfaces (Keinert §3.5): rays start where
+/// they enter it and are culled if they miss it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Convex {
+    /// The volume.
+    pub shape: BoundShape,
+    /// Whether the file declares the enclosed object itself convex, so a ray starting inside it
+    /// is traced backwards from where it leaves the volume (Keinert §3.5, case 3).
+    pub convex: bool,
+}
+
+/// The shape of a [`Convex`] bound.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum BoundShape {
+    /// A sphere.
+    Sphere {
+        /// Centre.
+        center: DVec3,
+        /// Radius (> 0).
+        radius: f64,
+    },
+    /// An axis-aligned box.
+    Box {
+        /// Centre.
+        center: DVec3,
+        /// Half the edge lengths (each > 0).
+        half: DVec3,
+    },
+}
+
+impl BoundShape {
+    /// Where the line `ro + t·rd` (unit `rd`) enters and leaves the volume, if it meets it
+    /// (the entry may be negative: the origin is inside).
+    pub fn interval(&self, ro: DVec3, rd: DVec3) -> Option<(f64, f64)> {
+        match *self {
+            BoundShape::Sphere { center, radius } => {
+                let oc = ro - center;
+                let b = oc.dot(rd);
+                let c = oc.dot(oc) - radius * radius;
+                let disc = b * b - c;
+                (disc >= 0.0).then(|| (-b - disc.sqrt(), -b + disc.sqrt()))
+            }
+            BoundShape::Box { center, half } => {
+                let inv = rd.map(|x| 1.0 / guard_axis(x));
+                let a = (center - half - ro) * inv;
+                let c = (center + half - ro) * inv;
+                let near = a.min(c).max_element();
+                let far = a.max(c).min_element();
+                (near <= far).then_some((near, far))
+            }
+        }
+    }
+}
+
+/// A direction component kept away from zero (its sign kept) so the slab test's 1/x stays finite.
+pub fn guard_axis(x: f64) -> f64 {
+    if x.abs() < AXIS_GUARD {
+        AXIS_GUARD.copysign(x)
+    } else {
+        x
+    }
+}
+
+/// Smallest magnitude of a ray direction component in the box test.
+pub const AXIS_GUARD: f64 = 1e-20;
 
 /// A light.
 #[derive(Clone, Copy, Debug, PartialEq)]

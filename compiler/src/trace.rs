@@ -6,7 +6,7 @@
 
 use crate::eval;
 use crate::lower::tracer::EPSILON_FLOOR;
-use crate::scene::{Epsilon, Method, Scene, Trace};
+use crate::scene::{Convex, Epsilon, Method, Scene, Trace};
 use glam::DVec3;
 
 /// Where a ray went.
@@ -46,6 +46,8 @@ pub struct Threshold {
     pub pixel: f64,
     /// The smallest ε in pixel mode.
     pub floor: f64,
+    /// Distance from the ray's origin of the point where the marched `t` is 0.
+    pub offset: f64,
 }
 
 impl Threshold {
@@ -55,22 +57,157 @@ impl Threshold {
             epsilon: trace.epsilon,
             pixel,
             floor: EPSILON_FLOOR * (scene.camera.eye - scene.camera.target).length(),
+            offset: 0.0,
         }
     }
 
-    /// ε at distance `t`.
+    /// ε at distance `t` (from where the march started).
     pub fn at(&self, t: f64) -> f64 {
         match self.epsilon {
-            Epsilon::Pixel => (self.pixel * t).max(self.floor),
+            Epsilon::Pixel => (self.pixel * (t + self.offset)).max(self.floor),
             Epsilon::Absolute(e) => e,
         }
     }
 }
 
-/// Traces the ray `ro + t·rd` through the scene with its chosen variant.
+/// The part of a ray a trace searches, with its budget: the whole ray, the part inside a
+/// convex bound, or what a multi-resolution pass leaves (mirrors `lower::march::Inputs`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Segment {
+    /// Where the search starts.
+    pub start: f64,
+    /// Where it gives up.
+    pub end: f64,
+    /// Evaluations it may spend.
+    pub budget: u32,
+    /// Bálint's cone slope α (§4, Remark 1): the field is traced as F = (f − α·t)/(1 + α), so
+    /// the trace stops before any surface enters the cone of radius α·t. 0: the ray itself.
+    pub cone: f64,
+}
+
+impl Segment {
+    /// The whole ray, `[0, max_distance]`, with the full budget.
+    pub fn whole(trace: &Trace) -> Segment {
+        Segment {
+            start: 0.0,
+            end: trace.max_distance,
+            budget: trace.steps,
+            cone: 0.0,
+        }
+    }
+}
+
+/// Traces the ray `ro + t·rd` through the scene with its chosen variant (inside its bound).
 pub fn ray(scene: &Scene, trace: &Trace, ro: DVec3, rd: DVec3, pixel: f64) -> Traced {
+    ray_segment(scene, trace, ro, rd, pixel, Segment::whole(trace))
+}
+
+/// Traces a segment of the ray `ro + t·rd`, clipped to the scene's bound if it has one.
+pub fn ray_segment(
+    scene: &Scene,
+    trace: &Trace,
+    ro: DVec3,
+    rd: DVec3,
+    pixel: f64,
+    segment: Segment,
+) -> Traced {
     let eps = Threshold::new(scene, trace, pixel);
-    march(trace, &eps, |t| eval::distance(scene, ro + rd * t))
+    let f = |t| eval::distance(scene, ro + rd * t);
+    match &scene.bound {
+        None => march_segment(trace, &eps, segment, f),
+        Some(bound) => bounded(scene, trace, bound, &eps, (ro, rd), segment),
+    }
+}
+
+/// Keinert §3.5: a ray is traced only inside the convex bound, from where it enters (case 1)
+/// or from its start if that is inside (case 2); a ray missing the bound is culled (t stays at
+/// the segment's start, no step spent). With `convex yes`, a start inside the object (one
+/// evaluation finds out) is traced backwards from the bound's far side, so the hit is where
+/// the ray leaves the object (case 3); ε is then measured from that far side. In a cone pass
+/// such a ray stays where it is.
+fn bounded(
+    scene: &Scene,
+    trace: &Trace,
+    bound: &Convex,
+    eps: &Threshold,
+    (ro, rd): (DVec3, DVec3),
+    segment: Segment,
+) -> Traced {
+    let culled = stop(segment.start, 0, false, false);
+    let Some((near, far)) = bound.shape.interval(ro, rd) else {
+        return culled;
+    };
+    let (lo, hi) = (near.max(segment.start), far.min(segment.end));
+    if lo > hi {
+        return culled;
+    }
+    let clipped = Segment {
+        start: lo,
+        end: hi,
+        ..segment
+    };
+    let f = |t| eval::distance(scene, ro + rd * t);
+    if !bound.convex || near > segment.start {
+        return march_segment(trace, eps, clipped, f);
+    }
+    if f(lo) >= 0.0 {
+        let mut r = march_segment(trace, eps, clipped, f);
+        r.steps += 1;
+        return r;
+    }
+    if segment.cone > 0.0 {
+        return stop(segment.start, 1, false, false);
+    }
+    let exit = ro + rd * hi;
+    let back = Segment {
+        start: 0.0,
+        end: hi - lo,
+        ..segment
+    };
+    let eps_back = Threshold {
+        offset: 0.0,
+        ..*eps
+    };
+    let r = march_segment(trace, &eps_back, back, |s| {
+        eval::distance(scene, exit - rd * s)
+    });
+    Traced {
+        t: if r.hit { hi - r.t } else { lo },
+        steps: r.steps + 1,
+        hit: true,
+        exhausted: r.exhausted,
+    }
+}
+
+/// Marches the segment of `f` with the variant of `trace`: t runs from 0 at `segment.start`,
+/// ε and the cone are measured from the ray's origin.
+pub fn march_segment(
+    trace: &Trace,
+    eps: &Threshold,
+    segment: Segment,
+    mut f: impl FnMut(f64) -> f64,
+) -> Traced {
+    let inner = Trace {
+        steps: segment.budget,
+        max_distance: segment.end - segment.start,
+        ..*trace
+    };
+    let shifted = Threshold {
+        offset: eps.offset + segment.start,
+        ..*eps
+    };
+    let alpha = segment.cone;
+    let mut r = march(&inner, &shifted, |s| {
+        let t = segment.start + s;
+        let d = f(t);
+        if alpha > 0.0 {
+            (d - alpha * t) / (1.0 + alpha)
+        } else {
+            d
+        }
+    });
+    r.t += segment.start;
+    r
 }
 
 /// Marches `f` (the field along a ray, already divided by its Lipschitz bound) with the
@@ -155,13 +292,17 @@ fn relaxed(trace: &Trace, eps: &Threshold, f: &mut impl FnMut(f64) -> f64) -> Tr
                 candidate_t = t;
                 candidate_error = radius / e;
             }
-            if r < e {
+            // Listing 2 tests |r|: a point an over-relaxed step put inside a surface (its
+            // spheres still overlapped) is left by the negative step r·ω; only at the start of
+            // the ray, where there is no way back, does r < 0 count as the hit.
+            if radius < e || (r < 0.0 && t <= 0.0) {
                 return stop(t, steps, true, false);
             }
             if t > trace.max_distance {
                 return stop(t, steps, false, false);
             }
         }
+        step = step.max(-t);
         t += step;
     }
 }

@@ -42,6 +42,27 @@ impl View {
         }
     }
 
+    /// The same picture at another resolution: the same rays through the same rectangle of the
+    /// image plane, with pixels that may be slightly non-square when the sizes do not divide
+    /// evenly; the footprint is the larger half-extent of a pixel.
+    pub fn resized(&self, width: u32, height: u32) -> View {
+        View {
+            width,
+            height,
+            pixel: self.half_pixel(width, height).max_element(),
+            ..*self
+        }
+    }
+
+    /// Half the width and height of a pixel of a `width`×`height` image of this view, per unit
+    /// distance along the view direction.
+    pub fn half_pixel(&self, width: u32, height: u32) -> glam::DVec2 {
+        glam::DVec2::new(
+            self.right.length() / width as f64,
+            self.up.length() / height as f64,
+        )
+    }
+
     /// The unit direction through image point (x, y), in pixels with y down (pixel centres at
     /// +0.5), as the shader's `camera_ray` computes it.
     pub fn ray(&self, x: f64, y: f64) -> DVec3 {
@@ -50,9 +71,11 @@ impl View {
         (self.forward + self.right * u + self.up * v).normalize()
     }
 
-    /// The `View` uniform's 96 bytes: six vec4s, the last (tile offset, image size) as u32.
-    pub fn uniform(&self, tile_x: u32, tile_y: u32) -> [u8; 96] {
-        let mut out = [0u8; 96];
+    /// The `View` uniform's 112 bytes: seven vec4s, the sixth (tile offset, image size) as
+    /// u32, the seventh the multi-resolution `pass` field (cone slope, budget, previous pass's
+    /// width and height; zeros outside passes, where the module's view is 96 bytes).
+    pub fn uniform(&self, tile_x: u32, tile_y: u32, pass: [f32; 4]) -> [u8; 112] {
+        let mut out = [0u8; 112];
         let vecs = [
             self.eye,
             self.right,
@@ -68,6 +91,10 @@ impl View {
         }
         for (j, c) in [tile_x, tile_y, self.width, self.height].iter().enumerate() {
             let at = 80 + 4 * j;
+            out[at..at + 4].copy_from_slice(&c.to_le_bytes());
+        }
+        for (j, c) in pass.iter().enumerate() {
+            let at = 96 + 4 * j;
             out[at..at + 4].copy_from_slice(&c.to_le_bytes());
         }
         out

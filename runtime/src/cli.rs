@@ -180,6 +180,13 @@ pub struct TracerArgs {
     /// Discontinuity-reduction iterations after a hit (Keinert §3.4).
     #[arg(long, allow_hyphen_values = true)]
     pub discontinuity: Option<String>,
+    /// Multi-resolution passes (Bálint §4): 2 (1/2 then full resolution), 4 or 6; 1 is a
+    /// single pass. Compute entry only.
+    #[arg(long, default_value_t = 1)]
+    pub passes: u32,
+    /// Ignore the scene's `bound` block (trace every ray from the camera).
+    #[arg(long)]
+    pub no_bound: bool,
 }
 
 impl TracerArgs {
@@ -203,6 +210,30 @@ impl TracerArgs {
         .collect();
         check::tracer::with_overrides(scene, self.tracer.as_deref(), &values)
             .map_err(|e| format!("error: {e}"))
+    }
+
+    /// Applies the overrides to a scene and returns the lowering options, or an error for the
+    /// user.
+    pub fn settle(
+        &self,
+        scene: &mut sdfc_compiler::scene::Scene,
+    ) -> Result<sdfc_compiler::lower::tracer::Options, String> {
+        scene.trace = self.apply(scene.trace)?;
+        if self.no_bound {
+            scene.bound = None;
+        }
+        let counts = sdfc_compiler::passes::counts();
+        if !counts.contains(&(self.passes as usize)) {
+            let list: Vec<String> = counts.iter().map(|c| c.to_string()).collect();
+            return Err(format!(
+                "error: `--passes {}`: there are schedules for {} passes",
+                self.passes,
+                list.join(", ")
+            ));
+        }
+        let mut options = sdfc_compiler::lower::tracer::Options::from_scene(scene);
+        options.passes = self.passes > 1;
+        Ok(options)
     }
 }
 

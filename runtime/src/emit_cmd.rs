@@ -2,7 +2,7 @@
 
 use crate::cli::load_scene;
 use sdfc_compiler::emit::{self, Output, Target};
-use sdfc_compiler::lower::{Entry, tracer::Options};
+use sdfc_compiler::lower::Entry;
 use std::io::{IsTerminal, Write};
 use std::path::Path;
 
@@ -17,14 +17,19 @@ pub fn run(
     let Some((name, _, mut scene)) = load_scene(file) else {
         return 1;
     };
-    match tracer.apply(scene.trace) {
-        Ok(t) => scene.trace = t,
+    let options = match tracer.settle(&mut scene) {
+        Ok(o) => o,
         Err(e) => {
             eprintln!("{e}");
             return 1;
         }
+    };
+    if options.passes && entry != Entry::Compute {
+        eprintln!(
+            "error: `--passes` is for the compute entry (the runtime's passes hand t from one to the next)"
+        );
+        return 1;
     }
-    let options = Options::from_scene(&scene);
     let result = emit::module(&scene, entry, &options)
         .and_then(|(m, info)| emit::write(&m, &info, target, entry));
     let out = match result {

@@ -1,6 +1,7 @@
 //! The wgpu runtime: a headless device (Vulkan, then GL), and a tiled dispatch of a compiled
 //! compute module that reads back colour, depth, normal, material and step count.
 
+use sdfc_compiler::passes::Pass;
 use sdfc_compiler::view::View;
 use std::borrow::Cow;
 
@@ -104,11 +105,14 @@ impl Gpu {
     }
 
     /// Renders a compiled compute module (`emit` with `Entry::Compute`) for `view`, tile by
-    /// tile; `progress` is told how many tiles are done.
+    /// tile; with `passes` (a module compiled with `Options::passes`), pass by pass, each
+    /// handing its t and step counts to the next (Bálint §4). `progress` is told how many
+    /// tiles are done.
     pub fn render(
         &self,
         module: &naga::Module,
         view: &View,
+        passes: Option<&[Pass]>,
         mut progress: impl FnMut(u32, u32),
     ) -> Result<Frame, String> {
         let (w, h) = (view.width, view.height);
@@ -131,7 +135,7 @@ impl Gpu {
         let pipeline = self.pipeline(module);
         let uniform = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("view"),
-            size: 96,
+            size: 112,
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
@@ -158,27 +162,75 @@ impl Gpu {
                 resource: b.as_entire_binding(),
             });
         }
-        let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("scene"),
-            layout: &layout,
-            entries: &entries,
-        });
-        let (tx, ty) = (w.div_ceil(TILE), h.div_ceil(TILE));
-        let groups = TILE / sdfc_compiler::lower::tracer::WORKGROUP;
-        for j in 0..ty {
-            for i in 0..tx {
-                self.queue
-                    .write_buffer(&uniform, 0, &view.uniform(i * TILE, j * TILE));
-                let mut enc = device.create_command_encoder(&Default::default());
-                {
-                    let mut pass = enc.begin_compute_pass(&Default::default());
-                    pass.set_pipeline(&pipeline);
-                    pass.set_bind_group(0, &bind, &[]);
-                    pass.dispatch_workgroups(groups, groups, 1);
+        // Two buffers of (t, steps) per pixel, read and written alternately by the passes.
+        let hand_over: Vec<wgpu::Buffer> = (0..if passes.is_some() { 2 } else { 0 })
+            .map(|_| {
+                device.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some("pass"),
+                    size: pixels * 8,
+                    usage: wgpu::BufferUsages::STORAGE,
+                    mapped_at_creation: false,
+                })
+            })
+            .collect();
+        let binds: Vec<wgpu::BindGroup> = (0..hand_over.len().max(1))
+            .map(|k| {
+                let mut entries = entries.clone();
+                if !hand_over.is_empty() {
+                    for (binding, b) in [(6, k), (7, 1 - k)] {
+                        entries.push(wgpu::BindGroupEntry {
+                            binding,
+                            resource: hand_over[b].as_entire_binding(),
+                        });
+                    }
                 }
-                self.queue.submit([enc.finish()]);
-                self.wait()?;
-                progress(j * tx + i + 1, tx * ty);
+                device.create_bind_group(&wgpu::BindGroupDescriptor {
+                    label: Some("scene"),
+                    layout: &layout,
+                    entries: &entries,
+                })
+            })
+            .collect();
+        let one = [Pass {
+            view: *view,
+            budget: 0,
+            cone: 0.0,
+        }];
+        let schedule = passes.unwrap_or(&one);
+        let tiles = |v: &View| (v.width.div_ceil(TILE), v.height.div_ceil(TILE));
+        let total: u32 = schedule
+            .iter()
+            .map(|p| tiles(&p.view).0 * tiles(&p.view).1)
+            .sum();
+        let groups = TILE / sdfc_compiler::lower::tracer::WORKGROUP;
+        let mut done = 0;
+        for (k, pass) in schedule.iter().enumerate() {
+            let field = match (passes, k.checked_sub(1)) {
+                (None, _) => [0.0; 4],
+                (Some(_), before) => {
+                    let (pw, ph) = before.map_or((0, 0), |b| {
+                        (schedule[b].view.width, schedule[b].view.height)
+                    });
+                    [pass.cone as f32, pass.budget as f32, pw as f32, ph as f32]
+                }
+            };
+            let (tx, ty) = tiles(&pass.view);
+            for j in 0..ty {
+                for i in 0..tx {
+                    let bytes = pass.view.uniform(i * TILE, j * TILE, field);
+                    self.queue.write_buffer(&uniform, 0, &bytes);
+                    let mut enc = device.create_command_encoder(&Default::default());
+                    {
+                        let mut cp = enc.begin_compute_pass(&Default::default());
+                        cp.set_pipeline(&pipeline);
+                        cp.set_bind_group(0, &binds[k % binds.len()], &[]);
+                        cp.dispatch_workgroups(groups, groups, 1);
+                    }
+                    self.queue.submit([enc.finish()]);
+                    self.wait()?;
+                    done += 1;
+                    progress(done, total);
+                }
             }
         }
         if let Some(e) = pollster::block_on(memory.pop()) {

@@ -5,7 +5,8 @@ use crate::emit_cmd::write_whole;
 use sdfc::gpu::{BackendChoice, Gpu};
 use sdfc::images::{self, Channel};
 use sdfc_compiler::emit;
-use sdfc_compiler::lower::{Entry, tracer::Options};
+use sdfc_compiler::lower::Entry;
+use sdfc_compiler::passes;
 use sdfc_compiler::view::View;
 use std::io::IsTerminal;
 use std::path::Path;
@@ -76,14 +77,23 @@ fn render(args: &RenderArgs) -> Result<(), String> {
     let Some((_, _, mut scene)) = load_scene(args.file) else {
         return Err(String::new());
     };
-    scene.trace = args.tracer.apply(scene.trace)?;
-    let options = Options::from_scene(&scene);
+    let options = args.tracer.settle(&mut scene)?;
     let (module, _) = emit::module(&scene, Entry::Compute, &options)
         .map_err(|e| format!("internal compiler error: {}", e.0))?;
     let gpu = Gpu::new(args.backend)?;
     let view = View::new(&scene.camera, w * s, h * s);
+    let plan = options.passes.then(|| {
+        passes::plan(
+            &scene,
+            w * s,
+            h * s,
+            scene.trace.steps,
+            args.tracer.passes as usize,
+        )
+        .unwrap_or_default()
+    });
     let bar = progress_bar();
-    let frame = gpu.render(&module, &view, |done, total| {
+    let frame = gpu.render(&module, &view, plan.as_deref(), |done, total| {
         if let Some(b) = &bar {
             b.set_length(total as u64);
             b.set_position(done as u64);

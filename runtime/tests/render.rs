@@ -24,7 +24,7 @@ fn scene(path: &PathBuf) -> Scene {
 fn render(gpu: &Gpu, scene: &Scene, view: &View) -> Frame {
     let (module, _) = emit::module(scene, Entry::Compute, &Options::from_scene(scene))
         .unwrap_or_else(|e| panic!("{}", e.0));
-    gpu.render(&module, view, |_, _| {}).unwrap()
+    gpu.render(&module, view, None, |_, _| {}).unwrap()
 }
 
 fn gpu(choice: BackendChoice) -> Gpu {

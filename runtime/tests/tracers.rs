@@ -1,15 +1,12 @@
 //! Every tracing variant on the CPU reference and on the GPU: the grazing-plane table, GPU
 //! against CPU on the same rays, and safety against a 10 000-step ground truth.
 
-use sdfc::gpu::{BackendChoice, Gpu};
 use sdfc_compiler::check::tracer::TRACE_METHODS;
-use sdfc_compiler::emit;
-use sdfc_compiler::lower::{Entry, tracer::Options};
-use sdfc_compiler::scene::{Epsilon, Method, Scene, Trace};
+use sdfc_compiler::scene::{Epsilon, Method, Scene};
 use sdfc_compiler::trace::{self, Threshold};
 use sdfc_compiler::view::View;
 mod common;
-use common::examples;
+use common::{compile, examples, gpu, gpu_trace, with_method};
 
 /// The angles of the grazing-plane table, in degrees.
 const ANGLES: [f64; 4] = [45.0, 10.0, 1.0, 0.1];
@@ -24,16 +21,6 @@ const GRAZING: [(&str, [u32; 4]); 5] = [
     ("hybrid", [13, 47, 489, 4910]),
     ("auto", [8, 30, 268, 2642]),
 ];
-
-fn compile(source: &str) -> Scene {
-    let checked = sdfc_compiler::check::compile(source);
-    checked.scene.unwrap_or_else(|| {
-        panic!(
-            "{}",
-            sdfc_compiler::diag::render(&checked.diagnostics, "test", source)
-        )
-    })
-}
 
 fn grazing_scene(method: &str) -> Scene {
     let omega = match method {
@@ -61,6 +48,7 @@ fn closed_form(degrees: f64) -> u32 {
 fn cpu_grazing(method: &str) -> [u32; 4] {
     let scene = grazing_scene(method);
     let eps = Threshold {
+        offset: 0.0,
         epsilon: scene.trace.epsilon,
         pixel: 0.0,
         floor: 0.0,
@@ -71,17 +59,6 @@ fn cpu_grazing(method: &str) -> [u32; 4] {
         assert!(r.hit, "{method} at {deg}° did not hit: {r:?}");
         r.steps
     })
-}
-
-fn gpu() -> Gpu {
-    Gpu::new(BackendChoice::Vulkan)
-        .unwrap_or_else(|e| panic!("{e}\n(CI installs Mesa's drivers in .ci/run)"))
-}
-
-fn gpu_trace(gpu: &Gpu, scene: &Scene, rays: &[([f32; 3], [f32; 3], f32)]) -> Vec<(f32, u32, u32)> {
-    let (module, _) = emit::module(scene, Entry::Rays, &Options::from_scene(scene))
-        .unwrap_or_else(|e| panic!("{}", e.0));
-    gpu.trace_rays(&module, rays).unwrap()
 }
 
 #[test]
@@ -131,11 +108,6 @@ fn grazing_plane_table() {
         }
     }
     println!("evaluations until f < 1e-3 (CPU / GPU):\n{table}");
-}
-
-fn with_method(scene: &Scene, method: Method) -> Trace {
-    let name = TRACE_METHODS.iter().find(|m| m.1 == method).unwrap().0;
-    sdfc_compiler::check::tracer::with_overrides(scene.trace, Some(name), &[]).unwrap()
 }
 
 /// Camera rays of a coarse grid over the image.
@@ -215,9 +187,20 @@ fn no_variant_misses_what_the_ground_truth_hits() {
         let mut fine_trace = truth_trace;
         fine_trace.epsilon =
             Epsilon::Absolute(1e-7 * (base.camera.eye - base.camera.target).length());
+        // The ground truth traces every ray from the camera, whatever bound the scene declares.
+        let mut unbounded = base.clone();
+        unbounded.bound = None;
         let truth: Vec<_> = pts
             .iter()
-            .map(|&(x, y)| trace::ray(&base, &truth_trace, view.eye, view.ray(x, y), view.pixel))
+            .map(|&(x, y)| {
+                trace::ray(
+                    &unbounded,
+                    &truth_trace,
+                    view.eye,
+                    view.ray(x, y),
+                    view.pixel,
+                )
+            })
             .collect();
         for &(name, method, _) in TRACE_METHODS {
             let mut scene = base.clone();
@@ -229,7 +212,7 @@ fn no_variant_misses_what_the_ground_truth_hits() {
                 if r.exhausted {
                     exhausted += 1;
                 } else if truth[i].hit && !r.hit {
-                    let fine = trace::ray(&base, &fine_trace, view.eye, rd, view.pixel);
+                    let fine = trace::ray(&unbounded, &fine_trace, view.eye, rd, view.pixel);
                     if fine.hit || fine.exhausted {
                         missed += 1;
                     } else {

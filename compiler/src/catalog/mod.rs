@@ -80,6 +80,8 @@ pub enum Ty {
     PositiveOr(&'static [&'static str]),
     /// A number in [lo, hi).
     Range(f64, f64),
+    /// One of the listed words.
+    Word(&'static [&'static str]),
 }
 
 impl Ty {
@@ -106,6 +108,10 @@ impl Ty {
                 format!("a number > 0 or {}", w.join(" or "))
             }
             Ty::Range(lo, hi) => format!("a number in [{lo}, {hi})"),
+            Ty::Word(words) => {
+                let w: Vec<String> = words.iter().map(|w| format!("`{w}`")).collect();
+                format!("one of {}", w.join(", "))
+            }
         }
     }
 

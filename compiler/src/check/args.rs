@@ -36,14 +36,14 @@ pub fn show_val(v: Val, ty: Ty) -> String {
         (Val::Num(x), Ty::Angle) => format!("{}deg", (x.to_degrees() * 1e6).round() / 1e6),
         (Val::Num(x), _) => format!("{x}"),
         (Val::Vec3(v), _) => format!("({}, {}, {})", v.x, v.y, v.z),
-        (Val::Word(i), Ty::PositiveOr(words)) => words[i].to_string(),
+        (Val::Word(i), Ty::PositiveOr(words) | Ty::Word(words)) => words[i].to_string(),
         (Val::Word(_), _) => "…".into(),
     }
 }
 
 /// Whether `what` names a settings block rather than a call.
 fn is_settings(what: &str) -> bool {
-    ["camera", "light", "trace", "material"]
+    ["camera", "light", "trace", "material", "bound"]
         .iter()
         .any(|k| what.split(' ').next() == Some(k))
 }
@@ -178,7 +178,7 @@ impl Checker<'_> {
                         return None;
                     }
                 }
-                Ty::PositiveOr(words) => {
+                Ty::PositiveOr(words) | Ty::Word(words) => {
                     if let Some(i) = words.iter().position(|w| *w == id.name) {
                         return Some(Val::Word(i));
                     }

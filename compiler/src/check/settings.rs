@@ -4,7 +4,9 @@
 use super::Checker;
 use crate::catalog::{Param, Ty, Val, opt, req};
 use crate::diag::{Diagnostic, Span, did_you_mean};
-use crate::scene::{Camera, Light, LightKind, Material, Method, Node, NodeId, Scene, Trace};
+use crate::scene::{
+    BoundShape, Camera, Convex, Light, LightKind, Material, Method, Node, NodeId, Scene, Trace,
+};
 use crate::syntax::{Arg, Expr, Ident, Setting};
 use glam::DVec3;
 
@@ -44,6 +46,31 @@ pub const LIGHT_KINDS: &[(&str, &[Param])] = &[
     ),
 ];
 
+const CONVEX: Param = opt("convex", Ty::Word(&["no", "yes"]), Val::Word(0));
+
+/// Bound kinds (`bound sphere { .. }`, Keinert §3.5); the first is the default. `auto` is the
+/// bounding sphere the catalog's rules give the scene; `convex yes` declares the enclosed
+/// object convex, so rays starting inside it are traced backwards from the bound's far side.
+pub const BOUND_KINDS: &[(&str, &[Param])] = &[
+    ("auto", &[CONVEX]),
+    (
+        "sphere",
+        &[
+            opt("center", Ty::Vec3, v(0.0, 0.0, 0.0)),
+            req("radius", Ty::Positive),
+            CONVEX,
+        ],
+    ),
+    (
+        "box",
+        &[
+            opt("center", Ty::Vec3, v(0.0, 0.0, 0.0)),
+            req("size", Ty::Size),
+            CONVEX,
+        ],
+    ),
+];
+
 /// Settings collected while checking, with where each was first given.
 #[derive(Default)]
 pub(super) struct Settings {
@@ -51,10 +78,21 @@ pub(super) struct Settings {
     lights: Vec<Light>,
     trace: Option<(Trace, Span)>,
     background: Option<(DVec3, Span)>,
+    /// The declared bound; `None` inside for `bound auto`, resolved once the root is known.
+    bound: Option<((Option<Convex>, bool), Span)>,
 }
 
 impl Settings {
     pub(super) fn finish(self, nodes: Vec<Node>, root: NodeId, materials: Vec<Material>) -> Scene {
+        let bound = self.bound.map(|((declared, convex), _)| {
+            declared.unwrap_or_else(|| Convex {
+                shape: BoundShape::Sphere {
+                    center: nodes[root].bound.center,
+                    radius: nodes[root].bound.radius,
+                },
+                convex,
+            })
+        });
         let camera = self.camera.map(|c| c.0).unwrap_or(Camera {
             eye: DVec3::new(0.0, 1.0, -5.0),
             target: DVec3::ZERO,
@@ -82,6 +120,7 @@ impl Settings {
             trace: self
                 .trace
                 .map_or_else(super::tracer::default_trace, |t| t.0),
+            bound,
         }
     }
 }
@@ -184,7 +223,59 @@ impl Checker<'_> {
                 });
                 self.once(|s| &mut s.trace, trace, span, "trace");
             }
+            "bound" => self.bound(kind, &args, span),
             _ => self.material(kind, &args, span),
+        }
+    }
+
+    /// `bound sphere { center (0, 1, 0) radius 2 }`, `bound box { size 4 }`, `bound auto {}`.
+    fn bound(&mut self, kind: Option<&Ident>, args: &[Arg], span: Span) {
+        let kinds = BOUND_KINDS.iter().map(|(n, p)| (*n, *p));
+        let Some((name, params)) = self.kind_of(kinds, kind, "bound") else {
+            return;
+        };
+        let Some(a) = self.bind(&format!("bound {name}"), params, args, span) else {
+            return;
+        };
+        let convex = matches!(a[a.len() - 1], Val::Word(1));
+        let shape = match name {
+            "sphere" => Some(BoundShape::Sphere {
+                center: a[0].vec(),
+                radius: a[1].num(),
+            }),
+            "box" => {
+                let size = a[1].vec();
+                if size.min_element() <= 0.0 {
+                    self.diags.push(
+                        Diagnostic::error(
+                            setting_span_of(args, "size", span),
+                            "a bounding box needs every edge longer than 0",
+                        )
+                        .label("an edge of length 0 encloses nothing"),
+                    );
+                    return;
+                }
+                Some(BoundShape::Box {
+                    center: a[0].vec(),
+                    half: size / 2.0,
+                })
+            }
+            _ => None,
+        };
+        let declared = shape.map(|shape| Convex { shape, convex });
+        self.once(|s| &mut s.bound, (declared, convex), span, "bound");
+    }
+
+    /// Checks that `bound auto` has a finite sphere to use.
+    pub(super) fn check_bound(&mut self, root: NodeId) {
+        if let Some(((None, _), span)) = self.settings.bound
+            && !self.nodes[root].bound.radius.is_finite()
+        {
+            self.diags.push(
+                Diagnostic::error(span, "`bound auto` needs a bounded scene")
+                    .label("the scene reaches infinity")
+                    .note("an infinite surface (a plane, an infinite repetition) has no bounding sphere; give `bound sphere { .. }` or `bound box { .. }` to enclose the part to trace"),
+            );
         }
     }
 
@@ -281,6 +372,17 @@ impl Checker<'_> {
             s @ None => *s = Some((value, span)),
         }
     }
+}
+
+fn setting_span_of(args: &[Arg], key: &str, default: Span) -> Span {
+    args.iter()
+        .find(|a| a.name.as_ref().is_some_and(|n| n.name == key))
+        .map_or(default, |a| {
+            a.name
+                .as_ref()
+                .map_or(a.value.span, |n| n.span)
+                .to(a.value.span)
+        })
 }
 
 fn setting_span(settings: &[Setting], key: &str, default: Span) -> Span {

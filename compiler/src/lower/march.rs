@@ -1,11 +1,13 @@
-//! The tracing variants lowered to IR: `trace_<method>(ro, rd[, pixel])`, one per module, step
-//! for step the same as the CPU reference in `crate::trace` (whose doc comments cite the seeds).
+//! The frame every tracing variant is lowered into: `trace_<method>(ro, rd[, pixel][, start,
+//! end][, budget, cone])` with its result type, ε(t), counting and stopping; the variants' bodies
+//! live in `variants.rs`, step for step the same as the CPU reference in `crate::trace`.
 
 use super::builder::{Ex, FnBuilder, ModuleBuilder};
 use super::tracer::struct_ty;
+use super::variants;
 use crate::scene::{Epsilon, Method, Trace};
-use crate::trace::{AUTO_MAX_OMEGA, ENHANCED_GUARD, TOUCH};
-use naga::{BinaryOperator as B, Function, Handle, Type};
+use crate::trace::TOUCH;
+use naga::{Function, Handle, Type};
 
 /// Bit of `TraceResult.flags`: the ray hit (or, for `relaxed`, its candidate is taken).
 pub const HIT: u32 = 1;
@@ -41,41 +43,100 @@ pub fn function_name(method: Method) -> String {
     format!("trace_{}", crate::check::tracer::method_entry(method).0)
 }
 
-/// What every variant's body uses: the ray, the field, the result variables.
+/// Which inputs `trace_<method>` takes besides `ro` and `rd`, each only when something needs it
+/// (mirrors `crate::trace::Segment`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Inputs {
+    /// `pixel`: the footprint of a pixel per unit distance, for the pixel ε.
+    pub pixel: bool,
+    /// `start, end`: the part of the ray to search (a convex bound, a multi-resolution pass).
+    pub segment: bool,
+    /// `budget, cone`: the step budget and the cone slope α of a multi-resolution pass
+    /// (Bálint §4: the field is traced as F = (f − α·t)/(1 + α)).
+    pub pass: bool,
+}
+
+impl Inputs {
+    /// The arguments in order, with their types.
+    pub fn arguments(self, mb: &mut ModuleBuilder) -> Vec<(&'static str, Handle<Type>)> {
+        let (v3, f, u) = (mb.vec3(), mb.f32(), mb.u32());
+        let mut args = vec![("ro", v3), ("rd", v3)];
+        if self.pixel {
+            args.push(("pixel", f));
+        }
+        if self.segment {
+            args.extend([("start", f), ("end", f)]);
+        }
+        if self.pass {
+            args.extend([("budget", u), ("cone", f)]);
+        }
+        args
+    }
+}
+
+/// What every variant's body uses: the ray, the field, the result variables. Inside, `t` runs
+/// from 0 at `start` (the ray's origin `ro` is moved there), so only ε, the far limit and the
+/// cone transform see the offset.
 #[derive(Clone, Copy)]
-struct Cx {
+pub(super) struct Cx {
     map: Handle<Function>,
-    ro: Ex,
-    rd: Ex,
+    /// The point where `t` = 0.
+    pub ro: Ex,
+    pub rd: Ex,
     pixel: Option<Ex>,
     floor: f64,
-    trace: Trace,
+    pub trace: Trace,
+    /// Distance of `ro` from the ray's real origin (`start`), if a segment is traced.
+    offset: Option<Ex>,
+    /// Length of the segment (`end − start`), if given.
+    length: Option<Ex>,
+    budget: Option<Ex>,
+    cone: Option<Ex>,
     /// Pointers to the result variables; `p` is the current point, advanced with `t` rather
     /// than recomputed as ro + rd·t, which keeps the coordinates near the surface exact to f32
     /// where the ray is long and grazing (the grazing-plane table at 0.1°).
-    t: Ex,
-    p: Ex,
-    steps: Ex,
-    flags: Ex,
+    pub t: Ex,
+    pub p: Ex,
+    pub steps: Ex,
+    pub flags: Ex,
 }
 
 impl Cx {
-    /// `map(ro + rd·t)`, counted as a step.
-    fn field(&self, b: &mut FnBuilder, t: Ex) -> Ex {
-        let s = b.mul(self.rd, t);
-        let p = b.add(self.ro, s);
-        self.field_at(b, p)
+    /// Distance from the real origin of the point at `t`.
+    fn absolute(&self, b: &mut FnBuilder, t: Ex) -> Ex {
+        match self.offset {
+            Some(o) => b.add(t, o),
+            None => t,
+        }
     }
 
-    /// `map(point)`, counted as a step.
-    fn field_at(&self, b: &mut FnBuilder, point: Ex) -> Ex {
+    /// `map(ro + rd·t)`, counted as a step.
+    pub fn field(&self, b: &mut FnBuilder, t: Ex) -> Ex {
+        let s = b.mul(self.rd, t);
+        let p = b.add(self.ro, s);
+        self.field_at(b, p, t)
+    }
+
+    /// `map(point)` for the point at `t`, counted as a step; in a cone pass Bálint's transform
+    /// F = (f − α·t)/(1 + α) of it.
+    pub fn field_at(&self, b: &mut FnBuilder, point: Ex, t: Ex) -> Ex {
         let d = b.call(self.map, vec![point]);
         b.increment(self.steps);
-        d
+        match self.cone {
+            Some(alpha) => {
+                let at = self.absolute(b, t);
+                let widening = b.mul(alpha, at);
+                let d = b.sub(d, widening);
+                let one = b.f(1.0);
+                let scale = b.add(one, alpha);
+                b.div(d, scale)
+            }
+            None => d,
+        }
     }
 
     /// The current point moved by `step` along the ray.
-    fn ahead(&self, b: &mut FnBuilder, step: Ex) -> Ex {
+    pub fn ahead(&self, b: &mut FnBuilder, step: Ex) -> Ex {
         let p = b.load(self.p);
         let s = b.mul(self.rd, step);
         b.add(p, s)
@@ -84,10 +145,10 @@ impl Cx {
     /// Evaluates the field `step` ahead of the current point (at t0 + step) and tests whether
     /// the unbounding spheres there and here (radius `r`) fail to overlap, with the [`TOUCH`]
     /// margin. Returns (t0 + step, the point, the field there, the test).
-    fn probe(&self, b: &mut FnBuilder, t0: Ex, r: Ex, step: Ex) -> (Ex, Ex, Ex, Ex) {
+    pub fn probe(&self, b: &mut FnBuilder, t0: Ex, r: Ex, step: Ex) -> (Ex, Ex, Ex, Ex) {
         let at = b.add(t0, step);
         let point = self.ahead(b, step);
-        let rn = self.field_at(b, point);
+        let rn = self.field_at(b, point, at);
         b.name(rn, "r_next");
         let ra = b.abs(rn);
         let reach = b.add(r, ra);
@@ -98,7 +159,7 @@ impl Cx {
     }
 
     /// `t = t0 + step; p = p + rd·step`.
-    fn advance(&self, b: &mut FnBuilder, t0: Ex, step: Ex) -> Ex {
+    pub fn advance(&self, b: &mut FnBuilder, t0: Ex, step: Ex) -> Ex {
         let nt = b.add(t0, step);
         b.store(self.t, nt);
         let np = self.ahead(b, step);
@@ -106,18 +167,27 @@ impl Cx {
         nt
     }
 
-    fn eps(&self, b: &mut FnBuilder, t: Ex) -> Ex {
-        epsilon(b, &self.trace, t, self.pixel, self.floor)
+    /// ε at the point `t`.
+    pub fn eps(&self, b: &mut FnBuilder, t: Ex) -> Ex {
+        let at = self.absolute(b, t);
+        epsilon(b, &self.trace, at, self.pixel, self.floor)
     }
 
-    fn far(&self, b: &mut FnBuilder) -> Ex {
-        b.f(self.trace.max_distance)
+    /// Where the search ends (in the variant's `t`).
+    pub fn far(&self, b: &mut FnBuilder) -> Ex {
+        match self.length {
+            Some(l) => l,
+            None => b.f(self.trace.max_distance),
+        }
     }
 
     /// `if steps >= budget { on_exhausted; flags = value; break; }`
-    fn budget(&self, b: &mut FnBuilder, value: u32, on_exhausted: impl FnOnce(&mut FnBuilder)) {
+    pub fn budget(&self, b: &mut FnBuilder, value: u32, on_exhausted: impl FnOnce(&mut FnBuilder)) {
         let n = b.load(self.steps);
-        let budget = b.u(self.trace.steps);
+        let budget = match self.budget {
+            Some(budget) => budget,
+            None => b.u(self.trace.steps),
+        };
         let out = b.ge(n, budget);
         let flags = self.flags;
         b.if_(
@@ -133,7 +203,7 @@ impl Cx {
     }
 
     /// `if condition { flags = value; break; }`
-    fn stop_if(&self, b: &mut FnBuilder, condition: Ex, flags: u32) {
+    pub fn stop_if(&self, b: &mut FnBuilder, condition: Ex, flags: u32) {
         let ptr = self.flags;
         b.if_(
             condition,
@@ -149,25 +219,42 @@ impl Cx {
     }
 }
 
-/// Adds `trace_<method>` for the settings' variant.
+/// Adds `trace_<method>` for the settings' variant, taking `inputs`.
 pub fn add_trace(
     mb: &mut ModuleBuilder,
     map: Handle<Function>,
     result_ty: Handle<Type>,
     trace: &Trace,
+    inputs: Inputs,
     floor: f64,
 ) -> Handle<Function> {
-    let v3 = mb.vec3();
     let f32t = mb.f32();
     let u32t = mb.u32();
-    let pixel_mode = matches!(trace.epsilon, Epsilon::Pixel);
-    let mut args = vec![("ro", v3), ("rd", v3)];
-    if pixel_mode {
-        args.push(("pixel", f32t));
-    }
+    let v3 = mb.vec3();
+    let args = inputs.arguments(mb);
     let mut b = FnBuilder::new(mb, &function_name(trace.method), &args, Some(result_ty));
-    let (ro, rd) = (b.arg(0), b.arg(1));
-    let pixel = pixel_mode.then(|| b.arg(2));
+    let mut next = 2;
+    let mut arg = |b: &mut FnBuilder, on: bool| {
+        on.then(|| {
+            next += 1;
+            b.arg(next - 1)
+        })
+    };
+    let (origin, rd) = (b.arg(0), b.arg(1));
+    let pixel = arg(&mut b, inputs.pixel);
+    let start = arg(&mut b, inputs.segment);
+    let end = arg(&mut b, inputs.segment);
+    let budget = arg(&mut b, inputs.pass);
+    let cone = arg(&mut b, inputs.pass);
+    let (ro, length) = match (start, end) {
+        (Some(s), Some(e)) => {
+            let along = b.mul(rd, s);
+            let ro = b.add(origin, along);
+            b.name(ro, "from");
+            (ro, Some(b.sub(e, s)))
+        }
+        _ => (origin, None),
+    };
     let zero = b.f(0.0);
     let t = b.local("t", f32t, Some(zero));
     let zero_u = b.u(0);
@@ -181,325 +268,21 @@ pub fn add_trace(
         pixel,
         floor,
         trace: *trace,
+        offset: start,
+        length,
+        budget,
+        cone,
         t,
         p,
         steps,
         flags,
     };
-    match trace.method {
-        Method::Basic => basic(&mut b, &cx),
-        Method::Relaxed => relaxed(&mut b, &cx),
-        Method::Enhanced => enhanced(&mut b, &cx),
-        Method::Hybrid => hybrid(&mut b, &cx),
-        Method::Auto => auto(&mut b, &cx),
-    }
-    if trace.discontinuity > 0 {
-        discontinuity(&mut b, &cx);
-    }
-    let (tv, s, h) = (b.load(t), b.load(steps), b.load(flags));
+    variants::body(&mut b, &cx);
+    let tv = b.load(t);
+    let tv = cx.absolute(&mut b, tv);
+    let (s, h) = (b.load(steps), b.load(flags));
     let r = b.compose(result_ty, vec![tv, s, h]);
     b.ret(Some(r));
     let f = b.finish();
     mb.add_function(f)
-}
-
-/// A local f32 variable.
-fn var(b: &mut FnBuilder, name: &str, init: f64) -> Ex {
-    let ty = b.m.f32();
-    let v = b.f(init);
-    b.local(name, ty, Some(v))
-}
-
-/// Hart; Bálint Alg. 1; Munini Fig. 9 (see `crate::trace::basic`).
-fn basic(b: &mut FnBuilder, cx: &Cx) {
-    b.loop_(|b| {
-        cx.budget(b, EXHAUSTED, |_| {});
-        let t = b.load(cx.t);
-        let p = b.load(cx.p);
-        let d = cx.field_at(b, p);
-        b.name(d, "d");
-        let e = cx.eps(b, t);
-        let close = b.lt(d, e);
-        cx.stop_if(b, close, HIT);
-        let nt = cx.advance(b, t, d);
-        let far = cx.far(b);
-        let gone = b.gt(nt, far);
-        cx.stop_if(b, gone, 0);
-    });
-}
-
-/// Keinert §3.1–3.2, Listing 2 (see `crate::trace::relaxed`).
-fn relaxed(b: &mut FnBuilder, cx: &Cx) {
-    let omega = var(b, "omega", cx.trace.omega);
-    let step = var(b, "step", 0.0);
-    let prev_radius = var(b, "prev_radius", 0.0);
-    let candidate_t = var(b, "candidate_t", 0.0);
-    // −1: no candidate yet (the first evaluation always makes one, so a ray whose budget runs
-    // out has a candidate).
-    let candidate_error = var(b, "candidate_error", -1.0);
-    b.loop_(|b| {
-        cx.budget(b, EXHAUSTED | HIT, |b| {
-            // The best candidate is the hit (Keinert §3.2).
-            let ct = b.load(candidate_t);
-            b.store(cx.t, ct);
-        });
-        let t = b.load(cx.t);
-        let p = b.load(cx.p);
-        let r = cx.field_at(b, p);
-        b.name(r, "r");
-        let radius = b.abs(r);
-        let (om, st, pr) = (b.load(omega), b.load(step), b.load(prev_radius));
-        let one = b.f(1.0);
-        let relaxing = b.gt(om, one);
-        let reach = b.add(radius, pr);
-        let margin = b.f(1.0 + TOUCH);
-        let reach = b.mul(reach, margin);
-        let apart = b.lt(reach, st);
-        let fail = b.bin(B::LogicalAnd, relaxing, apart);
-        b.name(fail, "fail");
-        let back = b.mul(om, st);
-        let back = b.sub(st, back);
-        let ahead = b.mul(r, om);
-        let new_step = b.select(fail, back, ahead);
-        b.store(step, new_step);
-        let new_omega = b.select(fail, one, om);
-        b.store(omega, new_omega);
-        b.store(prev_radius, radius);
-        let ok = b.expr(naga::Expression::Unary {
-            op: naga::UnaryOperator::LogicalNot,
-            expr: fail,
-        });
-        b.if_(
-            ok,
-            |b| {
-                let e = cx.eps(b, t);
-                let error = b.div(radius, e);
-                let ce = b.load(candidate_error);
-                let smaller = b.lt(error, ce);
-                let zero = b.f(0.0);
-                let none = b.lt(ce, zero);
-                let better = b.bin(B::LogicalOr, smaller, none);
-                b.if_(
-                    better,
-                    |b| {
-                        b.store(candidate_t, t);
-                        b.store(candidate_error, error);
-                    },
-                    |_| {},
-                );
-                let close = b.lt(r, e);
-                cx.stop_if(b, close, HIT);
-                let far = cx.far(b);
-                let gone = b.gt(t, far);
-                cx.stop_if(b, gone, 0);
-            },
-            |_| {},
-        );
-        cx.advance(b, t, new_step);
-    });
-}
-
-/// Bálint Alg. 3 (see `crate::trace::enhanced`).
-fn enhanced(b: &mut FnBuilder, cx: &Cx) {
-    let d = var(b, "d", 0.0);
-    let r_prev = var(b, "r_prev", 0.0);
-    let r = var(b, "r", 0.0);
-    b.loop_(|b| {
-        cx.budget(b, EXHAUSTED, |_| {});
-        let (t, dv, rp, rv) = (b.load(cx.t), b.load(d), b.load(r_prev), b.load(r));
-        let zero = b.f(0.0);
-        let plain = b.bin(B::Equal, dv, zero);
-        // r + ω·r·(d − r₋ + r) / max(d + r₋ − r, guard·d)
-        let den = b.add(dv, rp);
-        let den = b.sub(den, rv);
-        let g = b.f(ENHANCED_GUARD);
-        let guard = b.mul(g, dv);
-        let den = b.max(den, guard);
-        let one = b.f(1.0);
-        let den = b.select(plain, one, den);
-        let num = b.sub(dv, rp);
-        let num = b.add(num, rv);
-        let w = b.f(cx.trace.omega);
-        let wr = b.mul(w, rv);
-        let q = b.div(num, den);
-        let extra = b.mul(wr, q);
-        let inferred = b.add(rv, extra);
-        let dn = b.select(plain, rv, inferred);
-        b.name(dn, "step");
-        let (at, point, rn, fail) = cx.probe(b, t, rv, dn);
-        b.if_(
-            fail,
-            |b| {
-                let zero = b.f(0.0);
-                b.store(d, zero);
-            },
-            |b| {
-                b.store(cx.t, at);
-                b.store(cx.p, point);
-                b.store(d, dn);
-                b.store(r_prev, rv);
-                b.store(r, rn);
-                let e = cx.eps(b, at);
-                let close = b.lt(rn, e);
-                cx.stop_if(b, close, HIT);
-                let far = cx.far(b);
-                let gone = b.gt(at, far);
-                cx.stop_if(b, gone, 0);
-            },
-        );
-    });
-}
-
-/// Bán & Valasek 2023 (see `crate::trace::auto`).
-fn auto(b: &mut FnBuilder, cx: &Cx) {
-    let r0 = cx.field_at(b, cx.ro);
-    let f32t = b.m.f32();
-    let r = b.local("dist", f32t, Some(r0));
-    let z = b.local("stride", f32t, Some(r0));
-    let m = var(b, "m", -1.0);
-    b.loop_(|b| {
-        let (t, rv) = (b.load(cx.t), b.load(r));
-        let e = cx.eps(b, t);
-        let close = b.lt(rv, e);
-        cx.stop_if(b, close, HIT);
-        let far = cx.far(b);
-        let gone = b.gt(t, far);
-        cx.stop_if(b, gone, 0);
-        cx.budget(b, EXHAUSTED, |_| {});
-        let (zv, mv) = (b.load(z), b.load(m));
-        let (tn, point, rn, back) = cx.probe(b, t, rv, zv);
-        b.name(back, "back");
-        let rise = b.sub(rn, rv);
-        let slope = b.div(rise, zv);
-        let diff = b.sub(slope, mv);
-        let beta = b.f(cx.trace.beta);
-        let moved = b.mul(beta, diff);
-        let moved = b.add(mv, moved);
-        let reset = b.f(-1.0);
-        let m2 = b.select(back, reset, moved);
-        b.store(m, m2);
-        let t2 = b.select(back, t, tn);
-        let r2 = b.select(back, rv, rn);
-        b.store(cx.t, t2);
-        let p = b.load(cx.p);
-        let p2 = b.select(back, p, point);
-        b.store(cx.p, p2);
-        b.store(r, r2);
-        let one = b.f(1.0);
-        let gap = b.sub(one, m2);
-        let least = b.f(2.0 / AUTO_MAX_OMEGA);
-        let gap = b.max(gap, least);
-        let two = b.f(2.0);
-        let omega = b.div(two, gap);
-        let omega = b.max(omega, one);
-        let step = b.mul(r2, omega);
-        let e2 = cx.eps(b, t2);
-        let step = b.max(step, e2);
-        b.store(z, step);
-    });
-}
-
-/// Liktor §5.4 (see `crate::trace::hybrid`).
-fn hybrid(b: &mut FnBuilder, cx: &Cx) {
-    let t_out = var(b, "t_out", 0.0);
-    let f_out = var(b, "f_out", 0.0);
-    b.loop_(|b| {
-        cx.budget(b, EXHAUSTED, |_| {});
-        let t = b.load(cx.t);
-        let p = b.load(cx.p);
-        let d = cx.field_at(b, p);
-        b.name(d, "d");
-        let zero = b.f(0.0);
-        let inside = b.lt(d, zero);
-        let n = b.load(cx.steps);
-        let one_u = b.u(1);
-        let not_first = b.gt(n, one_u);
-        let crossed = b.bin(B::LogicalAnd, inside, not_first);
-        b.if_(
-            crossed,
-            |b| {
-                let (a0, fa0) = (b.load(t_out), b.load(f_out));
-                let f32t = b.m.f32();
-                let a = b.local("lo", f32t, Some(a0));
-                let fa = b.local("f_lo", f32t, Some(fa0));
-                let c = b.local("hi", f32t, Some(t));
-                let fc = b.local("f_hi", f32t, Some(d));
-                if cx.trace.refine > 0 {
-                    let limit = b.u(cx.trace.refine);
-                    b.repeat("k", limit, |b| {
-                        let tm = falsi(b, a, fa, c, fc);
-                        let fm = cx.field(b, tm);
-                        let outside = b.gt(fm, zero);
-                        b.if_(
-                            outside,
-                            |b| {
-                                b.store(a, tm);
-                                b.store(fa, fm);
-                            },
-                            |b| {
-                                b.store(c, tm);
-                                b.store(fc, fm);
-                            },
-                        );
-                    });
-                }
-                let root = falsi(b, a, fa, c, fc);
-                b.store(cx.t, root);
-                let hit = b.u(HIT);
-                b.store(cx.flags, hit);
-                b.brk();
-            },
-            |_| {},
-        );
-        let e = cx.eps(b, t);
-        let close = b.lt(d, e);
-        cx.stop_if(b, close, HIT);
-        b.store(t_out, t);
-        b.store(f_out, d);
-        let lin = b.f(cx.trace.linear);
-        let lin = b.mul(lin, e);
-        let far = cx.far(b);
-        let gone = b.ge(t, far);
-        cx.stop_if(b, gone, 0);
-        let step = b.max(d, lin);
-        let left = b.sub(far, t);
-        let step = b.min(step, left);
-        cx.advance(b, t, step);
-    });
-}
-
-/// The regula falsi point a + (b − a)·f(a)/(f(a) − f(b)) of the bracket in the variables.
-fn falsi(b: &mut FnBuilder, a: Ex, fa: Ex, c: Ex, fc: Ex) -> Ex {
-    let (av, fav, cv, fcv) = (b.load(a), b.load(fa), b.load(c), b.load(fc));
-    let width = b.sub(cv, av);
-    let drop = b.sub(fav, fcv);
-    let ratio = b.div(fav, drop);
-    let off = b.mul(width, ratio);
-    b.add(av, off)
-}
-
-/// Keinert §3.4, Eq. 3 after a hit: `t ← max(t + f(t) − ε(t), 0)`, a fixed number of times.
-fn discontinuity(b: &mut FnBuilder, cx: &Cx) {
-    let fl = b.load(cx.flags);
-    let bit = b.u(HIT);
-    let masked = b.bin(B::And, fl, bit);
-    let zero_u = b.u(0);
-    let hit = b.bin(B::NotEqual, masked, zero_u);
-    b.if_(
-        hit,
-        |b| {
-            let limit = b.u(cx.trace.discontinuity);
-            b.repeat("i", limit, |b| {
-                let t = b.load(cx.t);
-                let d = cx.field(b, t);
-                let e = cx.eps(b, t);
-                let nt = b.add(t, d);
-                let nt = b.sub(nt, e);
-                let zero = b.f(0.0);
-                let nt = b.max(nt, zero);
-                b.store(cx.t, nt);
-            });
-        },
-        |_| {},
-    );
 }

@@ -3,11 +3,15 @@
 //! (only when the scene has materials) `map_material`; the tracer and entry points come from
 //! `tracer.rs`.
 
+mod bound;
 pub mod builder;
+mod entry;
 pub mod march;
 pub mod ops;
 pub mod prims;
+mod shading;
 pub mod tracer;
+mod variants;
 
 use crate::catalog::{MatRule, Ty};
 use crate::scene::{Field, NodeId, NodeKind, Scene};

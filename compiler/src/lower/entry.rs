@@ -1,0 +1,501 @@
+//! The entry points: the compute entry the runtime uses (one pixel per invocation, with
+//! multi-resolution passes if asked), the full-screen fragment entry, and the ray-list entry of
+//! the tests; the view uniform and the pinhole camera they share.
+
+use super::builder::{Ex, FnBuilder, ModuleBuilder};
+use super::march::{HIT, epsilon};
+use super::tracer::{Options, Pass, RAYS_WORKGROUP, Tracer, VIEW_FIELDS, WORKGROUP, struct_ty};
+use crate::scene::{Epsilon, Scene};
+use naga::{
+    AddressSpace, Binding, BuiltIn, EntryPoint, Expression, Function, Handle, MathFunction as M,
+    ResourceBinding, ScalarKind, ShaderStage, Span, StorageAccess, Type, TypeInner, VectorSize,
+};
+
+/// The functions and globals the camera entries share.
+pub(super) struct Fns {
+    tracer: Tracer,
+    normal: Handle<Function>,
+    shade: Handle<Function>,
+    material: Option<Handle<Function>>,
+    ray: Handle<Function>,
+    view: Handle<naga::GlobalVariable>,
+    passes: bool,
+}
+
+impl Fns {
+    /// Adds the view uniform and `camera_ray`.
+    pub fn new(
+        mb: &mut ModuleBuilder,
+        tracer: Tracer,
+        normal: Handle<Function>,
+        shade: Handle<Function>,
+        material: Option<Handle<Function>>,
+        passes: bool,
+    ) -> Fns {
+        let view = add_view(mb, passes);
+        let ray = add_camera_ray(mb, view);
+        Fns {
+            tracer,
+            normal,
+            shade,
+            material,
+            ray,
+            view,
+            passes,
+        }
+    }
+}
+
+/// The `View` uniform at group 0, binding 0 (with the `pass` field only for passes).
+fn add_view(mb: &mut ModuleBuilder, passes: bool) -> Handle<naga::GlobalVariable> {
+    let v4 = mb.vec(VectorSize::Quad);
+    let u4 = mb.uvec(VectorSize::Quad);
+    let fields = if passes { 7 } else { 6 };
+    let members: Vec<(&str, Handle<Type>, u32)> = VIEW_FIELDS[..fields]
+        .iter()
+        .enumerate()
+        .map(|(i, n)| (*n, if *n == "offset" { u4 } else { v4 }, 16 * i as u32))
+        .collect();
+    let ty = struct_ty(mb, "View", &members, 16 * fields as u32);
+    global(mb, "view", ty, AddressSpace::Uniform, 0)
+}
+
+fn global(
+    mb: &mut ModuleBuilder,
+    name: &str,
+    ty: Handle<Type>,
+    space: AddressSpace,
+    binding: u32,
+) -> Handle<naga::GlobalVariable> {
+    mb.module.global_variables.append(
+        naga::GlobalVariable {
+            name: Some(name.to_string()),
+            space,
+            binding: Some(ResourceBinding { group: 0, binding }),
+            ty,
+            init: None,
+            memory_decorations: naga::MemoryDecorations::empty(),
+        },
+        Span::UNDEFINED,
+    )
+}
+
+/// Loads member `i` of the view uniform.
+fn view_field(b: &mut FnBuilder, view: Handle<naga::GlobalVariable>, i: u32) -> Ex {
+    let g = b.expr(Expression::GlobalVariable(view));
+    let ptr = b.at(g, i);
+    b.load(ptr)
+}
+
+/// `camera_ray(pixel)`: the pinhole camera (Munini §2.1), pixel coordinates with y down.
+fn add_camera_ray(mb: &mut ModuleBuilder, view: Handle<naga::GlobalVariable>) -> Handle<Function> {
+    let v2 = mb.vec(VectorSize::Bi);
+    let v3 = mb.vec3();
+    let mut b = FnBuilder::new(mb, "camera_ray", &[("pixel", v2)], Some(v3));
+    let pixel = b.arg(0);
+    let [right, up, forward, size] = [1, 2, 3, 4].map(|i| {
+        let v = view_field(&mut b, view, i);
+        b.swizzle(v, &[0, 1, 2])
+    });
+    let size = b.swizzle(size, &[0, 1]);
+    let two = b.f(2.0);
+    let one = b.f(1.0);
+    let uv = b.div(pixel, size);
+    let uv = b.mul(uv, two);
+    let [u, v] = [b.at(uv, 0), b.at(uv, 1)];
+    let u = b.sub(u, one);
+    let v = b.sub(one, v);
+    let ru = b.mul(right, u);
+    let uvv = b.mul(up, v);
+    let d = b.add(forward, ru);
+    let d = b.add(d, uvv);
+    let d = b.math(M::Normalize, &[d]);
+    b.ret(Some(d));
+    let f = b.finish();
+    mb.add_function(f)
+}
+
+/// The ray through `pixel` traced (in a pass if given): (origin, direction, `TraceResult`,
+/// pixel footprint).
+fn trace_pixel(b: &mut FnBuilder, fns: &Fns, pixel: Ex, pass: Option<Pass>) -> (Ex, Ex, Ex, Ex) {
+    let rd = b.call(fns.ray, vec![pixel]);
+    let eye = view_field(b, fns.view, 0);
+    let ro = b.swizzle(eye, &[0, 1, 2]);
+    let size = view_field(b, fns.view, 4);
+    let px = b.at(size, 2);
+    let result = fns.tracer.call(b, ro, rd, px, pass);
+    b.name(result, "traced");
+    (ro, rd, result, px)
+}
+
+/// The shaded colour (or background), normal and material of a traced ray: shared by both
+/// entry points.
+struct Shaded {
+    color: Ex,
+    normal: Ex,
+    material: Ex,
+}
+
+fn shade_hit(
+    b: &mut FnBuilder,
+    scene: &Scene,
+    fns: &Fns,
+    options: &Options,
+    floor: f64,
+    (ro, rd, result, px): (Ex, Ex, Ex, Ex),
+) -> Shaded {
+    let v3 = b.m.vec3();
+    let u32t = b.m.u32();
+    let pixel_mode = matches!(options.trace.epsilon, Epsilon::Pixel);
+    let bg = b.vec3_lit(scene.background);
+    let color = b.local("color", v3, Some(bg));
+    let zero3 = b.splat3(0.0);
+    let normal = b.local("n", v3, Some(zero3));
+    let zero_u = b.u(0);
+    let material = b.local("material", u32t, Some(zero_u));
+    let is_hit = hit_bit(b, result);
+    b.if_(
+        is_hit,
+        |b| {
+            let t = b.at(result, 0);
+            let step = b.mul(rd, t);
+            let p = b.add(ro, step);
+            let h = pixel_mode.then_some(px);
+            let h = epsilon(b, &options.trace, t, h, floor);
+            let n = b.call(fns.normal, vec![p, h]);
+            b.store(normal, n);
+            let m = match fns.material {
+                Some(f) => b.call(f, vec![p]),
+                None => b.u(0),
+            };
+            b.store(material, m);
+            let c = b.call(fns.shade, vec![p, n, rd, m]);
+            b.store(color, c);
+        },
+        |_| {},
+    );
+    Shaded {
+        color: b.load(color),
+        normal: b.load(normal),
+        material: b.load(material),
+    }
+}
+
+/// The ray-list compute entry ([`Entry::Rays`]), 64 rays per workgroup.
+pub(super) fn add_rays(mb: &mut ModuleBuilder, tracer: &Tracer) {
+    let v4 = mb.vec(VectorSize::Quad);
+    let u3 = mb.uvec(VectorSize::Tri);
+    let arr = mb.ty(TypeInner::Array {
+        base: v4,
+        size: naga::ArraySize::Dynamic,
+        stride: 16,
+    });
+    let rays = global(
+        mb,
+        "rays",
+        arr,
+        AddressSpace::Storage {
+            access: StorageAccess::LOAD,
+        },
+        0,
+    );
+    let hits = global(
+        mb,
+        "hits",
+        arr,
+        AddressSpace::Storage {
+            access: StorageAccess::LOAD | StorageAccess::STORE,
+        },
+        1,
+    );
+    let mut b = FnBuilder::new(mb, "main", &[("gid", u3)], None);
+    b.func.arguments[0].binding = Some(Binding::BuiltIn(BuiltIn::GlobalInvocationId));
+    let gid = b.arg(0);
+    let i = b.at(gid, 0);
+    let out = b.expr(Expression::GlobalVariable(hits));
+    let n = b.expr(Expression::ArrayLength(out));
+    let beyond = b.ge(i, n);
+    b.if_(beyond, |b| b.ret(None), |_| {});
+    let two = b.u(2);
+    let first = b.mul(i, two);
+    let one = b.u(1);
+    let second = b.add(first, one);
+    let input = b.expr(Expression::GlobalVariable(rays));
+    let [o, d] = [first, second].map(|index| {
+        let ptr = b.expr(Expression::Access { base: input, index });
+        b.load(ptr)
+    });
+    let ro = b.swizzle(o, &[0, 1, 2]);
+    let rd = b.swizzle(d, &[0, 1, 2]);
+    let pixel = b.at(o, 3);
+    let start = b.at(d, 3);
+    let budget = b.u(tracer.steps);
+    let cone = b.f(0.0);
+    let pass = Pass {
+        start,
+        budget,
+        cone,
+    };
+    let r = tracer.call(&mut b, ro, rd, pixel, Some(pass));
+    let t = b.at(r, 0);
+    let s = b.at(r, 1);
+    let s = b.cast(s, ScalarKind::Float);
+    let fl = b.at(r, 2);
+    let fl = b.cast(fl, ScalarKind::Float);
+    let zero = b.f(0.0);
+    let v = b.compose(v4, vec![t, s, fl, zero]);
+    let ptr = b.expr(Expression::Access {
+        base: out,
+        index: i,
+    });
+    b.store(ptr, v);
+    let f = b.finish();
+    compute_main(mb, f, [RAYS_WORKGROUP, 1, 1]);
+}
+
+/// Whether a `TraceResult` has its hit bit.
+fn hit_bit(b: &mut FnBuilder, result: Ex) -> Ex {
+    let flags = b.at(result, 2);
+    let bit = b.u(HIT);
+    let masked = b.bin(naga::BinaryOperator::And, flags, bit);
+    let zero = b.u(0);
+    b.bin(naga::BinaryOperator::NotEqual, masked, zero)
+}
+
+/// `@compute @workgroup_size(8, 8)` `main`: one pixel per invocation, offset by the tile origin
+/// in `view.offset.xy`, the full image size in `view.offset.zw`; writes the outputs at
+/// bindings 1 (colour, rgba8 packed), 2 (depth t, −1 for a miss), 3 (normal), 4 (material id),
+/// 5 (steps).
+pub(super) fn add_compute(
+    mb: &mut ModuleBuilder,
+    scene: &Scene,
+    fns: &Fns,
+    options: &Options,
+    floor: f64,
+) {
+    let u3 = mb.uvec(VectorSize::Tri);
+    let (u, f, v4) = (mb.u32(), mb.f32(), mb.vec(VectorSize::Quad));
+    let outputs: Vec<Handle<naga::GlobalVariable>> = [
+        ("out_color", u),
+        ("out_depth", f),
+        ("out_normal", v4),
+        ("out_material", u),
+        ("out_steps", u),
+    ]
+    .iter()
+    .enumerate()
+    .map(|(i, &(name, base))| {
+        let stride = if base == v4 { 16 } else { 4 };
+        let ty = mb.ty(TypeInner::Array {
+            base,
+            size: naga::ArraySize::Dynamic,
+            stride,
+        });
+        global(
+            mb,
+            name,
+            ty,
+            AddressSpace::Storage {
+                access: StorageAccess::LOAD | StorageAccess::STORE,
+            },
+            i as u32 + 1,
+        )
+    })
+    .collect();
+    let hand_over = fns.passes.then(|| {
+        let v2 = mb.vec(VectorSize::Bi);
+        let ty = mb.ty(TypeInner::Array {
+            base: v2,
+            size: naga::ArraySize::Dynamic,
+            stride: 8,
+        });
+        let read = StorageAccess::LOAD;
+        let write = StorageAccess::LOAD | StorageAccess::STORE;
+        (
+            global(mb, "pass_in", ty, AddressSpace::Storage { access: read }, 6),
+            global(
+                mb,
+                "pass_out",
+                ty,
+                AddressSpace::Storage { access: write },
+                7,
+            ),
+        )
+    });
+    let mut b = FnBuilder::new(mb, "main", &[("gid", u3)], None);
+    b.func.arguments[0].binding = Some(Binding::BuiltIn(BuiltIn::GlobalInvocationId));
+    let gid = b.arg(0);
+    let offset = view_field(&mut b, fns.view, 5);
+    let gxy = b.swizzle(gid, &[0, 1]);
+    let oxy = b.swizzle(offset, &[0, 1]);
+    let pxy = b.add(gxy, oxy);
+    let (x, y) = (b.at(pxy, 0), b.at(pxy, 1));
+    let (w, h) = (b.at(offset, 2), b.at(offset, 3));
+    let ox = b.ge(x, w);
+    let oy = b.ge(y, h);
+    let outside = b.bin(naga::BinaryOperator::LogicalOr, ox, oy);
+    b.if_(outside, |b| b.ret(None), |_| {});
+    let row = b.mul(y, w);
+    let index = b.add(row, x);
+    b.name(index, "index");
+    let pf = b.cast(pxy, ScalarKind::Float);
+    let half = b.f(0.5);
+    let half2 = b.splat(half, VectorSize::Bi);
+    let pixel = b.add(pf, half2);
+    let pass = hand_over.map(|(pass_in, _)| previous_pass(&mut b, fns, pixel, pass_in));
+    let traced = trace_pixel(&mut b, fns, pixel, pass.map(|p| p.0));
+    let result = traced.2;
+    let mut steps = b.at(result, 1);
+    if let (Some((p, before)), Some((_, pass_out))) = (pass, hand_over) {
+        // Hand t and the steps so far to the next pass; a cone pass shades nothing.
+        steps = b.add(before, steps);
+        let t = b.at(result, 0);
+        let sf = b.cast(steps, ScalarKind::Float);
+        let v2 = b.m.vec(VectorSize::Bi);
+        let v = b.compose(v2, vec![t, sf]);
+        let base = b.expr(Expression::GlobalVariable(pass_out));
+        let ptr = b.expr(Expression::Access { base, index });
+        b.store(ptr, v);
+        let zero = b.f(0.0);
+        let coarse = b.gt(p.cone, zero);
+        b.if_(coarse, |b| b.ret(None), |_| {});
+    }
+    let s = shade_hit(&mut b, scene, fns, options, floor, traced);
+    let zero = b.f(0.0);
+    let one = b.f(1.0);
+    let z3 = b.splat(zero, VectorSize::Tri);
+    let o3 = b.splat(one, VectorSize::Tri);
+    let c = b.clamp(s.color, z3, o3);
+    let [r, g, bl] = b.xyz(c);
+    let v4t = b.m.vec(VectorSize::Quad);
+    let rgba = b.compose(v4t, vec![r, g, bl, one]);
+    let packed = b.math(M::Pack4x8unorm, &[rgba]);
+    let is_hit = hit_bit(&mut b, result);
+    let t = b.at(result, 0);
+    let miss = b.f(-1.0);
+    let depth = b.select(is_hit, t, miss);
+    let [nx, ny, nz] = b.xyz(s.normal);
+    let n4 = b.compose(v4t, vec![nx, ny, nz, zero]);
+    for (g, v) in outputs.iter().zip([packed, depth, n4, s.material, steps]) {
+        let base = b.expr(Expression::GlobalVariable(*g));
+        let ptr = b.expr(Expression::Access { base, index });
+        b.store(ptr, v);
+    }
+    let f = b.finish();
+    compute_main(mb, f, [WORKGROUP, WORKGROUP, 1]);
+}
+
+/// Where a pass starts the ray through `pixel`: the t the previous pass reached at the nearest
+/// of its pixels (0 in the first pass), with the budget and cone slope of the view's `pass`
+/// field; and the steps the previous passes spent there.
+fn previous_pass(
+    b: &mut FnBuilder,
+    fns: &Fns,
+    pixel: Ex,
+    pass_in: Handle<naga::GlobalVariable>,
+) -> (Pass, Ex) {
+    let pv = view_field(b, fns.view, 6);
+    let cone = b.at(pv, 0);
+    let budget = b.at(pv, 1);
+    let budget = b.cast(budget, ScalarKind::Uint);
+    let f32t = b.m.f32();
+    let u32t = b.m.u32();
+    let zero = b.f(0.0);
+    let start = b.local("start", f32t, Some(zero));
+    let zero_u = b.u(0);
+    let before = b.local("before", u32t, Some(zero_u));
+    let pw = b.at(pv, 2);
+    let earlier = b.gt(pw, zero);
+    b.if_(
+        earlier,
+        |b| {
+            let size = view_field(b, fns.view, 4);
+            let here = b.swizzle(size, &[0, 1]);
+            let there = b.swizzle(pv, &[2, 3]);
+            let q = b.mul(pixel, there);
+            let q = b.div(q, here);
+            let q = b.math(M::Floor, &[q]);
+            let one = b.f(1.0);
+            let one2 = b.splat(one, VectorSize::Bi);
+            let last = b.sub(there, one2);
+            let q = b.min(q, last);
+            let zero2 = b.splat(zero, VectorSize::Bi);
+            let q = b.max(q, zero2);
+            let q = b.cast(q, ScalarKind::Uint);
+            let width = b.cast(pw, ScalarKind::Uint);
+            let (qx, qy) = (b.at(q, 0), b.at(q, 1));
+            let row = b.mul(qy, width);
+            let j = b.add(row, qx);
+            let base = b.expr(Expression::GlobalVariable(pass_in));
+            let ptr = b.expr(Expression::Access { base, index: j });
+            let e = b.load(ptr);
+            let t = b.at(e, 0);
+            b.store(start, t);
+            let s = b.at(e, 1);
+            let s = b.cast(s, ScalarKind::Uint);
+            b.store(before, s);
+        },
+        |_| {},
+    );
+    let pass = Pass {
+        start: b.load(start),
+        budget,
+        cone,
+    };
+    (pass, b.load(before))
+}
+
+/// Adds `f` as the compute entry point `main`.
+fn compute_main(mb: &mut ModuleBuilder, function: Function, workgroup_size: [u32; 3]) {
+    mb.module.entry_points.push(EntryPoint {
+        name: "main".into(),
+        stage: ShaderStage::Compute,
+        early_depth_test: None,
+        workgroup_size,
+        workgroup_size_overrides: None,
+        function,
+        mesh_info: None,
+        task_payload: None,
+        incoming_ray_payload: None,
+    });
+}
+
+/// `@fragment` `main`: `@builtin(position)` in, `@location(0)` colour out.
+pub(super) fn add_fragment(
+    mb: &mut ModuleBuilder,
+    scene: &Scene,
+    fns: &Fns,
+    options: &Options,
+    floor: f64,
+) {
+    let v4 = mb.vec(VectorSize::Quad);
+    let mut b = FnBuilder::new(mb, "main", &[("position", v4)], Some(v4));
+    b.func.arguments[0].binding = Some(Binding::BuiltIn(BuiltIn::Position { invariant: false }));
+    b.func.result.as_mut().expect("result").binding = Some(Binding::Location {
+        location: 0,
+        interpolation: None,
+        sampling: None,
+        blend_src: None,
+        per_primitive: false,
+    });
+    let pos = b.arg(0);
+    let pixel = b.swizzle(pos, &[0, 1]);
+    let traced = trace_pixel(&mut b, fns, pixel, None);
+    let s = shade_hit(&mut b, scene, fns, options, floor, traced);
+    let [r, g, bl] = b.xyz(s.color);
+    let one = b.f(1.0);
+    let out = b.compose(v4, vec![r, g, bl, one]);
+    b.ret(Some(out));
+    let f = b.finish();
+    mb.module.entry_points.push(EntryPoint {
+        name: "main".into(),
+        stage: ShaderStage::Fragment,
+        early_depth_test: None,
+        workgroup_size: [0, 0, 0],
+        workgroup_size_overrides: None,
+        function: f,
+        mesh_info: None,
+        task_payload: None,
+        incoming_ray_payload: None,
+    });
+}

@@ -1,0 +1,101 @@
+//! Shading in IR: `normal` by central differences and `shade` with only the lights and
+//! material terms the scene has.
+
+use super::builder::{FnBuilder, ModuleBuilder};
+use super::tracer::{AMBIENT, DEFAULT_COLOR, SHININESS};
+use crate::scene::{LightKind, Scene};
+use naga::{Function, Handle, MathFunction as M};
+
+/// `normal(p, h)`: central differences of `map` (Munini §2.3); a zero gradient gives zero, not NaN.
+pub(super) fn add_normal(mb: &mut ModuleBuilder, map: Handle<Function>) -> Handle<Function> {
+    let v3 = mb.vec3();
+    let f32t = mb.f32();
+    let mut b = FnBuilder::new(mb, "normal", &[("p", v3), ("h", f32t)], Some(v3));
+    let (p, h) = (b.arg(0), b.arg(1));
+    let zero = b.f(0.0);
+    let mut comps = Vec::new();
+    for axis in 0..3 {
+        let mut e = [zero; 3];
+        e[axis] = h;
+        let off = b.compose_vec3(e);
+        let hi = b.add(p, off);
+        let lo = b.sub(p, off);
+        let a = b.call(map, vec![hi]);
+        let c = b.call(map, vec![lo]);
+        comps.push(b.sub(a, c));
+    }
+    let g = b.compose_vec3([comps[0], comps[1], comps[2]]);
+    let l = b.length(g);
+    let one = b.f(1.0);
+    let inv = b.div(one, l);
+    let n = b.mul(g, inv);
+    let zv = b.splat3(0.0);
+    let ok = b.gt(l, zero);
+    let n = b.select(ok, n, zv);
+    b.ret(Some(n));
+    let f = b.finish();
+    mb.add_function(f)
+}
+
+/// `shade(p, n, rd, material)`: Lambert with an ambient term (Munini §2.3), a Blinn–Phong
+/// highlight only if some material is specular, the scene's lights folded in as constants.
+pub(super) fn add_shade(mb: &mut ModuleBuilder, scene: &Scene) -> Handle<Function> {
+    let v3 = mb.vec3();
+    let u32t = mb.u32();
+    let mut b = FnBuilder::new(
+        mb,
+        "shade",
+        &[("p", v3), ("n", v3), ("rd", v3), ("material", u32t)],
+        Some(v3),
+    );
+    let (p, n, rd, mat) = (b.arg(0), b.arg(1), b.arg(2), b.arg(3));
+    let mut base = b.vec3_lit(DEFAULT_COLOR);
+    let mut spec = None;
+    for (i, m) in scene.materials.iter().enumerate() {
+        let id = b.u(i as u32 + 1);
+        let is = b.bin(naga::BinaryOperator::Equal, mat, id);
+        let c = b.vec3_lit(m.color);
+        base = b.select(is, c, base);
+        if m.specular > 0.0 || spec.is_some() {
+            let prev = match spec {
+                Some(s) => s,
+                None => b.f(0.0),
+            };
+            let s = b.f(m.specular);
+            spec = Some(b.select(is, s, prev));
+        }
+    }
+    let amb = b.f(AMBIENT);
+    let mut color = b.mul(base, amb);
+    for light in &scene.lights {
+        let l = match light.kind {
+            LightKind::Directional(d) => b.vec3_lit(d.normalize()),
+            LightKind::Point(pos) => {
+                let pv = b.vec3_lit(pos);
+                let d = b.sub(pv, p);
+                b.math(M::Normalize, &[d])
+            }
+        };
+        let ndl = b.dot(n, l);
+        let zero = b.f(0.0);
+        let diff = b.max(ndl, zero);
+        let lc = b.vec3_lit(light.color * light.intensity);
+        let lit = b.mul(lc, diff);
+        let lit = b.mul(base, lit);
+        color = b.add(color, lit);
+        if let Some(s) = spec {
+            let hv = b.sub(l, rd);
+            let hv = b.math(M::Normalize, &[hv]);
+            let ndh = b.dot(n, hv);
+            let ndh = b.max(ndh, zero);
+            let e = b.f(SHININESS);
+            let hl = b.math(M::Pow, &[ndh, e]);
+            let hl = b.mul(hl, s);
+            let hl = b.mul(lc, hl);
+            color = b.add(color, hl);
+        }
+    }
+    b.ret(Some(color));
+    let f = b.finish();
+    mb.add_function(f)
+}

@@ -1,0 +1,332 @@
+//! The tracing variants' loop bodies in IR, one function per variant, each the same step for
+//! step as its CPU reference in `crate::trace` (whose doc comments cite the seeds).
+
+use super::builder::{Ex, FnBuilder};
+use super::march::{Cx, EXHAUSTED, HIT};
+use crate::scene::Method;
+use crate::trace::{AUTO_MAX_OMEGA, ENHANCED_GUARD, TOUCH};
+use naga::BinaryOperator as B;
+
+/// The chosen variant's loop, then discontinuity reduction if asked.
+pub(super) fn body(b: &mut FnBuilder, cx: &Cx) {
+    match cx.trace.method {
+        Method::Basic => basic(b, cx),
+        Method::Relaxed => relaxed(b, cx),
+        Method::Enhanced => enhanced(b, cx),
+        Method::Hybrid => hybrid(b, cx),
+        Method::Auto => auto(b, cx),
+    }
+    if cx.trace.discontinuity > 0 {
+        discontinuity(b, cx);
+    }
+}
+
+/// A local f32 variable.
+fn var(b: &mut FnBuilder, name: &str, init: f64) -> Ex {
+    let ty = b.m.f32();
+    let v = b.f(init);
+    b.local(name, ty, Some(v))
+}
+
+/// Hart; Bálint Alg. 1; Munini Fig. 9 (see `crate::trace::basic`).
+fn basic(b: &mut FnBuilder, cx: &Cx) {
+    b.loop_(|b| {
+        cx.budget(b, EXHAUSTED, |_| {});
+        let t = b.load(cx.t);
+        let p = b.load(cx.p);
+        let d = cx.field_at(b, p, t);
+        b.name(d, "d");
+        let e = cx.eps(b, t);
+        let close = b.lt(d, e);
+        cx.stop_if(b, close, HIT);
+        let nt = cx.advance(b, t, d);
+        let far = cx.far(b);
+        let gone = b.gt(nt, far);
+        cx.stop_if(b, gone, 0);
+    });
+}
+
+/// Keinert §3.1–3.2, Listing 2 (see `crate::trace::relaxed`).
+fn relaxed(b: &mut FnBuilder, cx: &Cx) {
+    let omega = var(b, "omega", cx.trace.omega);
+    let step = var(b, "step", 0.0);
+    let prev_radius = var(b, "prev_radius", 0.0);
+    let candidate_t = var(b, "candidate_t", 0.0);
+    // −1: no candidate yet (the first evaluation always makes one, so a ray whose budget runs
+    // out has a candidate).
+    let candidate_error = var(b, "candidate_error", -1.0);
+    b.loop_(|b| {
+        cx.budget(b, EXHAUSTED | HIT, |b| {
+            // The best candidate is the hit (Keinert §3.2).
+            let ct = b.load(candidate_t);
+            b.store(cx.t, ct);
+        });
+        let t = b.load(cx.t);
+        let p = b.load(cx.p);
+        let r = cx.field_at(b, p, t);
+        b.name(r, "r");
+        let radius = b.abs(r);
+        let (om, st, pr) = (b.load(omega), b.load(step), b.load(prev_radius));
+        let one = b.f(1.0);
+        let relaxing = b.gt(om, one);
+        let reach = b.add(radius, pr);
+        let margin = b.f(1.0 + TOUCH);
+        let reach = b.mul(reach, margin);
+        let apart = b.lt(reach, st);
+        let fail = b.bin(B::LogicalAnd, relaxing, apart);
+        b.name(fail, "fail");
+        let back = b.mul(om, st);
+        let back = b.sub(st, back);
+        let ahead = b.mul(r, om);
+        let new_step = b.select(fail, back, ahead);
+        b.store(step, new_step);
+        let new_omega = b.select(fail, one, om);
+        b.store(omega, new_omega);
+        b.store(prev_radius, radius);
+        let ok = b.expr(naga::Expression::Unary {
+            op: naga::UnaryOperator::LogicalNot,
+            expr: fail,
+        });
+        b.if_(
+            ok,
+            |b| {
+                let e = cx.eps(b, t);
+                let error = b.div(radius, e);
+                let ce = b.load(candidate_error);
+                let smaller = b.lt(error, ce);
+                let zero = b.f(0.0);
+                let none = b.lt(ce, zero);
+                let better = b.bin(B::LogicalOr, smaller, none);
+                b.if_(
+                    better,
+                    |b| {
+                        b.store(candidate_t, t);
+                        b.store(candidate_error, error);
+                    },
+                    |_| {},
+                );
+                let near = b.lt(radius, e);
+                let zero = b.f(0.0);
+                let below = b.lt(r, zero);
+                let at_start = b.bin(B::LessEqual, t, zero);
+                let stuck = b.bin(B::LogicalAnd, below, at_start);
+                let close = b.bin(B::LogicalOr, near, stuck);
+                cx.stop_if(b, close, HIT);
+                let far = cx.far(b);
+                let gone = b.gt(t, far);
+                cx.stop_if(b, gone, 0);
+            },
+            |_| {},
+        );
+        let back = b.neg(t);
+        let new_step = b.max(new_step, back);
+        b.store(step, new_step);
+        cx.advance(b, t, new_step);
+    });
+}
+
+/// Bálint Alg. 3 (see `crate::trace::enhanced`).
+fn enhanced(b: &mut FnBuilder, cx: &Cx) {
+    let d = var(b, "d", 0.0);
+    let r_prev = var(b, "r_prev", 0.0);
+    let r = var(b, "r", 0.0);
+    b.loop_(|b| {
+        cx.budget(b, EXHAUSTED, |_| {});
+        let (t, dv, rp, rv) = (b.load(cx.t), b.load(d), b.load(r_prev), b.load(r));
+        let zero = b.f(0.0);
+        let plain = b.bin(B::Equal, dv, zero);
+        // r + ω·r·(d − r₋ + r) / max(d + r₋ − r, guard·d)
+        let den = b.add(dv, rp);
+        let den = b.sub(den, rv);
+        let g = b.f(ENHANCED_GUARD);
+        let guard = b.mul(g, dv);
+        let den = b.max(den, guard);
+        let one = b.f(1.0);
+        let den = b.select(plain, one, den);
+        let num = b.sub(dv, rp);
+        let num = b.add(num, rv);
+        let w = b.f(cx.trace.omega);
+        let wr = b.mul(w, rv);
+        let q = b.div(num, den);
+        let extra = b.mul(wr, q);
+        let inferred = b.add(rv, extra);
+        let dn = b.select(plain, rv, inferred);
+        b.name(dn, "step");
+        let (at, point, rn, fail) = cx.probe(b, t, rv, dn);
+        b.if_(
+            fail,
+            |b| {
+                let zero = b.f(0.0);
+                b.store(d, zero);
+            },
+            |b| {
+                b.store(cx.t, at);
+                b.store(cx.p, point);
+                b.store(d, dn);
+                b.store(r_prev, rv);
+                b.store(r, rn);
+                let e = cx.eps(b, at);
+                let close = b.lt(rn, e);
+                cx.stop_if(b, close, HIT);
+                let far = cx.far(b);
+                let gone = b.gt(at, far);
+                cx.stop_if(b, gone, 0);
+            },
+        );
+    });
+}
+
+/// Bán & Valasek 2023 (see `crate::trace::auto`).
+fn auto(b: &mut FnBuilder, cx: &Cx) {
+    let start = b.f(0.0);
+    let r0 = cx.field_at(b, cx.ro, start);
+    let f32t = b.m.f32();
+    let r = b.local("dist", f32t, Some(r0));
+    let z = b.local("stride", f32t, Some(r0));
+    let m = var(b, "m", -1.0);
+    b.loop_(|b| {
+        let (t, rv) = (b.load(cx.t), b.load(r));
+        let e = cx.eps(b, t);
+        let close = b.lt(rv, e);
+        cx.stop_if(b, close, HIT);
+        let far = cx.far(b);
+        let gone = b.gt(t, far);
+        cx.stop_if(b, gone, 0);
+        cx.budget(b, EXHAUSTED, |_| {});
+        let (zv, mv) = (b.load(z), b.load(m));
+        let (tn, point, rn, back) = cx.probe(b, t, rv, zv);
+        b.name(back, "back");
+        let rise = b.sub(rn, rv);
+        let slope = b.div(rise, zv);
+        let diff = b.sub(slope, mv);
+        let beta = b.f(cx.trace.beta);
+        let moved = b.mul(beta, diff);
+        let moved = b.add(mv, moved);
+        let reset = b.f(-1.0);
+        let m2 = b.select(back, reset, moved);
+        b.store(m, m2);
+        let t2 = b.select(back, t, tn);
+        let r2 = b.select(back, rv, rn);
+        b.store(cx.t, t2);
+        let p = b.load(cx.p);
+        let p2 = b.select(back, p, point);
+        b.store(cx.p, p2);
+        b.store(r, r2);
+        let one = b.f(1.0);
+        let gap = b.sub(one, m2);
+        let least = b.f(2.0 / AUTO_MAX_OMEGA);
+        let gap = b.max(gap, least);
+        let two = b.f(2.0);
+        let omega = b.div(two, gap);
+        let omega = b.max(omega, one);
+        let step = b.mul(r2, omega);
+        let e2 = cx.eps(b, t2);
+        let step = b.max(step, e2);
+        b.store(z, step);
+    });
+}
+
+/// Liktor §5.4 (see `crate::trace::hybrid`).
+fn hybrid(b: &mut FnBuilder, cx: &Cx) {
+    let t_out = var(b, "t_out", 0.0);
+    let f_out = var(b, "f_out", 0.0);
+    b.loop_(|b| {
+        cx.budget(b, EXHAUSTED, |_| {});
+        let t = b.load(cx.t);
+        let p = b.load(cx.p);
+        let d = cx.field_at(b, p, t);
+        b.name(d, "d");
+        let zero = b.f(0.0);
+        let inside = b.lt(d, zero);
+        let n = b.load(cx.steps);
+        let one_u = b.u(1);
+        let not_first = b.gt(n, one_u);
+        let crossed = b.bin(B::LogicalAnd, inside, not_first);
+        b.if_(
+            crossed,
+            |b| {
+                let (a0, fa0) = (b.load(t_out), b.load(f_out));
+                let f32t = b.m.f32();
+                let a = b.local("lo", f32t, Some(a0));
+                let fa = b.local("f_lo", f32t, Some(fa0));
+                let c = b.local("hi", f32t, Some(t));
+                let fc = b.local("f_hi", f32t, Some(d));
+                if cx.trace.refine > 0 {
+                    let limit = b.u(cx.trace.refine);
+                    b.repeat("k", limit, |b| {
+                        let tm = falsi(b, a, fa, c, fc);
+                        let fm = cx.field(b, tm);
+                        let outside = b.gt(fm, zero);
+                        b.if_(
+                            outside,
+                            |b| {
+                                b.store(a, tm);
+                                b.store(fa, fm);
+                            },
+                            |b| {
+                                b.store(c, tm);
+                                b.store(fc, fm);
+                            },
+                        );
+                    });
+                }
+                let root = falsi(b, a, fa, c, fc);
+                b.store(cx.t, root);
+                let hit = b.u(HIT);
+                b.store(cx.flags, hit);
+                b.brk();
+            },
+            |_| {},
+        );
+        let e = cx.eps(b, t);
+        let close = b.lt(d, e);
+        cx.stop_if(b, close, HIT);
+        b.store(t_out, t);
+        b.store(f_out, d);
+        let lin = b.f(cx.trace.linear);
+        let lin = b.mul(lin, e);
+        let far = cx.far(b);
+        let gone = b.ge(t, far);
+        cx.stop_if(b, gone, 0);
+        let step = b.max(d, lin);
+        let left = b.sub(far, t);
+        let step = b.min(step, left);
+        cx.advance(b, t, step);
+    });
+}
+
+/// The regula falsi point a + (b − a)·f(a)/(f(a) − f(b)) of the bracket in the variables.
+fn falsi(b: &mut FnBuilder, a: Ex, fa: Ex, c: Ex, fc: Ex) -> Ex {
+    let (av, fav, cv, fcv) = (b.load(a), b.load(fa), b.load(c), b.load(fc));
+    let width = b.sub(cv, av);
+    let drop = b.sub(fav, fcv);
+    let ratio = b.div(fav, drop);
+    let off = b.mul(width, ratio);
+    b.add(av, off)
+}
+
+/// Keinert §3.4, Eq. 3 after a hit: `t ← max(t + f(t) − ε(t), 0)`, a fixed number of times.
+fn discontinuity(b: &mut FnBuilder, cx: &Cx) {
+    let fl = b.load(cx.flags);
+    let bit = b.u(HIT);
+    let masked = b.bin(B::And, fl, bit);
+    let zero_u = b.u(0);
+    let hit = b.bin(B::NotEqual, masked, zero_u);
+    b.if_(
+        hit,
+        |b| {
+            let limit = b.u(cx.trace.discontinuity);
+            b.repeat("i", limit, |b| {
+                let t = b.load(cx.t);
+                let d = cx.field(b, t);
+                let e = cx.eps(b, t);
+                let nt = b.add(t, d);
+                let nt = b.sub(nt, e);
+                let zero = b.f(0.0);
+                let nt = b.max(nt, zero);
+                b.store(cx.t, nt);
+            });
+        },
+        |_| {},
+    );
+}
