@@ -314,4 +314,7 @@ pub struct Trace {
     pub refine: u32,
     /// Fixed-point iterations of discontinuity reduction after a hit (Keinert §3.4, Eq. 3).
     pub discontinuity: u32,
+    /// Hart's cone anti-aliasing (Munini §2.4), `basic` only: near misses in front of the hit
+    /// blend into the pixel with their coverage.
+    pub antialias: bool,
 }

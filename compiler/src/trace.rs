@@ -21,7 +21,25 @@ pub struct Traced {
     /// Whether the step budget ran out before the ray hit or left (a relaxed ray then still
     /// hits at its best candidate, Keinert §3.2).
     pub exhausted: bool,
+    /// With cone anti-aliasing: where the ray passed closest to a surface in front of what it
+    /// hit (the nearest approach of one near miss), and that surface's coverage of the pixel
+    /// (0: none).
+    pub cover_t: f64,
+    /// The coverage α there (Munini §2.4), 0 to 1/2.
+    pub cover: f64,
 }
+
+/// Hart's coverage of a pixel's cone section of radius r by a surface at distance d from its
+/// centre (the disc area beyond a chord at d), as a function of q = d/r ∈ [0, 1]
+/// (Munini §2.4): α = 1/2 − q·√(1 − q²)/π − asin(q)/π; 1/2 at q = 0, 0 at q = 1.
+pub fn coverage(q: f64) -> f64 {
+    let q = q.clamp(0.0, 1.0);
+    0.5 - q * (1.0 - q * q).sqrt() / std::f64::consts::PI - q.asin() / std::f64::consts::PI
+}
+
+/// The cone radius for anti-aliasing at distance t: one pixel's width (Munini §2.4:
+/// r = 2·tan(fov/2)/N_H · t, twice the half-pixel footprint).
+pub const CONE_PIXELS: f64 = 2.0;
 
 /// Smallest denominator of the enhanced step, relative to the previous step length: keeps the
 /// inferred radius finite when the field grows as fast as the Lipschitz bound allows.
@@ -175,7 +193,8 @@ fn bounded(
         t: if r.hit { hi - r.t } else { lo },
         steps: r.steps + 1,
         hit: true,
-        exhausted: r.exhausted,
+        cover: 0.0,
+        ..r
     }
 }
 
@@ -237,28 +256,87 @@ fn stop(t: f64, steps: u32, hit: bool, exhausted: bool) -> Traced {
         steps,
         hit,
         exhausted,
+        cover_t: 0.0,
+        cover: 0.0,
+    }
+}
+
+/// Hart's cone anti-aliasing bookkeeping (Munini §2.4): each run of consecutive steps where
+/// the field is within the cone radius (d ≤ r) is one near miss, counted once at its
+/// smallest d/r; a run still open when the ray hits is the hit surface's own approach and is
+/// not counted. The near miss with the largest coverage is kept.
+#[derive(Clone, Copy, Debug)]
+struct Cone {
+    best: (f64, f64),
+    run: Option<(f64, f64)>,
+}
+
+impl Cone {
+    fn new() -> Cone {
+        Cone {
+            best: (0.0, 0.0),
+            run: None,
+        }
+    }
+
+    /// Records the field d at t (cone radius r).
+    fn see(&mut self, t: f64, d: f64, r: f64) {
+        if d <= r {
+            let q = d / r;
+            if self.run.is_none_or(|(_, best)| q < best) {
+                self.run = Some((t, q));
+            }
+        } else {
+            self.close();
+        }
+    }
+
+    /// Ends the current run, keeping it if it covers more than the best so far.
+    fn close(&mut self) {
+        if let Some((t, q)) = self.run.take() {
+            let a = coverage(q);
+            if a > self.best.1 {
+                self.best = (t, a);
+            }
+        }
+    }
+
+    fn into(mut self, mut r: Traced) -> Traced {
+        if !r.hit {
+            self.close();
+        }
+        (r.cover_t, r.cover) = self.best;
+        r
     }
 }
 
 /// Basic sphere tracing (Hart; Bálint Alg. 1; Munini Fig. 9): t += f until f < ε(t),
 /// t > t_max or the budget runs out.
+/// With `antialias cone`, also Hart's cone anti-aliasing (Munini §2.4, see [`Cone`]); the
+/// offset of a segment's t is added back so it reports distances from the ray's origin.
 fn basic(trace: &Trace, eps: &Threshold, f: &mut impl FnMut(f64) -> f64) -> Traced {
     let mut t = 0.0;
     let mut steps = 0;
-    loop {
+    let mut cone = Cone::new();
+    let result = loop {
         if steps >= trace.steps {
-            return stop(t, steps, false, true);
+            break stop(t, steps, false, true);
         }
         let d = f(t);
         steps += 1;
         if d < eps.at(t) {
-            return stop(t, steps, true, false);
+            break stop(t, steps, true, false);
+        }
+        if trace.antialias {
+            let at = t + eps.offset;
+            cone.see(at, d, CONE_PIXELS * eps.pixel * at);
         }
         t += d;
         if t > trace.max_distance {
-            return stop(t, steps, false, false);
+            break stop(t, steps, false, false);
         }
-    }
+    };
+    cone.into(result)
 }
 
 /// Over-relaxed sphere tracing as in Keinert §3.1–3.2, Listing 2: steps of ω·f; when two

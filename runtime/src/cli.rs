@@ -180,6 +180,9 @@ pub struct TracerArgs {
     /// Discontinuity-reduction iterations after a hit (Keinert §3.4).
     #[arg(long, allow_hyphen_values = true)]
     pub discontinuity: Option<String>,
+    /// Hart's cone anti-aliasing (`cone`, basic tracer) or `none`.
+    #[arg(long, allow_hyphen_values = true)]
+    pub antialias: Option<String>,
     /// Multi-resolution passes (Bálint §4): 2 (1/2 then full resolution), 4 or 6; 1 is a
     /// single pass. Compute entry only.
     #[arg(long, default_value_t = 1)]
@@ -204,6 +207,7 @@ impl TracerArgs {
             ("linear", &self.linear),
             ("refine", &self.refine),
             ("discontinuity", &self.discontinuity),
+            ("antialias", &self.antialias),
         ]
         .iter()
         .filter_map(|(k, v)| v.as_deref().map(|v| (*k, v)))

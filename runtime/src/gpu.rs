@@ -278,6 +278,19 @@ impl Gpu {
         module: &naga::Module,
         rays: &[([f32; 3], [f32; 3], f32)],
     ) -> Result<Vec<(f32, u32, u32)>, String> {
+        Ok(self
+            .trace_rays_full(module, rays)?
+            .iter()
+            .map(|v| (v[0], v[1] as u32, v[2] as u32))
+            .collect())
+    }
+
+    /// [`Gpu::trace_rays`] with the whole `vec4(t, steps, flags, cover)` per ray.
+    pub fn trace_rays_full(
+        &self,
+        module: &naga::Module,
+        rays: &[([f32; 3], [f32; 3], f32)],
+    ) -> Result<Vec<[f32; 4]>, String> {
         if rays.is_empty() {
             return Ok(Vec::new());
         }
@@ -335,7 +348,7 @@ impl Gpu {
             .chunks_exact(16)
             .map(|c| {
                 let f = |i: usize| f32::from_le_bytes(c[i * 4..i * 4 + 4].try_into().unwrap());
-                (f(0), f(1) as u32, f(2) as u32)
+                [f(0), f(1), f(2), f(3)]
             })
             .collect())
     }

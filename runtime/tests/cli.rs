@@ -240,7 +240,7 @@ fn render_refuses_bad_input_cleanly() {
     let scene = scene.to_str().unwrap();
     let out_path = d.join("out.png");
     let out = out_path.to_str().unwrap();
-    let cases: [(&[&str], &str); 12] = [
+    let cases: [(&[&str], &str); 15] = [
         (&["render", "/nonexistent.sdf", "-o", out], "cannot read"),
         (
             &[
@@ -304,6 +304,36 @@ fn render_refuses_bad_input_cleanly() {
         (
             &["render", scene, "-o", out, "--epsilon", "NaN"],
             "`--epsilon` must be",
+        ),
+        (
+            &[
+                "render",
+                scene,
+                "-o",
+                out,
+                "--tracer",
+                "relaxed",
+                "--antialias",
+                "cone",
+            ],
+            "has no parameter `antialias`",
+        ),
+        (
+            &[
+                "render",
+                scene,
+                "-o",
+                out,
+                "--tracer",
+                "basic",
+                "--antialias",
+                "yes",
+            ],
+            "`--antialias` must be one of `none`, `cone`",
+        ),
+        (
+            &["render", scene, "-o", out, "--passes", "3"],
+            "there are schedules for 1, 2, 4, 6 passes",
         ),
     ];
     for (args, message) in cases {

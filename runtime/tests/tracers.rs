@@ -6,7 +6,7 @@ use sdfc_compiler::scene::{Epsilon, Method, Scene};
 use sdfc_compiler::trace::{self, Threshold};
 use sdfc_compiler::view::View;
 mod common;
-use common::{compile, examples, gpu, gpu_trace, with_method};
+use common::{camera_rays, compile, examples, gpu, gpu_trace, with_method};
 
 /// The angles of the grazing-plane table, in degrees.
 const ANGLES: [f64; 4] = [45.0, 10.0, 1.0, 0.1];
@@ -131,17 +131,7 @@ fn gpu_agrees_with_cpu_on_every_variant() {
             let mut scene = base.clone();
             scene.trace = with_method(&base, method);
             let (view, pts) = grid(&scene, 32, 20);
-            let rays: Vec<_> = pts
-                .iter()
-                .map(|&(x, y)| {
-                    let d = view.ray(x, y);
-                    (
-                        view.eye.to_array().map(|v| v as f32),
-                        d.to_array().map(|v| v as f32),
-                        view.pixel as f32,
-                    )
-                })
-                .collect();
+            let rays = camera_rays(&view, &pts);
             let on_gpu = gpu_trace(&gpu, &scene, &rays);
             let mut bad = 0;
             for (i, &(x, y)) in pts.iter().enumerate() {

@@ -23,7 +23,13 @@ pub const TRACE_METHODS: &[(&str, Method, &[Param])] = &[
     (
         "basic",
         Method::Basic,
-        &[STEPS, EPSILON, MAX_DISTANCE, DISCONTINUITY],
+        &[
+            STEPS,
+            EPSILON,
+            MAX_DISTANCE,
+            DISCONTINUITY,
+            opt("antialias", Ty::Word(&["none", "cone"]), Val::Word(0)),
+        ],
     ),
     (
         "relaxed",
@@ -84,13 +90,10 @@ pub fn method_entry(method: Method) -> (&'static str, &'static [Param]) {
 /// Settings of `method` from values by parameter name (missing ones take the table's defaults).
 pub fn build(method: Method, get: impl Fn(&str) -> Option<Val>) -> Trace {
     let (_, params) = method_entry(method);
+    // Only the method's own parameters: a setting of another method is not carried over.
     let val = |name: &str| {
-        get(name).or_else(|| {
-            params
-                .iter()
-                .find(|p| p.name == name)
-                .and_then(|p| p.default)
-        })
+        let p = params.iter().find(|p| p.name == name)?;
+        get(name).or(p.default)
     };
     let num = |name: &str, fallback: f64| val(name).map_or(fallback, Val::num);
     Trace {
@@ -106,6 +109,7 @@ pub fn build(method: Method, get: impl Fn(&str) -> Option<Val>) -> Trace {
         linear: num("linear", 4.0),
         refine: num("refine", 0.0) as u32,
         discontinuity: num("discontinuity", 0.0) as u32,
+        antialias: matches!(val("antialias"), Some(Val::Word(1))),
     }
 }
 
@@ -142,7 +146,7 @@ pub fn with_overrides(
             return Err(format!("the `{name}` tracer has no parameter `{key}`"));
         };
         let v = match (p.ty, *text) {
-            (Ty::PositiveOr(words), w) if words.contains(&w) => {
+            (Ty::PositiveOr(words) | Ty::Word(words), w) if words.contains(&w) => {
                 Val::Word(words.iter().position(|x| *x == w).unwrap_or(0))
             }
             (ty, t) => match t.trim().parse::<f64>() {
@@ -167,6 +171,7 @@ pub fn with_overrides(
             }),
             "max_distance" => Some(Val::Num(scene.max_distance)),
             "discontinuity" => Some(Val::Num(scene.discontinuity as f64)),
+            "antialias" => Some(Val::Word(scene.antialias as usize)),
             _ if method == scene.method => Some(Val::Num(match name {
                 "omega" => scene.omega,
                 "beta" => scene.beta,

@@ -28,7 +28,7 @@ pub(super) fn add(
     let lo = b.max(near, start);
     let hi = b.min(far, end);
     let zero_u = b.u(0);
-    let culled = b.compose(result_ty, vec![start, zero_u, zero_u]);
+    let culled = result(&mut b, result_ty, None, [start, zero_u, zero_u]);
     let result = b.local("result", result_ty, Some(culled));
     let inverted = b.gt(lo, hi);
     let misses = b.expr(naga::Expression::Unary {
@@ -44,7 +44,7 @@ pub(super) fn add(
         let r = b.call(variant, a);
         let (t, s, f) = (b.at(r, 0), b.at(r, 1), b.at(r, 2));
         let s = b.add(s, extra);
-        let v = b.compose(result_ty, vec![t, s, f]);
+        let v = self::result(b, result_ty, Some((r, true)), [t, s, f]);
         b.store(result, v);
     };
     b.if_(
@@ -133,7 +133,7 @@ fn backwards(
             .as_ref()
             .expect("result")
             .ty;
-        let v = b.compose(ty, vec![t, steps, flags]);
+        let v = self::result(b, ty, Some((r, false)), [t, steps, flags]);
         b.store(result, v);
     };
     match cone {
@@ -150,7 +150,7 @@ fn backwards(
                         .ty;
                     let one = b.u(1);
                     let zero_u = b.u(0);
-                    let v = b.compose(ty, vec![start, one, zero_u]);
+                    let v = self::result(b, ty, None, [start, one, zero_u]);
                     b.store(result, v);
                 },
                 run,
@@ -158,6 +158,25 @@ fn backwards(
         }
         None => run(b),
     }
+}
+
+/// A `TraceResult` of t, steps and flags; with anti-aliasing the cover fields are taken from
+/// `from` (its coverage kept or zeroed) or zero.
+fn result(b: &mut FnBuilder, ty: Handle<Type>, from: Option<(Ex, bool)>, [t, s, f]: [Ex; 3]) -> Ex {
+    let mut fields = vec![t, s, f];
+    let wide = matches!(
+        &b.m.module.types[ty].inner,
+        naga::TypeInner::Struct { members, .. } if members.len() == 5
+    );
+    if wide {
+        let zero = b.f(0.0);
+        let extra = match from {
+            Some((r, keep)) => [b.at(r, 3), if keep { b.at(r, 4) } else { zero }],
+            None => [zero, zero],
+        };
+        fields.extend(extra);
+    }
+    b.compose(ty, fields)
 }
 
 /// (entry, exit, whether the line meets the volume) of the line `ro + t·rd`.

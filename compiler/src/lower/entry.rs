@@ -154,26 +154,49 @@ fn shade_hit(
     let zero_u = b.u(0);
     let material = b.local("material", u32t, Some(zero_u));
     let is_hit = hit_bit(b, result);
+    // The surface at t along the ray: (colour, normal, material).
+    let surface = |b: &mut FnBuilder, t: Ex| {
+        let step = b.mul(rd, t);
+        let p = b.add(ro, step);
+        let h = pixel_mode.then_some(px);
+        let h = epsilon(b, &options.trace, t, h, floor);
+        let n = b.call(fns.normal, vec![p, h]);
+        let m = match fns.material {
+            Some(f) => b.call(f, vec![p]),
+            None => b.u(0),
+        };
+        (b.call(fns.shade, vec![p, n, rd, m]), n, m)
+    };
     b.if_(
         is_hit,
         |b| {
             let t = b.at(result, 0);
-            let step = b.mul(rd, t);
-            let p = b.add(ro, step);
-            let h = pixel_mode.then_some(px);
-            let h = epsilon(b, &options.trace, t, h, floor);
-            let n = b.call(fns.normal, vec![p, h]);
+            let (c, n, m) = surface(b, t);
             b.store(normal, n);
-            let m = match fns.material {
-                Some(f) => b.call(f, vec![p]),
-                None => b.u(0),
-            };
             b.store(material, m);
-            let c = b.call(fns.shade, vec![p, n, rd, m]);
             b.store(color, c);
         },
         |_| {},
     );
+    if options.trace.antialias {
+        // Hart's cone anti-aliasing (Munini §2.4): the near miss in front, blended over what
+        // the ray hit (or the background) with its coverage, c = α·c₁ + (1 − α)·c₂.
+        let alpha = b.at(result, 4);
+        let zero = b.f(0.0);
+        let some = b.gt(alpha, zero);
+        b.if_(
+            some,
+            |b| {
+                let t = b.at(result, 3);
+                let (near, _, _) = surface(b, t);
+                let behind = b.load(color);
+                let a3 = b.splat(alpha, VectorSize::Tri);
+                let mixed = b.math(M::Mix, &[behind, near, a3]);
+                b.store(color, mixed);
+            },
+            |_| {},
+        );
+    }
     Shaded {
         color: b.load(color),
         normal: b.load(normal),
@@ -242,8 +265,12 @@ pub(super) fn add_rays(mb: &mut ModuleBuilder, tracer: &Tracer) {
     let s = b.cast(s, ScalarKind::Float);
     let fl = b.at(r, 2);
     let fl = b.cast(fl, ScalarKind::Float);
-    let zero = b.f(0.0);
-    let v = b.compose(v4, vec![t, s, fl, zero]);
+    let fourth = if tracer.antialias {
+        b.at(r, 4)
+    } else {
+        b.f(0.0)
+    };
+    let v = b.compose(v4, vec![t, s, fl, fourth]);
     let ptr = b.expr(Expression::Access {
         base: out,
         index: i,

@@ -14,15 +14,16 @@ pub const HIT: u32 = 1;
 /// Bit of `TraceResult.flags`: the step budget ran out.
 pub const EXHAUSTED: u32 = 2;
 
-/// `struct TraceResult { t: f32, steps: u32, flags: u32 }` (flags: [`HIT`] | [`EXHAUSTED`]).
-pub fn trace_result_type(mb: &mut ModuleBuilder) -> Handle<Type> {
+/// `struct TraceResult { t: f32, steps: u32, flags: u32 }` (flags: [`HIT`] | [`EXHAUSTED`]),
+/// with cone anti-aliasing also `cover_t: f32, cover: f32` (see `crate::trace::Traced`).
+pub fn trace_result_type(mb: &mut ModuleBuilder, antialias: bool) -> Handle<Type> {
     let (f, u) = (mb.f32(), mb.u32());
-    struct_ty(
-        mb,
-        "TraceResult",
-        &[("t", f, 0), ("steps", u, 4), ("flags", u, 8)],
-        12,
-    )
+    let mut members = vec![("t", f, 0), ("steps", u, 4), ("flags", u, 8)];
+    if antialias {
+        members.extend([("cover_t", f, 12), ("cover", f, 16)]);
+    }
+    let span = 4 * members.len() as u32;
+    struct_ty(mb, "TraceResult", &members, span)
 }
 
 /// The hit threshold ε(t): absolute, or `pixel·t` kept above `floor`.
@@ -99,11 +100,18 @@ pub(super) struct Cx {
     pub p: Ex,
     pub steps: Ex,
     pub flags: Ex,
+    /// With cone anti-aliasing: the best near miss's t and coverage.
+    pub cover: Option<(Ex, Ex)>,
 }
 
 impl Cx {
+    /// The pixel footprint argument (present in pixel-ε mode and with anti-aliasing).
+    pub fn pixel(&self) -> Option<Ex> {
+        self.pixel
+    }
+
     /// Distance from the real origin of the point at `t`.
-    fn absolute(&self, b: &mut FnBuilder, t: Ex) -> Ex {
+    pub fn absolute(&self, b: &mut FnBuilder, t: Ex) -> Ex {
         match self.offset {
             Some(o) => b.add(t, o),
             None => t,
@@ -261,6 +269,13 @@ pub fn add_trace(
     let steps = b.local("steps", u32t, Some(zero_u));
     let flags = b.local("flags", u32t, Some(zero_u));
     let p = b.local("position", v3, Some(ro));
+    let cover = trace.antialias.then(|| {
+        let zero = b.f(0.0);
+        (
+            b.local("cover_t", f32t, Some(zero)),
+            b.local("cover", f32t, Some(zero)),
+        )
+    });
     let cx = Cx {
         map,
         ro,
@@ -276,12 +291,17 @@ pub fn add_trace(
         p,
         steps,
         flags,
+        cover,
     };
     variants::body(&mut b, &cx);
     let tv = b.load(t);
     let tv = cx.absolute(&mut b, tv);
     let (s, h) = (b.load(steps), b.load(flags));
-    let r = b.compose(result_ty, vec![tv, s, h]);
+    let mut fields = vec![tv, s, h];
+    if let Some((ct, c)) = cover {
+        fields.extend([b.load(ct), b.load(c)]);
+    }
+    let r = b.compose(result_ty, fields);
     b.ret(Some(r));
     let f = b.finish();
     mb.add_function(f)

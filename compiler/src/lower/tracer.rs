@@ -20,8 +20,9 @@ pub enum Entry {
     /// No entry point: `map`, `trace`, `normal` (and `shade`) for other shaders.
     Library,
     /// `main` compute entry point tracing a list of rays (for tests and benchmarks): binding 0
-    /// holds two vec4 per ray (origin and pixel footprint, direction), binding 1 receives
-    /// `vec4(t, steps, flags, 0)` per ray. Not offered on the command line.
+    /// holds two vec4 per ray (origin and pixel footprint; direction and the t to start at),
+    /// binding 1 receives `vec4(t, steps, flags, cover)` per ray (cover: the anti-aliasing
+    /// coverage, 0 without). Not offered on the command line.
     Rays,
 }
 
@@ -74,6 +75,8 @@ pub(super) struct Tracer {
     inputs: Inputs,
     max_distance: f64,
     pub steps: u32,
+    /// Whether results carry cone anti-aliasing's cover fields.
+    pub antialias: bool,
 }
 
 /// Where a multi-resolution pass starts a ray and with what budget and cone slope.
@@ -123,9 +126,9 @@ pub fn add(
     options: &Options,
 ) {
     let floor = EPSILON_FLOOR * (scene.camera.eye - scene.camera.target).length();
-    let result_ty = march::trace_result_type(mb);
+    let result_ty = march::trace_result_type(mb, options.trace.antialias);
     let inputs = Inputs {
-        pixel: matches!(options.trace.epsilon, Epsilon::Pixel),
+        pixel: matches!(options.trace.epsilon, Epsilon::Pixel) || options.trace.antialias,
         segment: scene.bound.is_some() || options.passes,
         pass: options.passes,
     };
@@ -139,6 +142,7 @@ pub fn add(
         inputs,
         max_distance: options.trace.max_distance,
         steps: options.trace.steps,
+        antialias: options.trace.antialias,
     };
     let normal = shading::add_normal(mb, map);
     let shade = shading::add_shade(mb, scene);

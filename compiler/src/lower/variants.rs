@@ -4,7 +4,7 @@
 use super::builder::{Ex, FnBuilder};
 use super::march::{Cx, EXHAUSTED, HIT};
 use crate::scene::Method;
-use crate::trace::{AUTO_MAX_OMEGA, ENHANCED_GUARD, TOUCH};
+use crate::trace::{AUTO_MAX_OMEGA, CONE_PIXELS, ENHANCED_GUARD, TOUCH};
 use naga::BinaryOperator as B;
 
 /// The chosen variant's loop, then discontinuity reduction if asked.
@@ -28,8 +28,13 @@ fn var(b: &mut FnBuilder, name: &str, init: f64) -> Ex {
     b.local(name, ty, Some(v))
 }
 
-/// Hart; Bálint Alg. 1; Munini Fig. 9 (see `crate::trace::basic`).
+/// Hart; Bálint Alg. 1; Munini Fig. 9, with cone anti-aliasing if asked (Munini §2.4; see
+/// `crate::trace::basic` and `Cone`).
 fn basic(b: &mut FnBuilder, cx: &Cx) {
+    // The open run of near misses: its nearest t and d/r (−1: none open).
+    let run = cx
+        .cover
+        .map(|_| (var(b, "run_t", 0.0), var(b, "run_q", -1.0)));
     b.loop_(|b| {
         cx.budget(b, EXHAUSTED, |_| {});
         let t = b.load(cx.t);
@@ -39,11 +44,94 @@ fn basic(b: &mut FnBuilder, cx: &Cx) {
         let e = cx.eps(b, t);
         let close = b.lt(d, e);
         cx.stop_if(b, close, HIT);
+        if let (Some(run), Some(pixel)) = (run, cx.pixel()) {
+            let at = cx.absolute(b, t);
+            let k = b.f(CONE_PIXELS);
+            let r = b.mul(k, pixel);
+            let r = b.mul(r, at);
+            let near = b.bin(B::LessEqual, d, r);
+            b.if_(
+                near,
+                |b| {
+                    let q = b.div(d, r);
+                    let rq = b.load(run.1);
+                    let zero = b.f(0.0);
+                    let none = b.lt(rq, zero);
+                    let closer = b.lt(q, rq);
+                    let better = b.bin(B::LogicalOr, none, closer);
+                    b.if_(
+                        better,
+                        |b| {
+                            b.store(run.0, at);
+                            b.store(run.1, q);
+                        },
+                        |_| {},
+                    );
+                },
+                |b| close_run(b, cx, run),
+            );
+        }
         let nt = cx.advance(b, t, d);
         let far = cx.far(b);
         let gone = b.gt(nt, far);
         cx.stop_if(b, gone, 0);
     });
+    if let Some(run) = run {
+        // A run still open at a hit is the hit surface's own approach.
+        let fl = b.load(cx.flags);
+        let bit = b.u(HIT);
+        let masked = b.bin(B::And, fl, bit);
+        let zero_u = b.u(0);
+        let hit = b.bin(B::NotEqual, masked, zero_u);
+        b.if_(hit, |_| {}, |b| close_run(b, cx, run));
+    }
+}
+
+/// Ends the open run of near misses, keeping it if it covers more than the best so far.
+fn close_run(b: &mut FnBuilder, cx: &Cx, (run_t, run_q): (Ex, Ex)) {
+    let Some((best_t, best)) = cx.cover else {
+        return;
+    };
+    let q = b.load(run_q);
+    let zero = b.f(0.0);
+    let open = b.ge(q, zero);
+    b.if_(
+        open,
+        |b| {
+            let a = coverage(b, q);
+            let prev = b.load(best);
+            let more = b.gt(a, prev);
+            b.if_(
+                more,
+                |b| {
+                    let t = b.load(run_t);
+                    b.store(best_t, t);
+                    b.store(best, a);
+                },
+                |_| {},
+            );
+            let none = b.f(-1.0);
+            b.store(run_q, none);
+        },
+        |_| {},
+    );
+}
+
+/// Hart's coverage α(q) (see `crate::trace::coverage`).
+fn coverage(b: &mut FnBuilder, q: Ex) -> Ex {
+    let zero = b.f(0.0);
+    let one = b.f(1.0);
+    let q = b.clamp(q, zero, one);
+    let qq = b.mul(q, q);
+    let rest = b.sub(one, qq);
+    let root = b.sqrt(rest);
+    let chord = b.mul(q, root);
+    let arc = b.math(naga::MathFunction::Asin, &[q]);
+    let sum = b.add(chord, arc);
+    let inv_pi = b.f(std::f64::consts::FRAC_1_PI);
+    let sum = b.mul(sum, inv_pi);
+    let half = b.f(0.5);
+    b.sub(half, sum)
 }
 
 /// Keinert §3.1–3.2, Listing 2 (see `crate::trace::relaxed`).

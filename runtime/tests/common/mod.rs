@@ -53,3 +53,20 @@ pub fn with_method(scene: &Scene, method: Method) -> Trace {
     let name = TRACE_METHODS.iter().find(|m| m.1 == method).unwrap().0;
     sdfc_compiler::check::tracer::with_overrides(scene.trace, Some(name), &[]).unwrap()
 }
+
+/// The camera rays through image points, as the GPU's ray list takes them.
+pub fn camera_rays(
+    view: &sdfc_compiler::view::View,
+    pts: &[(f64, f64)],
+) -> Vec<([f32; 3], [f32; 3], f32)> {
+    pts.iter()
+        .map(|&(x, y)| {
+            let d = view.ray(x, y);
+            (
+                view.eye.to_array().map(|v| v as f32),
+                d.to_array().map(|v| v as f32),
+                view.pixel as f32,
+            )
+        })
+        .collect()
+}
