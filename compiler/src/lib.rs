@@ -14,4 +14,5 @@ pub mod passes;
 pub mod scene;
 pub mod syntax;
 pub mod trace;
+pub mod truth;
 pub mod view;

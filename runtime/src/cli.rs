@@ -66,6 +66,45 @@ enum Command {
         #[arg(long, default_value_t = 1)]
         samples: u32,
     },
+    /// Measure every tracer × step budget on the GPU against an f64 ground truth: time,
+    /// evaluations per pixel, depth error, hit/miss agreement.
+    Bench {
+        /// The scene file (`-` for standard input).
+        file: PathBuf,
+        /// Tracers to measure, comma-separated.
+        #[arg(long, default_value = "basic,relaxed,enhanced,hybrid,auto")]
+        tracers: String,
+        /// Step budgets, comma-separated.
+        #[arg(long, default_value = "8,16,32,64,128,256")]
+        steps: String,
+        /// Hit threshold for every tracer instead of the scene's: a distance, or `pixel`.
+        #[arg(long, allow_hyphen_values = true)]
+        epsilon: Option<String>,
+        /// Image size.
+        #[arg(long, default_value = "320x180")]
+        size: String,
+        /// Renders per cell; the median time is reported.
+        #[arg(long, default_value_t = 3)]
+        repeat: u32,
+        /// Report the fastest tracer and budget whose mean squared depth error is at most this.
+        #[arg(long, allow_hyphen_values = true)]
+        target_error: Option<f64>,
+        /// With `--target-error`: the largest share of pixels whose hit/miss may differ.
+        #[arg(long, default_value_t = 0.01)]
+        max_mismatch: f64,
+        /// Print JSON instead of the table.
+        #[arg(long)]
+        json: bool,
+        /// Print CSV instead of the table.
+        #[arg(long, conflicts_with = "json")]
+        csv: bool,
+        /// Also draw error against time and against evaluations per pixel to this SVG file.
+        #[arg(long)]
+        plot: Option<PathBuf>,
+        /// Graphics API: Vulkan, then GL, or one of them.
+        #[arg(long, value_enum, default_value = "auto")]
+        backend: BackendArg,
+    },
 }
 
 #[derive(Clone, Copy, clap::ValueEnum)]
@@ -139,14 +178,47 @@ pub fn run() -> i32 {
             output: &output,
             size: &size,
             tracer: &tracer,
-            backend: match backend {
-                BackendArg::Auto => sdfc::gpu::BackendChoice::Auto,
-                BackendArg::Vulkan => sdfc::gpu::BackendChoice::Vulkan,
-                BackendArg::Gl => sdfc::gpu::BackendChoice::Gl,
-            },
+            backend: backend.into(),
             channel: kind,
             samples,
         }),
+        Command::Bench {
+            file,
+            tracers,
+            steps,
+            epsilon,
+            size,
+            repeat,
+            target_error,
+            max_mismatch,
+            json,
+            csv,
+            plot,
+            backend,
+        } => crate::bench_cmd::run(&crate::bench_cmd::BenchArgs {
+            file: &file,
+            tracers: &tracers,
+            steps: &steps,
+            epsilon: epsilon.as_deref(),
+            size: &size,
+            repeat,
+            target_error,
+            max_mismatch,
+            json,
+            csv,
+            plot: plot.as_deref(),
+            backend: backend.into(),
+        }),
+    }
+}
+
+impl From<BackendArg> for sdfc::gpu::BackendChoice {
+    fn from(b: BackendArg) -> Self {
+        match b {
+            BackendArg::Auto => sdfc::gpu::BackendChoice::Auto,
+            BackendArg::Vulkan => sdfc::gpu::BackendChoice::Vulkan,
+            BackendArg::Gl => sdfc::gpu::BackendChoice::Gl,
+        }
     }
 }
 

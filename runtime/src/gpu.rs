@@ -49,6 +49,9 @@ pub struct Frame {
     pub material: Vec<u32>,
     /// Evaluations of the field.
     pub steps: Vec<u32>,
+    /// Wall time of the dispatches: from the first tile's submission to the last one's
+    /// completion (pipeline creation, buffer set-up and read-back excluded).
+    pub seconds: f64,
 }
 
 const NO_ADAPTER: &str = "no GPU adapter was found (tried Vulkan and GL).\n\
@@ -204,6 +207,7 @@ impl Gpu {
             .sum();
         let groups = TILE / sdfc_compiler::lower::tracer::WORKGROUP;
         let mut done = 0;
+        let clock = std::time::Instant::now();
         for (k, pass) in schedule.iter().enumerate() {
             let field = match (passes, k.checked_sub(1)) {
                 (None, _) => [0.0; 4],
@@ -233,6 +237,7 @@ impl Gpu {
                 }
             }
         }
+        let seconds = clock.elapsed().as_secs_f64();
         if let Some(e) = pollster::block_on(memory.pop()) {
             return Err(format!("the GPU ran out of memory: {e}"));
         }
@@ -268,6 +273,7 @@ impl Gpu {
                 .collect(),
             material: words(&bytes[3]),
             steps: words(&bytes[4]),
+            seconds,
         })
     }
 

@@ -1,4 +1,6 @@
 //! sdfc's runtime: the headless wgpu renderer and the pictures it writes.
 
+pub mod bench;
 pub mod gpu;
 pub mod images;
+pub mod plot;

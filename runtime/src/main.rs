@@ -1,5 +1,6 @@
 //! The `sdfc` command line: check, emit, render and bench scene files.
 
+mod bench_cmd;
 mod cli;
 mod emit_cmd;
 mod render_cmd;

@@ -92,7 +92,7 @@ fn render(args: &RenderArgs) -> Result<(), String> {
         )
         .unwrap_or_default()
     });
-    let bar = progress_bar();
+    let bar = progress_bar("rendering tiles");
     let frame = gpu.render(&module, &view, plan.as_deref(), |done, total| {
         if let Some(b) = &bar {
             b.set_length(total as u64);
@@ -121,15 +121,15 @@ fn render(args: &RenderArgs) -> Result<(), String> {
 }
 
 /// A progress bar on standard error, only when it is a terminal.
-fn progress_bar() -> Option<indicatif::ProgressBar> {
+pub fn progress_bar(what: &str) -> Option<indicatif::ProgressBar> {
     if !std::io::stderr().is_terminal() {
         return None;
     }
     let bar = indicatif::ProgressBar::new(1);
     bar.set_style(
-        indicatif::ProgressStyle::with_template(
-            "{spinner} rendering tiles {pos}/{len} {wide_bar} {elapsed}",
-        )
+        indicatif::ProgressStyle::with_template(&format!(
+            "{{spinner}} {what} {{pos}}/{{len}} {{wide_bar}} {{elapsed}} {{msg}}"
+        ))
         .ok()?,
     );
     bar.enable_steady_tick(std::time::Duration::from_millis(200));

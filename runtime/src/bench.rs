@@ -1,0 +1,107 @@
+//! Measuring the speed/accuracy trade of the tracers (Bálint & Valasek §5): every tracer ×
+//! step budget rendered on the GPU and compared with the f64 ground truth.
+
+use crate::gpu::{Frame, Gpu};
+use sdfc_compiler::emit;
+use sdfc_compiler::lower::{Entry, tracer::Options};
+use sdfc_compiler::scene::{Scene, Trace};
+use sdfc_compiler::view::View;
+use serde::Serialize;
+
+/// One tracer at one step budget.
+#[derive(Clone, Debug, Serialize)]
+pub struct Cell {
+    /// Tracer name.
+    pub tracer: String,
+    /// Step budget per pixel.
+    pub steps: u32,
+    /// Median wall time of the dispatches over the timed renders (after one untimed warm-up
+    /// render), seconds.
+    pub seconds: f64,
+    /// Every repetition's time, seconds.
+    pub seconds_each: Vec<f64>,
+    /// Mean evaluations of the field per pixel (the tracer's; normals and shading excluded).
+    pub evals_mean: f64,
+    /// Most evaluations any pixel's ray made.
+    pub evals_max: u32,
+    /// Mean squared difference of depth t to the ground truth, over the pixels both hit.
+    pub mse: f64,
+    /// Share of pixels whose hit/miss differs from the ground truth.
+    pub mismatch: f64,
+    /// `mse × seconds` (Bálint's error × time).
+    pub error_x_time: f64,
+}
+
+/// The ground truth of a view.
+#[derive(Clone, Debug, Serialize)]
+pub struct Truth {
+    /// Steps of its basic tracing.
+    pub steps: u32,
+    /// Its hit threshold relative to |eye − target|.
+    pub epsilon: f64,
+    /// Bisection iterations at the hit.
+    pub bisections: u32,
+    /// Pixels.
+    pub pixels: usize,
+    /// Pixels whose ray escapes (or exhausts the 10 000 steps): no depth to compare.
+    pub escaped: usize,
+    /// Seconds the CPU took.
+    pub seconds: f64,
+}
+
+/// Compiles the scene with `trace` and renders `view` once, in one pass.
+pub fn render(gpu: &Gpu, scene: &Scene, trace: Trace, view: &View) -> Result<Frame, String> {
+    let mut s = scene.clone();
+    s.trace = trace;
+    let (module, _) = emit::module(&s, Entry::Compute, &Options::from_scene(&s))
+        .map_err(|e| format!("internal compiler error: {}", e.0))?;
+    gpu.render(&module, view, None, |_, _| {})
+}
+
+/// Measures one cell: `repeat` renders, the median time, and the errors against `truth`.
+pub fn measure(
+    gpu: &Gpu,
+    scene: &Scene,
+    (name, trace): (&str, Trace),
+    view: &View,
+    truth: &[Option<f64>],
+    repeat: u32,
+) -> Result<Cell, String> {
+    // A first, untimed render: the driver compiles the shader at its first dispatch (lavapipe:
+    // LLVM, ~0.2 s, then cached), which is not the tracer's cost.
+    let frame = render(gpu, scene, trace, view)?;
+    let mut times = Vec::new();
+    for _ in 0..repeat.max(1) {
+        times.push(render(gpu, scene, trace, view)?.seconds);
+    }
+    let mut sorted = times.clone();
+    sorted.sort_by(f64::total_cmp);
+    let seconds = sorted[sorted.len() / 2];
+    let (mut sum, mut both, mut mismatch) = (0.0, 0usize, 0usize);
+    for (i, gt) in truth.iter().enumerate() {
+        let d = frame.depth[i];
+        let hit = d >= 0.0;
+        match (gt, hit) {
+            (Some(t), true) => {
+                sum += (d as f64 - t).powi(2);
+                both += 1;
+            }
+            (None, false) => {}
+            _ => mismatch += 1,
+        }
+    }
+    let n = truth.len().max(1) as f64;
+    let evals_mean = frame.steps.iter().map(|&s| s as f64).sum::<f64>() / n;
+    let mse = if both > 0 { sum / both as f64 } else { 0.0 };
+    Ok(Cell {
+        tracer: name.to_string(),
+        steps: trace.steps,
+        seconds,
+        seconds_each: times,
+        evals_mean,
+        evals_max: frame.steps.iter().copied().max().unwrap_or(0),
+        mse,
+        mismatch: mismatch as f64 / n,
+        error_x_time: mse * seconds,
+    })
+}

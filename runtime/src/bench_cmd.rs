@@ -1,0 +1,263 @@
+//! `sdfc bench`: the speed/accuracy table of the tracers on a scene, as text, JSON, CSV and a
+//! plot.
+
+use crate::cli::load_scene;
+use crate::render_cmd::{parse_size, progress_bar};
+use sdfc::bench::{self, Cell, Truth};
+use sdfc::gpu::{BackendChoice, Gpu};
+use sdfc_compiler::check::tracer::with_overrides;
+use sdfc_compiler::truth;
+use sdfc_compiler::view::View;
+use serde::Serialize;
+use std::path::Path;
+
+/// What `sdfc bench` was asked for.
+pub struct BenchArgs<'a> {
+    /// Scene file.
+    pub file: &'a Path,
+    /// Comma-separated tracer names.
+    pub tracers: &'a str,
+    /// Comma-separated step budgets.
+    pub steps: &'a str,
+    /// Hit threshold for every cell instead of the scene's (a distance or `pixel`).
+    pub epsilon: Option<&'a str>,
+    /// `WxH`.
+    pub size: &'a str,
+    /// Renders per cell (the median time is reported).
+    pub repeat: u32,
+    /// The error the user wants: report the fastest cell below it.
+    pub target_error: Option<f64>,
+    /// Largest share of pixels whose hit/miss may differ for a cell to meet the target.
+    pub max_mismatch: f64,
+    /// Print JSON instead of the table.
+    pub json: bool,
+    /// Print CSV instead of the table.
+    pub csv: bool,
+    /// Write the plot here (`.svg`).
+    pub plot: Option<&'a Path>,
+    /// Backend.
+    pub backend: BackendChoice,
+}
+
+/// Everything a run measured.
+#[derive(Serialize)]
+struct Report {
+    scene: String,
+    width: u32,
+    height: u32,
+    adapter: String,
+    backend: String,
+    timing: &'static str,
+    repeat: u32,
+    truth: Truth,
+    cells: Vec<Cell>,
+    target_error: Option<f64>,
+    max_mismatch: f64,
+    fastest: Option<Cell>,
+}
+
+const TIMING: &str = "wall time from the first dispatch's submission to the last one's completion (no timestamp queries), median of the repetitions";
+
+/// Runs `sdfc bench`; returns the exit code.
+pub fn run(args: &BenchArgs) -> i32 {
+    match bench(args) {
+        Ok(()) => 0,
+        Err(e) => {
+            if !e.is_empty() {
+                eprintln!("{e}");
+            }
+            1
+        }
+    }
+}
+
+fn bench(args: &BenchArgs) -> Result<(), String> {
+    let (w, h) = parse_size(args.size)?;
+    if args.repeat == 0 {
+        return Err("error: `--repeat` must be at least 1".into());
+    }
+    if let Some(e) = args.target_error
+        && !(e > 0.0 && e.is_finite())
+    {
+        return Err(format!("error: `--target-error {e}` must be a number > 0"));
+    }
+    if !(0.0..=1.0).contains(&args.max_mismatch) {
+        return Err("error: `--max-mismatch` must be a share in [0, 1]".into());
+    }
+    if let Some(p) = args.plot
+        && p.extension().is_none_or(|e| e != "svg")
+    {
+        return Err(format!(
+            "error: `--plot {}`: plots are written as SVG; give a `.svg` file",
+            p.display()
+        ));
+    }
+    let Some((name, _, scene)) = load_scene(args.file) else {
+        return Err(String::new());
+    };
+    let tracers: Vec<&str> = split(args.tracers);
+    let budgets: Vec<&str> = split(args.steps);
+    if tracers.is_empty() || budgets.is_empty() {
+        return Err("error: give at least one tracer and one step budget".into());
+    }
+    // Check every combination before the long part.
+    let mut cells = Vec::new();
+    for t in &tracers {
+        for s in &budgets {
+            let mut values = vec![("steps", *s)];
+            if let Some(e) = args.epsilon {
+                values.push(("epsilon", e));
+            }
+            let trace =
+                with_overrides(scene.trace, Some(t), &values).map_err(|e| format!("error: {e}"))?;
+            cells.push((*t, trace));
+        }
+    }
+    let gpu = Gpu::new(args.backend)?;
+    let view = View::new(&scene.camera, w, h);
+    let bar = progress_bar("measuring");
+    if let Some(b) = &bar {
+        b.set_length(cells.len() as u64 + 1);
+        b.set_message("ground truth (CPU)");
+    }
+    let clock = std::time::Instant::now();
+    let depth = truth::depth_map(&scene, &view);
+    let truth = Truth {
+        steps: truth::STEPS,
+        epsilon: truth::EPSILON,
+        bisections: truth::BISECTIONS,
+        pixels: depth.len(),
+        escaped: depth.iter().filter(|d| d.is_none()).count(),
+        seconds: clock.elapsed().as_secs_f64(),
+    };
+    let mut measured = Vec::new();
+    for (i, (t, trace)) in cells.iter().enumerate() {
+        if let Some(b) = &bar {
+            b.set_position(i as u64 + 1);
+            b.set_message(format!("{t}, {} steps", trace.steps));
+        }
+        measured.push(bench::measure(
+            &gpu,
+            &scene,
+            (t, *trace),
+            &view,
+            &depth,
+            args.repeat,
+        )?);
+    }
+    if let Some(b) = bar {
+        b.finish_and_clear();
+    }
+    let fastest = args.target_error.and_then(|e| {
+        measured
+            .iter()
+            .filter(|c| c.mse <= e && c.mismatch <= args.max_mismatch)
+            .min_by(|a, b| a.seconds.total_cmp(&b.seconds))
+            .cloned()
+    });
+    let report = Report {
+        scene: name.clone(),
+        width: w,
+        height: h,
+        adapter: gpu.info.name.clone(),
+        backend: gpu.backend(),
+        timing: TIMING,
+        repeat: args.repeat,
+        truth,
+        cells: measured,
+        target_error: args.target_error,
+        max_mismatch: args.max_mismatch,
+        fastest,
+    };
+    if let Some(p) = args.plot {
+        let title = format!("{name}: {w}×{h} on {}", report.adapter);
+        sdfc::plot::svg(p, &title, &report.cells)?;
+    }
+    if args.json {
+        let text = serde_json::to_string_pretty(&report).map_err(|e| format!("error: {e}"))?;
+        println!("{text}");
+    } else if args.csv {
+        print!("{}", csv(&report.cells));
+    } else {
+        print!("{}", table(&report));
+    }
+    Ok(())
+}
+
+fn split(s: &str) -> Vec<&str> {
+    s.split(',')
+        .map(str::trim)
+        .filter(|x| !x.is_empty())
+        .collect()
+}
+
+fn csv(cells: &[Cell]) -> String {
+    let mut out =
+        String::from("tracer,steps,seconds,evals_mean,evals_max,mse,mismatch,error_x_time\n");
+    for c in cells {
+        out += &format!(
+            "{},{},{},{},{},{},{},{}\n",
+            c.tracer,
+            c.steps,
+            c.seconds,
+            c.evals_mean,
+            c.evals_max,
+            c.mse,
+            c.mismatch,
+            c.error_x_time
+        );
+    }
+    out
+}
+
+fn table(r: &Report) -> String {
+    let mut out = format!(
+        "{}: {}×{} on {} ({})\nground truth: basic, {} steps, ε {}·|eye − target|, {} bisections; {} of {} pixels escape (CPU {:.1} s)\ntime: {}\n\n",
+        r.scene,
+        r.width,
+        r.height,
+        r.adapter,
+        r.backend,
+        r.truth.steps,
+        r.truth.epsilon,
+        r.truth.bisections,
+        r.truth.escaped,
+        r.truth.pixels,
+        r.truth.seconds,
+        r.timing
+    );
+    out += &format!(
+        "{:<9} {:>6} {:>9} {:>10} {:>9} {:>11} {:>9} {:>11}\n",
+        "tracer", "steps", "time ms", "evals/px", "max", "depth MSE", "hit/miss", "err×time"
+    );
+    for c in &r.cells {
+        out += &format!(
+            "{:<9} {:>6} {:>9.3} {:>10.2} {:>9} {:>11.3e} {:>8.2}% {:>11.3e}\n",
+            c.tracer,
+            c.steps,
+            c.seconds * 1e3,
+            c.evals_mean,
+            c.evals_max,
+            c.mse,
+            c.mismatch * 100.0,
+            c.error_x_time
+        );
+    }
+    if let Some(e) = r.target_error {
+        out += &match &r.fastest {
+            Some(c) => format!(
+                "\nfastest with depth MSE ≤ {e:e} and hit/miss differing on ≤ {:.1}% of pixels: {} with {} steps, {:.3} ms ({:.2} evaluations per pixel)\n",
+                r.max_mismatch * 100.0,
+                c.tracer,
+                c.steps,
+                c.seconds * 1e3,
+                c.evals_mean
+            ),
+            None => format!(
+                "\nno tracer and budget measured reaches depth MSE ≤ {e:e} with hit/miss differing on ≤ {:.1}% of pixels; try larger budgets\n",
+                r.max_mismatch * 100.0
+            ),
+        };
+    }
+    out
+}
