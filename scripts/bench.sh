@@ -15,5 +15,7 @@ for scene in mandelbulb composition village; do
     --epsilon "$eps" --json --plot "docs/benchmarks/$scene.svg" > "docs/benchmarks/$scene.json"
   echo "measured $scene" >&2
 done
+# Compile time (criterion): parse → check → lower → validate → WGSL for generated scenes.
+cargo bench -q -p sdfc-compiler > /dev/null
 python3 scripts/bench_report.py "$size" "$repeat" "$eps" > docs/benchmarks.md
 echo "wrote docs/benchmarks.md" >&2
