@@ -12,7 +12,7 @@ cargo build --release -q -p sdfc
 mkdir -p docs/benchmarks
 for scene in mandelbulb composition village; do
   ./target/release/sdfc bench "examples/$scene.sdf" --size "$size" --repeat "$repeat" \
-    --epsilon "$eps" --json --plot "docs/benchmarks/$scene.svg" > "docs/benchmarks/$scene.json"
+    --epsilon "$eps" --json --plot "docs/benchmarks/$scene.png" > "docs/benchmarks/$scene.json"
   echo "measured $scene" >&2
 done
 # Compile time (criterion): parse → check → lower → validate → WGSL for generated scenes.

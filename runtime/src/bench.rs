@@ -4,6 +4,7 @@
 use crate::gpu::{Frame, Gpu};
 use sdfc_compiler::emit;
 use sdfc_compiler::lower::{Entry, tracer::Options};
+use sdfc_compiler::passes;
 use sdfc_compiler::scene::{Scene, Trace};
 use sdfc_compiler::view::View;
 use serde::Serialize;
@@ -24,7 +25,9 @@ pub struct Cell {
     pub evals_mean: f64,
     /// Most evaluations any pixel's ray made.
     pub evals_max: u32,
-    /// Mean squared difference of depth t to the ground truth, over the pixels both hit.
+    /// Mean squared difference to the ground truth's depth of the t where each ray stopped
+    /// (hit, best candidate, budget out, or escaped: at most `max_distance`), over the pixels
+    /// the ground truth hits.
     pub mse: f64,
     /// Share of pixels whose hit/miss differs from the ground truth.
     pub mismatch: f64,
@@ -49,13 +52,18 @@ pub struct Truth {
     pub seconds: f64,
 }
 
-/// Compiles the scene with `trace` and renders `view` once, in one pass.
+/// Compiles the scene with `trace` and renders `view` once, in one pass; compiled with the
+/// hand-over buffer of multi-resolution passes so that the t where every ray stopped, hit or
+/// not, is read back ([`Frame::reached`]).
 pub fn render(gpu: &Gpu, scene: &Scene, trace: Trace, view: &View) -> Result<Frame, String> {
     let mut s = scene.clone();
     s.trace = trace;
-    let (module, _) = emit::module(&s, Entry::Compute, &Options::from_scene(&s))
+    let mut options = Options::from_scene(&s);
+    options.passes = true;
+    let (module, _) = emit::module(&s, Entry::Compute, &options)
         .map_err(|e| format!("internal compiler error: {}", e.0))?;
-    gpu.render(&module, view, None, |_, _| {})
+    let one = passes::plan(&s, view.width, view.height, trace.steps, 1).unwrap_or_default();
+    gpu.render(&module, view, Some(&one), |_, _| {})
 }
 
 /// Measures one cell: `repeat` renders, the median time, and the errors against `truth`.
@@ -77,22 +85,27 @@ pub fn measure(
     let mut sorted = times.clone();
     sorted.sort_by(f64::total_cmp);
     let seconds = sorted[sorted.len() / 2];
-    let (mut sum, mut both, mut mismatch) = (0.0, 0usize, 0usize);
+    let (mut sum, mut counted, mut mismatch) = (0.0, 0usize, 0usize);
     for (i, gt) in truth.iter().enumerate() {
-        let d = frame.depth[i];
-        let hit = d >= 0.0;
-        match (gt, hit) {
-            (Some(t), true) => {
-                sum += (d as f64 - t).powi(2);
-                both += 1;
-            }
-            (None, false) => {}
-            _ => mismatch += 1,
+        let hit = frame.depth[i] >= 0.0;
+        if gt.is_some() != hit {
+            mismatch += 1;
+        }
+        if let Some(t) = gt {
+            // Where the ray stopped, hit or not (Bálint & Valasek: the depth each algorithm
+            // reached), at most the far limit.
+            let reached = (frame.reached[i] as f64).min(trace.max_distance);
+            sum += (reached - t).powi(2);
+            counted += 1;
         }
     }
     let n = truth.len().max(1) as f64;
     let evals_mean = frame.steps.iter().map(|&s| s as f64).sum::<f64>() / n;
-    let mse = if both > 0 { sum / both as f64 } else { 0.0 };
+    let mse = if counted > 0 {
+        sum / counted as f64
+    } else {
+        0.0
+    };
     Ok(Cell {
         tracer: name.to_string(),
         steps: trace.steps,

@@ -85,10 +85,10 @@ fn bench(args: &BenchArgs) -> Result<(), String> {
         return Err("error: `--max-mismatch` must be a share in [0, 1]".into());
     }
     if let Some(p) = args.plot
-        && p.extension().is_none_or(|e| e != "svg")
+        && p.extension().is_none_or(|e| e != "svg" && e != "png")
     {
         return Err(format!(
-            "error: `--plot {}`: plots are written as SVG; give a `.svg` file",
+            "error: `--plot {}`: plots are written as SVG or PNG; give a `.svg` or `.png` file",
             p.display()
         ));
     }
@@ -171,7 +171,7 @@ fn bench(args: &BenchArgs) -> Result<(), String> {
     };
     if let Some(p) = args.plot {
         let title = format!("{name}: {w}×{h} on {}", report.adapter);
-        sdfc::plot::svg(p, &title, &report.cells)?;
+        sdfc::plot::write(p, &title, &report.cells)?;
     }
     if args.json {
         let text = serde_json::to_string_pretty(&report).map_err(|e| format!("error: {e}"))?;

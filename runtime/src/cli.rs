@@ -98,7 +98,7 @@ enum Command {
         /// Print CSV instead of the table.
         #[arg(long, conflicts_with = "json")]
         csv: bool,
-        /// Also draw error against time and against evaluations per pixel to this SVG file.
+        /// Also draw error against time and against evaluations per pixel to this `.svg` or `.png`.
         #[arg(long)]
         plot: Option<PathBuf>,
         /// Graphics API: Vulkan, then GL, or one of them.

@@ -52,6 +52,9 @@ pub struct Frame {
     /// Wall time of the dispatches: from the first tile's submission to the last one's
     /// completion (pipeline creation, buffer set-up and read-back excluded).
     pub seconds: f64,
+    /// With passes: the t where each pixel's ray stopped in the last pass, hit or not (the
+    /// hand-over buffer); empty otherwise.
+    pub reached: Vec<f32>,
 }
 
 const NO_ADAPTER: &str = "no GPU adapter was found (tried Vulkan and GL).\n\
@@ -171,7 +174,7 @@ impl Gpu {
                 device.create_buffer(&wgpu::BufferDescriptor {
                     label: Some("pass"),
                     size: pixels * 8,
-                    usage: wgpu::BufferUsages::STORAGE,
+                    usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
                     mapped_at_creation: false,
                 })
             })
@@ -246,6 +249,17 @@ impl Gpu {
                 "internal error: the GPU rejected the compiled shader: {e}"
             ));
         }
+        let reached = match hand_over.len() {
+            0 => Vec::new(),
+            _ => {
+                // The last pass wrote binding 7 of its bind group: buffer 1 − (its index % 2).
+                let last = (schedule.len() - 1) % 2;
+                let b = self.read(&hand_over[1 - last], pixels * 8)?;
+                b.chunks_exact(8)
+                    .map(|c| f32::from_le_bytes(c[..4].try_into().unwrap()))
+                    .collect()
+            }
+        };
         let bytes: Vec<Vec<u8>> = outputs
             .iter()
             .zip(sizes)
@@ -274,6 +288,7 @@ impl Gpu {
             material: words(&bytes[3]),
             steps: words(&bytes[4]),
             seconds,
+            reached,
         })
     }
 

@@ -1,6 +1,7 @@
-//! The benchmark's plots (plotters, SVG): squared depth error against GPU time and against
-//! evaluations per pixel, one line per tracer through its step budgets, as in Bálint &
-//! Valasek's Figure 3.
+//! The benchmark's plots (plotters, SVG or PNG): squared depth error against GPU time and
+//! against evaluations per pixel, one line per tracer through its step budgets, as in Bálint &
+//! Valasek's Figure 3. PNG text uses DejaVu Sans, embedded (`runtime/assets/`, its licence
+//! beside it), so no system fonts are needed.
 
 use crate::bench::Cell;
 use plotters::prelude::*;
@@ -9,10 +10,23 @@ use std::path::Path;
 /// Smallest error drawn (the log axis has no 0).
 const FLOOR: f64 = 1e-12;
 
-/// Draws the cells to an SVG file.
-pub fn svg(path: &Path, title: &str, cells: &[Cell]) -> Result<(), String> {
-    let root = SVGBackend::new(path, (1200, 480)).into_drawing_area();
-    draw(&root, title, cells).map_err(|e| format!("error: cannot draw `{}`: {e}", path.display()))
+const SIZE: (u32, u32) = (1200, 480);
+
+static FONT: &[u8] = include_bytes!("../assets/DejaVuSans.ttf");
+
+/// Draws the cells to `path` (SVG for `.svg`, PNG for `.png`).
+pub fn write(path: &Path, title: &str, cells: &[Cell]) -> Result<(), String> {
+    let fail = |e: String| format!("error: cannot draw `{}`: {e}", path.display());
+    // Text is laid out with the embedded font for both formats.
+    plotters::style::register_font("sans-serif", FontStyle::Normal, FONT)
+        .map_err(|_| fail("the embedded font does not load".into()))?;
+    if path.extension().is_some_and(|e| e == "png") {
+        let root = BitMapBackend::new(path, SIZE).into_drawing_area();
+        draw(&root, title, cells).map_err(|e| fail(e.to_string()))
+    } else {
+        let root = SVGBackend::new(path, SIZE).into_drawing_area();
+        draw(&root, title, cells).map_err(|e| fail(e.to_string()))
+    }
 }
 
 type Axis = (&'static str, fn(&Cell) -> f64);

@@ -135,7 +135,7 @@ fn bench_refuses_bad_input() {
             vec!["--target-error", "-1"],
             "`--target-error -1` must be a number > 0",
         ),
-        (vec!["--plot", "x.png"], "give a `.svg` file"),
+        (vec!["--plot", "x.pdf"], "give a `.svg` or `.png` file"),
         (vec!["--size", "0x3"], "empty"),
     ] {
         let size: &[&str] = if args[0] == "--size" {
