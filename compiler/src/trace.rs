@@ -83,7 +83,8 @@ impl Threshold {
     pub fn at(&self, t: f64) -> f64 {
         match self.epsilon {
             Epsilon::Pixel => (self.pixel * (t + self.offset)).max(self.floor),
-            Epsilon::Absolute(e) => e,
+            // Below the floor f32 positions cannot resolve the surface (the check warns).
+            Epsilon::Absolute(e) => e.max(self.floor),
         }
     }
 }

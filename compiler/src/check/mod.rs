@@ -96,6 +96,7 @@ fn check_with_lines(file: &syntax::File, source: &str) -> Checked {
     if let Some(root) = root {
         c.check_bounded(root);
         c.check_bound(root);
+        c.check_epsilon();
     }
     c.diags.sort_by_key(|d| (d.span.start, d.span.end));
     let ok = !c.diags.iter().any(Diagnostic::is_error);

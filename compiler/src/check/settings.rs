@@ -266,6 +266,29 @@ impl Checker<'_> {
         self.once(|s| &mut s.bound, (declared, convex), span, "bound");
     }
 
+    /// Warns when an absolute ε is below what f32 positions resolve at the camera's distance
+    /// (the tracers then use that floor, `EPSILON_FLOOR`·|eye − target|).
+    pub(super) fn check_epsilon(&mut self) {
+        let Some((trace, span)) = &self.settings.trace else {
+            return;
+        };
+        let crate::scene::Epsilon::Absolute(e) = trace.epsilon else {
+            return;
+        };
+        let distance = self.settings.camera.as_ref().map_or_else(
+            || (DVec3::new(0.0, 1.0, -5.0)).length(),
+            |c| (c.0.eye - c.0.target).length(),
+        );
+        let floor = crate::lower::tracer::EPSILON_FLOOR * distance;
+        if e < floor {
+            self.diags.push(
+                Diagnostic::warning(*span, format!("ε = {e} is below what f32 positions resolve at this camera distance"))
+                    .label(format!("the tracers use ε = {floor:.3e} instead"))
+                    .note("a hit threshold under about 1e-5 of the camera's distance to its target cannot be met in f32: rays would spend their budget at the surface"),
+            );
+        }
+    }
+
     /// Checks that `bound auto` has a finite sphere to use.
     pub(super) fn check_bound(&mut self, root: NodeId) {
         if let Some(((None, _), span)) = self.settings.bound

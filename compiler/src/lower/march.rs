@@ -34,7 +34,8 @@ pub fn epsilon(b: &mut FnBuilder, trace: &Trace, t: Ex, pixel: Option<Ex>, floor
             let fl = b.f(floor);
             b.max(e, fl)
         }
-        (Epsilon::Absolute(e), _) => b.f(e.max(f64::MIN_POSITIVE)),
+        // Below the floor f32 positions cannot resolve the surface (the check warns).
+        (Epsilon::Absolute(e), _) => b.f(e.max(floor).max(f64::MIN_POSITIVE)),
         (Epsilon::Pixel, None) => b.f(floor),
     }
 }
