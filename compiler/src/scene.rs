@@ -181,6 +181,14 @@ pub struct Camera {
     pub fov: f64,
 }
 
+impl Camera {
+    /// The smallest hit threshold the tracers use with this camera: `EPSILON_FLOOR` times its
+    /// distance from its target, above f32's resolution of positions there.
+    pub fn epsilon_floor(&self) -> f64 {
+        crate::lower::tracer::EPSILON_FLOOR * (self.eye - self.target).length()
+    }
+}
+
 /// A convex volume declared to enclose the scene's surfaces (Keinert §3.5): rays start where
 /// they enter it and are culled if they miss it.
 #[derive(Clone, Copy, Debug, PartialEq)]

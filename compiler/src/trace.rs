@@ -5,7 +5,6 @@
 //! same code traces scenes and the closed-form cases of the tests (the grazing plane).
 
 use crate::eval;
-use crate::lower::tracer::EPSILON_FLOOR;
 use crate::scene::{Convex, Epsilon, Method, Scene, Trace};
 use glam::DVec3;
 
@@ -74,7 +73,7 @@ impl Threshold {
         Threshold {
             epsilon: trace.epsilon,
             pixel,
-            floor: EPSILON_FLOOR * (scene.camera.eye - scene.camera.target).length(),
+            floor: scene.camera.epsilon_floor(),
             offset: 0.0,
         }
     }
@@ -87,6 +86,19 @@ impl Threshold {
             Epsilon::Absolute(e) => e.max(self.floor),
         }
     }
+}
+
+/// Traces `ro + t·rd` from t = 0 with an absolute hit threshold and no floor, ignoring the
+/// scene's bound: for f64 references (the ground truth, the fine checks of the tests), which
+/// resolve far below the f32 floor the shader's mirrors keep.
+pub fn ray_exact(scene: &Scene, trace: &Trace, epsilon: f64, ro: DVec3, rd: DVec3) -> Traced {
+    let eps = Threshold {
+        epsilon: Epsilon::Absolute(epsilon),
+        pixel: 0.0,
+        floor: 0.0,
+        offset: 0.0,
+    };
+    march(trace, &eps, |t| eval::distance(scene, ro + rd * t))
 }
 
 /// The part of a ray a trace searches, with its budget: the whole ray, the part inside a

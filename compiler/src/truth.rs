@@ -3,7 +3,7 @@
 //! across the surface.
 
 use crate::eval;
-use crate::scene::{Epsilon, Method, Scene};
+use crate::scene::{Method, Scene};
 use crate::trace;
 use crate::view::View;
 use glam::DVec3;
@@ -18,17 +18,16 @@ pub const EPSILON: f64 = 1e-7;
 pub const BISECTIONS: u32 = 60;
 
 /// The distance along `ro + t·rd` to the first surface, or `None` if the ray escapes (or the
-/// 10 000 steps run out first). `scene` should have no `bound`: the truth traces every ray
-/// from the camera.
+/// 10 000 steps run out first). The truth traces every ray from the camera, whatever `bound`
+/// the scene declares, with no f32 floor on ε.
 pub fn depth(scene: &Scene, ro: DVec3, rd: DVec3) -> Option<f64> {
     let scale = (scene.camera.eye - scene.camera.target).length();
     let mut t = scene.trace;
     t.method = Method::Basic;
     t.steps = STEPS;
-    t.epsilon = Epsilon::Absolute(EPSILON * scale);
     t.discontinuity = 0;
     t.antialias = false;
-    let r = trace::ray(scene, &t, ro, rd, 0.0);
+    let r = trace::ray_exact(scene, &t, EPSILON * scale, ro, rd);
     if !r.hit {
         return None;
     }
@@ -65,20 +64,17 @@ pub fn depth(scene: &Scene, ro: DVec3, rd: DVec3) -> Option<f64> {
 
 /// The ground-truth depth of every pixel of `view` (row by row), on all cores.
 pub fn depth_map(scene: &Scene, view: &View) -> Vec<Option<f64>> {
-    let mut free = scene.clone();
-    free.bound = None;
     let (w, h) = (view.width as usize, view.height as usize);
     let mut out = vec![None; w * h];
     let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
     let rows_per = h.div_ceil(threads).max(1);
     std::thread::scope(|s| {
         for (k, chunk) in out.chunks_mut(rows_per * w).enumerate() {
-            let free = &free;
             s.spawn(move || {
                 for (i, px) in chunk.iter_mut().enumerate() {
                     let (x, y) = (i % w, k * rows_per + i / w);
                     let rd = view.ray(x as f64 + 0.5, y as f64 + 0.5);
-                    *px = depth(free, view.eye, rd);
+                    *px = depth(scene, view.eye, rd);
                 }
             });
         }

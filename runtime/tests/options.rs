@@ -6,11 +6,11 @@ use sdfc_compiler::check::tracer::TRACE_METHODS;
 use sdfc_compiler::emit;
 use sdfc_compiler::lower::{Entry, tracer::Options};
 use sdfc_compiler::passes;
-use sdfc_compiler::scene::{Epsilon, Method, Scene};
+use sdfc_compiler::scene::Scene;
 use sdfc_compiler::trace;
 use sdfc_compiler::view::View;
 mod common;
-use common::{camera_rays, compile, examples, gpu, gpu_trace, with_method};
+use common::{Safety, Tally, camera_rays, compile, examples, gpu, gpu_trace, with_method};
 
 /// A unit sphere in a convex bound: rays from outside the bound, from inside the bound but
 /// outside the sphere, from inside the sphere, and rays missing the bound; (origin, direction,
@@ -99,8 +99,6 @@ fn a_bound_saves_steps_and_misses_nothing() {
     let bounded = compile(&std::fs::read_to_string(path).unwrap());
     let mut free = bounded.clone();
     free.bound = None;
-    let mut fine = free.clone();
-    fine.trace.epsilon = Epsilon::Absolute(1e-7);
     let view = View::new(&bounded.camera, 64, 48);
     let (mut with, mut without) = (0u64, 0u64);
     let (mut culled, mut missed, mut grazed, mut deeper) = (0, 0, 0, 0);
@@ -114,7 +112,7 @@ fn a_bound_saves_steps_and_misses_nothing() {
             culled += (a.steps == 0) as u32;
             if b.hit && !a.hit {
                 // A real miss, or a ray passing within ε of the silhouette without touching it?
-                let f = trace::ray(&fine, &fine.trace, view.eye, rd, view.pixel);
+                let f = trace::ray_exact(&free, &free.trace, 1e-7, view.eye, rd);
                 if f.hit {
                     missed += 1;
                 } else {
@@ -187,16 +185,13 @@ fn passes_miss_nothing_the_ground_truth_hits() {
     let mut report = String::new();
     for path in examples() {
         let base = compile(&std::fs::read_to_string(&path).unwrap());
-        let mut truth_scene = base.clone();
-        truth_scene.bound = None;
-        truth_scene.trace.method = Method::Basic;
-        truth_scene.trace.steps = 10_000;
-        truth_scene.trace.discontinuity = 0;
-        let mut fine = truth_scene.clone();
-        fine.trace.epsilon =
-            Epsilon::Absolute(1e-7 * (base.camera.eye - base.camera.target).length());
+        let safety = Safety::new(&base);
         let (w, h) = (48, 30);
         let view = View::new(&base.camera, w, h);
+        let rays: Vec<_> = (0..w * h)
+            .map(|i| view.ray((i % w) as f64 + 0.5, (i / w) as f64 + 0.5))
+            .collect();
+        let truth: Vec<_> = rays.iter().map(|&rd| safety.truth(&view, rd)).collect();
         for &(name, method, _) in TRACE_METHODS {
             let mut scene = base.clone();
             scene.trace = with_method(&base, method);
@@ -207,24 +202,15 @@ fn passes_miss_nothing_the_ground_truth_hits() {
             for count in [1, 2, 4] {
                 let plan = passes::plan(&scene, w, h, scene.trace.steps, count).unwrap();
                 let (got, work) = passes::trace_image(&scene, &plan);
-                let (mut missed, mut grazed, mut exhausted) = (0, 0, 0);
+                let mut tally = Tally::default();
                 for (i, r) in got.iter().enumerate() {
-                    let (x, y) = (i as u32 % w, i as u32 / w);
-                    let rd = view.ray(x as f64 + 0.5, y as f64 + 0.5);
-                    if r.exhausted {
-                        exhausted += 1;
-                        continue;
-                    }
-                    let t = trace::ray(&truth_scene, &truth_scene.trace, view.eye, rd, view.pixel);
-                    if t.hit && !r.hit {
-                        let f = trace::ray(&fine, &fine.trace, view.eye, rd, view.pixel);
-                        if f.hit || f.exhausted {
-                            missed += 1;
-                        } else {
-                            grazed += 1;
-                        }
-                    }
+                    safety.judge(&mut tally, (&view, rays[i]), r, &truth[i]);
                 }
+                let Tally {
+                    missed,
+                    grazed,
+                    exhausted,
+                } = tally;
                 row += &format!(
                     "  {count}× {:.1} evals/px (missed {missed}, grazed {grazed}, budget out {exhausted})",
                     work as f64 / got.len() as f64

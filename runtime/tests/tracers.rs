@@ -2,11 +2,11 @@
 //! against CPU on the same rays, and safety against a 10 000-step ground truth.
 
 use sdfc_compiler::check::tracer::TRACE_METHODS;
-use sdfc_compiler::scene::{Epsilon, Method, Scene};
+use sdfc_compiler::scene::Scene;
 use sdfc_compiler::trace::{self, Threshold};
 use sdfc_compiler::view::View;
 mod common;
-use common::{camera_rays, compile, examples, gpu, gpu_trace, with_method};
+use common::{Safety, Tally, camera_rays, compile, examples, gpu, gpu_trace, with_method};
 
 /// The angles of the grazing-plane table, in degrees.
 const ANGLES: [f64; 4] = [45.0, 10.0, 1.0, 0.1];
@@ -167,49 +167,26 @@ fn no_variant_misses_what_the_ground_truth_hits() {
     for path in examples() {
         let source = std::fs::read_to_string(&path).unwrap();
         let base = compile(&source);
-        let mut truth_trace = base.trace;
-        truth_trace.method = Method::Basic;
-        truth_trace.steps = 10_000;
-        truth_trace.discontinuity = 0;
+        let safety = Safety::new(&base);
         let (view, pts) = grid(&base, 48, 30);
-        // The same rays with a hit threshold far below the scene's: whether a ray really
-        // reaches the surface, or only passes within the scene's ε of it.
-        let mut fine_trace = truth_trace;
-        fine_trace.epsilon =
-            Epsilon::Absolute(1e-7 * (base.camera.eye - base.camera.target).length());
-        // The ground truth traces every ray from the camera, whatever bound the scene declares.
-        let mut unbounded = base.clone();
-        unbounded.bound = None;
         let truth: Vec<_> = pts
             .iter()
-            .map(|&(x, y)| {
-                trace::ray(
-                    &unbounded,
-                    &truth_trace,
-                    view.eye,
-                    view.ray(x, y),
-                    view.pixel,
-                )
-            })
+            .map(|&(x, y)| safety.truth(&view, view.ray(x, y)))
             .collect();
         for &(name, method, _) in TRACE_METHODS {
             let mut scene = base.clone();
             scene.trace = with_method(&base, method);
-            let (mut missed, mut grazed, mut exhausted) = (0, 0, 0);
+            let mut tally = Tally::default();
             for (i, &(x, y)) in pts.iter().enumerate() {
                 let rd = view.ray(x, y);
                 let r = trace::ray(&scene, &scene.trace, view.eye, rd, view.pixel);
-                if r.exhausted {
-                    exhausted += 1;
-                } else if truth[i].hit && !r.hit {
-                    let fine = trace::ray(&unbounded, &fine_trace, view.eye, rd, view.pixel);
-                    if fine.hit || fine.exhausted {
-                        missed += 1;
-                    } else {
-                        grazed += 1;
-                    }
-                }
+                safety.judge(&mut tally, (&view, rd), &r, &truth[i]);
             }
+            let Tally {
+                missed,
+                grazed,
+                exhausted,
+            } = tally;
             report += &format!(
                 "{:>14} {name:>8}: missed {missed}, passed within ε without touching {grazed}, budget ran out on {exhausted} of {}\n",
                 path.file_stem().unwrap().to_string_lossy(),

@@ -83,6 +83,16 @@ pub(super) struct Settings {
 }
 
 impl Settings {
+    /// The declared camera, or the default one.
+    fn camera(&self) -> Camera {
+        self.camera.map(|c| c.0).unwrap_or(Camera {
+            eye: DVec3::new(0.0, 1.0, -5.0),
+            target: DVec3::ZERO,
+            up: DVec3::Y,
+            fov: std::f64::consts::PI / 4.0,
+        })
+    }
+
     pub(super) fn finish(self, nodes: Vec<Node>, root: NodeId, materials: Vec<Material>) -> Scene {
         let bound = self.bound.map(|((declared, convex), _)| {
             declared.unwrap_or_else(|| Convex {
@@ -93,12 +103,7 @@ impl Settings {
                 convex,
             })
         });
-        let camera = self.camera.map(|c| c.0).unwrap_or(Camera {
-            eye: DVec3::new(0.0, 1.0, -5.0),
-            target: DVec3::ZERO,
-            up: DVec3::Y,
-            fov: std::f64::consts::PI / 4.0,
-        });
+        let camera = self.camera();
         let lights = if self.lights.is_empty() {
             vec![Light {
                 kind: LightKind::Directional(DVec3::new(-0.4, 1.0, -0.3).normalize()),
@@ -275,11 +280,7 @@ impl Checker<'_> {
         let crate::scene::Epsilon::Absolute(e) = trace.epsilon else {
             return;
         };
-        let distance = self.settings.camera.as_ref().map_or_else(
-            || (DVec3::new(0.0, 1.0, -5.0)).length(),
-            |c| (c.0.eye - c.0.target).length(),
-        );
-        let floor = crate::lower::tracer::EPSILON_FLOOR * distance;
+        let floor = self.settings.camera().epsilon_floor();
         if e < floor {
             self.diags.push(
                 Diagnostic::warning(*span, format!("ε = {e} is below what f32 positions resolve at this camera distance"))

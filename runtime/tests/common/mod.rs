@@ -6,6 +6,7 @@ use sdfc_compiler::check::tracer::TRACE_METHODS;
 use sdfc_compiler::emit;
 use sdfc_compiler::lower::{Entry, tracer::Options};
 use sdfc_compiler::scene::{Method, Scene, Trace};
+use sdfc_compiler::trace::{self, Traced};
 use std::path::PathBuf;
 
 /// The example scene files, sorted.
@@ -69,4 +70,65 @@ pub fn camera_rays(
             )
         })
         .collect()
+}
+
+/// The safety check shared by the tracer tests: the ground truth (basic tracing, 10 000 steps,
+/// the scene's ε, every ray from the camera whatever bound the scene declares) and a far finer
+/// threshold (1e-7·|eye − target|, f64, no floor) that tells a ray really reaching a surface
+/// from one only passing within the scene's ε of it.
+pub struct Safety {
+    truth: Scene,
+    fine_epsilon: f64,
+}
+
+/// What a tracer did on the rays the ground truth hits.
+#[derive(Debug, Default)]
+pub struct Tally {
+    /// Missed a surface the ray really reaches.
+    pub missed: u32,
+    /// Missed a surface the ray only passes within ε of.
+    pub grazed: u32,
+    /// Ran out of budget (counted, not judged).
+    pub exhausted: u32,
+}
+
+impl Safety {
+    /// The references for a scene.
+    pub fn new(base: &Scene) -> Safety {
+        let mut truth = base.clone();
+        truth.bound = None;
+        truth.trace.method = Method::Basic;
+        truth.trace.steps = 10_000;
+        truth.trace.discontinuity = 0;
+        Safety {
+            fine_epsilon: 1e-7 * (base.camera.eye - base.camera.target).length(),
+            truth,
+        }
+    }
+
+    /// The ground truth of the ray `rd` from the camera of `view`.
+    pub fn truth(&self, view: &sdfc_compiler::view::View, rd: glam::DVec3) -> Traced {
+        trace::ray(&self.truth, &self.truth.trace, view.eye, rd, view.pixel)
+    }
+
+    /// Counts a tracer's result `r` on the ray `rd` whose ground truth is `truth`.
+    pub fn judge(
+        &self,
+        tally: &mut Tally,
+        (view, rd): (&sdfc_compiler::view::View, glam::DVec3),
+        r: &Traced,
+        truth: &Traced,
+    ) {
+        if r.exhausted {
+            tally.exhausted += 1;
+        } else if truth.hit && !r.hit {
+            let t = &self.truth;
+            let f = trace::ray_exact(t, &t.trace, self.fine_epsilon, view.eye, rd);
+            if f.hit || f.exhausted {
+                tally.missed += 1;
+            } else {
+                tally.grazed += 1;
+            }
+        }
+    }
 }
