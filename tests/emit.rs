@@ -112,14 +112,7 @@ fn every_example_target_and_entry_validates() {
                 match (target, out) {
                     (Target::Spirv, Output::Binary(words)) if spirv_val => {
                         let f = dir.join(format!("{stem}-{entry:?}-{passes}.spv"));
-                        std::fs::write(
-                            &f,
-                            words
-                                .iter()
-                                .flat_map(|w| w.to_le_bytes())
-                                .collect::<Vec<u8>>(),
-                        )
-                        .unwrap();
+                        sdfc_tests::write_spirv(&f, &words);
                         run_tool("spirv-val", &["--target-env", "vulkan1.1"], &f, &what);
                     }
                     (Target::Glsl, Output::Text(s)) if glslang => {

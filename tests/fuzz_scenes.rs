@@ -155,14 +155,7 @@ fn check_scene(source: &str, index: usize) {
             unreachable!()
         };
         let f = std::env::temp_dir().join(format!("sdfc-fuzz-{}-{index}.spv", std::process::id()));
-        std::fs::write(
-            &f,
-            words
-                .iter()
-                .flat_map(|w| w.to_le_bytes())
-                .collect::<Vec<u8>>(),
-        )
-        .unwrap();
+        sdfc_tests::write_spirv(&f, &words);
         if let Ok(out) = std::process::Command::new("spirv-val")
             .args(["--target-env", "vulkan1.1"])
             .arg(&f)

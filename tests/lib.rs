@@ -24,6 +24,12 @@ pub fn examples() -> Vec<PathBuf> {
     v
 }
 
+/// Writes SPIR-V words to a file (little-endian), for `spirv-val`.
+pub fn write_spirv(path: &Path, words: &[u32]) {
+    let bytes: Vec<u8> = words.iter().flat_map(|w| w.to_le_bytes()).collect();
+    std::fs::write(path, bytes).expect("write SPIR-V");
+}
+
 /// Runs `f` on a thread with a large stack, as the command line does.
 pub fn with_stack<T: Send + 'static>(f: impl FnOnce() -> T + Send + 'static) -> T {
     std::thread::Builder::new()

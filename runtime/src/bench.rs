@@ -1,10 +1,10 @@
 //! Measuring the speed/accuracy trade of the tracers (Bálint & Valasek §5): every tracer ×
 //! step budget rendered on the GPU and compared with the f64 ground truth.
 
-use crate::gpu::{Frame, Gpu};
+use crate::gpu::Gpu;
 use sdfc_compiler::emit;
 use sdfc_compiler::lower::{Entry, tracer::Options};
-use sdfc_compiler::passes;
+use sdfc_compiler::passes::{self, Pass};
 use sdfc_compiler::scene::{Scene, Trace};
 use sdfc_compiler::view::View;
 use serde::Serialize;
@@ -52,10 +52,10 @@ pub struct Truth {
     pub seconds: f64,
 }
 
-/// Compiles the scene with `trace` and renders `view` once, in one pass; compiled with the
-/// hand-over buffer of multi-resolution passes so that the t where every ray stopped, hit or
-/// not, is read back ([`Frame::reached`]).
-pub fn render(gpu: &Gpu, scene: &Scene, trace: Trace, view: &View) -> Result<Frame, String> {
+/// The scene compiled with `trace` for one pass, with the hand-over buffer of multi-resolution
+/// passes so that the t where every ray stopped, hit or not, is read back
+/// ([`crate::gpu::Frame::reached`]); and that single pass.
+fn compile(scene: &Scene, trace: Trace, view: &View) -> Result<(naga::Module, Vec<Pass>), String> {
     let mut s = scene.clone();
     s.trace = trace;
     let mut options = Options::from_scene(&s);
@@ -63,7 +63,7 @@ pub fn render(gpu: &Gpu, scene: &Scene, trace: Trace, view: &View) -> Result<Fra
     let (module, _) = emit::module(&s, Entry::Compute, &options)
         .map_err(|e| format!("internal compiler error: {}", e.0))?;
     let one = passes::plan(&s, view.width, view.height, trace.steps, 1).unwrap_or_default();
-    gpu.render(&module, view, Some(&one), |_, _| {})
+    Ok((module, one))
 }
 
 /// Measures one cell: `repeat` renders, the median time, and the errors against `truth`.
@@ -77,10 +77,12 @@ pub fn measure(
 ) -> Result<Cell, String> {
     // A first, untimed render: the driver compiles the shader at its first dispatch (lavapipe:
     // LLVM, ~0.2 s, then cached), which is not the tracer's cost.
-    let frame = render(gpu, scene, trace, view)?;
+    let (module, one) = compile(scene, trace, view)?;
+    let render = || gpu.render(&module, view, Some(&one), |_, _| {});
+    let frame = render()?;
     let mut times = Vec::new();
     for _ in 0..repeat.max(1) {
-        times.push(render(gpu, scene, trace, view)?.seconds);
+        times.push(render()?.seconds);
     }
     let mut sorted = times.clone();
     sorted.sort_by(f64::total_cmp);

@@ -60,15 +60,7 @@ const TIMING: &str = "wall time from the first dispatch's submission to the last
 
 /// Runs `sdfc bench`; returns the exit code.
 pub fn run(args: &BenchArgs) -> i32 {
-    match bench(args) {
-        Ok(()) => 0,
-        Err(e) => {
-            if !e.is_empty() {
-                eprintln!("{e}");
-            }
-            1
-        }
-    }
+    crate::cli::exit_code(bench(args))
 }
 
 fn bench(args: &BenchArgs) -> Result<(), String> {

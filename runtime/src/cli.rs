@@ -335,6 +335,20 @@ impl From<EntryArg> for Entry {
     }
 }
 
+/// The exit code of a command: 0, or 1 after printing its error (empty when the diagnostics
+/// were printed already).
+pub fn exit_code(result: Result<(), String>) -> i32 {
+    match result {
+        Ok(()) => 0,
+        Err(e) => {
+            if !e.is_empty() {
+                eprintln!("{e}");
+            }
+            1
+        }
+    }
+}
+
 /// Reads and checks a scene, printing diagnostics; `None` (after printing) when it has errors.
 pub fn load_scene(path: &Path) -> Option<(String, String, sdfc_compiler::scene::Scene)> {
     let (name, source) = match read_source(path) {

@@ -51,15 +51,7 @@ pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
 
 /// Runs `sdfc render`; returns the exit code.
 pub fn run(args: &RenderArgs) -> i32 {
-    match render(args) {
-        Ok(()) => 0,
-        Err(e) => {
-            if !e.is_empty() {
-                eprintln!("{e}");
-            }
-            1
-        }
-    }
+    crate::cli::exit_code(render(args))
 }
 
 fn render(args: &RenderArgs) -> Result<(), String> {

@@ -7,15 +7,20 @@ use super::march::{EXHAUSTED, HIT, Inputs};
 use crate::scene::{AXIS_GUARD, BoundShape, Convex};
 use naga::{BinaryOperator as B, Function, Handle, Type};
 
-/// Adds `trace_bounded`, which takes the same inputs as the variant it calls.
+/// Adds `trace_bounded`, which takes the same inputs as the variant it calls and returns the
+/// same `TraceResult` (with the anti-aliasing cover fields if `antialias`).
 pub(super) fn add(
     mb: &mut ModuleBuilder,
     map: Handle<Function>,
-    result_ty: Handle<Type>,
+    (result_ty, antialias): (Handle<Type>, bool),
     variant: Handle<Function>,
     inputs: Inputs,
     bound: &Convex,
 ) -> Handle<Function> {
+    let out = Out {
+        ty: result_ty,
+        cover: antialias,
+    };
     let args = inputs.arguments(mb);
     let u32t = mb.u32();
     let mut b = FnBuilder::new(mb, "trace_bounded", &args, Some(result_ty));
@@ -28,7 +33,7 @@ pub(super) fn add(
     let lo = b.max(near, start);
     let hi = b.min(far, end);
     let zero_u = b.u(0);
-    let culled = result(&mut b, result_ty, None, [start, zero_u, zero_u]);
+    let culled = out.make(&mut b, None, [start, zero_u, zero_u]);
     let result = b.local("result", result_ty, Some(culled));
     let inverted = b.gt(lo, hi);
     let misses = b.expr(naga::Expression::Unary {
@@ -44,7 +49,7 @@ pub(super) fn add(
         let r = b.call(variant, a);
         let (t, s, f) = (b.at(r, 0), b.at(r, 1), b.at(r, 2));
         let s = b.add(s, extra);
-        let v = self::result(b, result_ty, Some((r, true)), [t, s, f]);
+        let v = out.make(b, Some((r, true)), [t, s, f]);
         b.store(result, v);
     };
     b.if_(
@@ -80,7 +85,7 @@ pub(super) fn add(
             let extra = b.load(tested);
             b.if_(
                 is_inside,
-                |b| backwards(b, &all, variant, result, (start, lo, hi, cone)),
+                |b| backwards(b, (&all, variant, out), result, (start, lo, hi, cone)),
                 |b| forward(b, extra),
             );
         },
@@ -95,8 +100,7 @@ pub(super) fn add(
 /// (t = hi − s); ε is measured from the far side. In a cone pass the ray stays at `start`.
 fn backwards(
     b: &mut FnBuilder,
-    all: &[Ex],
-    variant: Handle<Function>,
+    (all, variant, out): (&[Ex], Handle<Function>, Out),
     result: Ex,
     (start, lo, hi, cone): (Ex, Ex, Ex, Option<Ex>),
 ) {
@@ -128,12 +132,7 @@ fn backwards(
         let ex = b.u(EXHAUSTED);
         let ex = b.bin(B::And, flags, ex);
         let flags = b.bin(B::InclusiveOr, ex, hit_bit);
-        let ty = b.m.module.functions[variant]
-            .result
-            .as_ref()
-            .expect("result")
-            .ty;
-        let v = self::result(b, ty, Some((r, false)), [t, steps, flags]);
+        let v = out.make(b, Some((r, false)), [t, steps, flags]);
         b.store(result, v);
     };
     match cone {
@@ -143,14 +142,9 @@ fn backwards(
             b.if_(
                 coarse,
                 |b| {
-                    let ty = b.m.module.functions[variant]
-                        .result
-                        .as_ref()
-                        .expect("result")
-                        .ty;
                     let one = b.u(1);
                     let zero_u = b.u(0);
-                    let v = self::result(b, ty, None, [start, one, zero_u]);
+                    let v = out.make(b, None, [start, one, zero_u]);
                     b.store(result, v);
                 },
                 run,
@@ -160,23 +154,28 @@ fn backwards(
     }
 }
 
-/// A `TraceResult` of t, steps and flags; with anti-aliasing the cover fields are taken from
-/// `from` (its coverage kept or zeroed) or zero.
-fn result(b: &mut FnBuilder, ty: Handle<Type>, from: Option<(Ex, bool)>, [t, s, f]: [Ex; 3]) -> Ex {
-    let mut fields = vec![t, s, f];
-    let wide = matches!(
-        &b.m.module.types[ty].inner,
-        naga::TypeInner::Struct { members, .. } if members.len() == 5
-    );
-    if wide {
-        let zero = b.f(0.0);
-        let extra = match from {
-            Some((r, keep)) => [b.at(r, 3), if keep { b.at(r, 4) } else { zero }],
-            None => [zero, zero],
-        };
-        fields.extend(extra);
+/// The `TraceResult` type, and whether it has the anti-aliasing cover fields.
+#[derive(Clone, Copy)]
+struct Out {
+    ty: Handle<Type>,
+    cover: bool,
+}
+
+impl Out {
+    /// A result of t, steps and flags; the cover fields, if any, are taken from `from` (its
+    /// coverage kept or zeroed) or zero.
+    fn make(self, b: &mut FnBuilder, from: Option<(Ex, bool)>, [t, s, f]: [Ex; 3]) -> Ex {
+        let mut fields = vec![t, s, f];
+        if self.cover {
+            let zero = b.f(0.0);
+            let extra = match from {
+                Some((r, keep)) => [b.at(r, 3), if keep { b.at(r, 4) } else { zero }],
+                None => [zero, zero],
+            };
+            fields.extend(extra);
+        }
+        b.compose(self.ty, fields)
     }
-    b.compose(ty, fields)
 }
 
 /// (entry, exit, whether the line meets the volume) of the line `ro + t·rd`.

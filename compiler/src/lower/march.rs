@@ -144,6 +144,15 @@ impl Cx {
         }
     }
 
+    /// The field at the current point, counted as a step and named: (t, the field).
+    pub fn here(&self, b: &mut FnBuilder, name: &str) -> (Ex, Ex) {
+        let t = b.load(self.t);
+        let p = b.load(self.p);
+        let d = self.field_at(b, p, t);
+        b.name(d, name);
+        (t, d)
+    }
+
     /// The current point moved by `step` along the ray.
     pub fn ahead(&self, b: &mut FnBuilder, step: Ex) -> Ex {
         let p = b.load(self.p);

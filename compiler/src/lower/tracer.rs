@@ -125,7 +125,7 @@ pub fn add(
     entry: Entry,
     options: &Options,
 ) {
-    let floor = EPSILON_FLOOR * (scene.camera.eye - scene.camera.target).length();
+    let floor = scene.camera.epsilon_floor();
     let result_ty = march::trace_result_type(mb, options.trace.antialias);
     let inputs = Inputs {
         pixel: matches!(options.trace.epsilon, Epsilon::Pixel) || options.trace.antialias,
@@ -134,7 +134,10 @@ pub fn add(
     };
     let variant = march::add_trace(mb, map, result_ty, &options.trace, inputs, floor);
     let function = match &scene.bound {
-        Some(bound) => super::bound::add(mb, map, result_ty, variant, inputs, bound),
+        Some(bound) => {
+            let out = (result_ty, options.trace.antialias);
+            super::bound::add(mb, map, out, variant, inputs, bound)
+        }
         None => variant,
     };
     let tracer = Tracer {

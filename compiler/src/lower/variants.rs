@@ -37,10 +37,7 @@ fn basic(b: &mut FnBuilder, cx: &Cx) {
         .map(|_| (var(b, "run_t", 0.0), var(b, "run_q", -1.0)));
     b.loop_(|b| {
         cx.budget(b, EXHAUSTED, |_| {});
-        let t = b.load(cx.t);
-        let p = b.load(cx.p);
-        let d = cx.field_at(b, p, t);
-        b.name(d, "d");
+        let (t, d) = cx.here(b, "d");
         let e = cx.eps(b, t);
         let close = b.lt(d, e);
         cx.stop_if(b, close, HIT);
@@ -149,10 +146,7 @@ fn relaxed(b: &mut FnBuilder, cx: &Cx) {
             let ct = b.load(candidate_t);
             b.store(cx.t, ct);
         });
-        let t = b.load(cx.t);
-        let p = b.load(cx.p);
-        let r = cx.field_at(b, p, t);
-        b.name(r, "r");
+        let (t, r) = cx.here(b, "r");
         let radius = b.abs(r);
         let (om, st, pr) = (b.load(omega), b.load(step), b.load(prev_radius));
         let one = b.f(1.0);
@@ -320,10 +314,7 @@ fn hybrid(b: &mut FnBuilder, cx: &Cx) {
     let f_out = var(b, "f_out", 0.0);
     b.loop_(|b| {
         cx.budget(b, EXHAUSTED, |_| {});
-        let t = b.load(cx.t);
-        let p = b.load(cx.p);
-        let d = cx.field_at(b, p, t);
-        b.name(d, "d");
+        let (t, d) = cx.here(b, "d");
         let zero = b.f(0.0);
         let inside = b.lt(d, zero);
         let n = b.load(cx.steps);
