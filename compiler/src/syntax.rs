@@ -353,9 +353,7 @@ fn rule_name(rule: Rule) -> &'static str {
         Rule::number | Rule::quantity => "a number",
         Rule::unit => "a unit",
         Rule::color => "a colour",
-        Rule::vector | Rule::paren | Rule::call | Rule::neg | Rule::expr | Rule::arg => {
-            "an expression"
-        }
+        Rule::group | Rule::call | Rule::neg | Rule::expr | Rule::arg => "an expression",
         Rule::add | Rule::sub | Rule::mul | Rule::div | Rule::pow => "an operator",
         Rule::pipe | Rule::tag | Rule::annotation | Rule::at | Rule::at_kw => {
             "`|>`, `:`, `@`, `at`"
@@ -479,12 +477,14 @@ fn expr(p: Pair<Rule>) -> Expr {
 fn primary(p: Pair<Rule>) -> Expr {
     let span: Span = p.as_span().into();
     let kind = match p.as_rule() {
-        Rule::vector => {
+        Rule::group => {
             let mut it = p.into_inner().map(expr);
-            let mut next = || it.next().expect("vector component");
-            ExprKind::Vector(Box::new([next(), next(), next()]))
+            let first = it.next().expect("parenthesised expression");
+            match (it.next(), it.next()) {
+                (Some(y), Some(z)) => ExprKind::Vector(Box::new([first, y, z])),
+                _ => return first,
+            }
         }
-        Rule::paren => return expr(p.into_inner().next().expect("parenthesised expression")),
         Rule::quantity => {
             let mut it = p.into_inner();
             let number = it.next().expect("number");

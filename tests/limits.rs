@@ -1,0 +1,132 @@
+//! Every limit of the front end, just past it and at it: past it the user gets an error with
+//! file, line, column, a caret and the limit named; at it the scene compiles (and, for the node
+//! count, the module validates). The image-size limit of `render` is tested in
+//! `runtime/tests/cli.rs`, device loss in `runtime/tests/device.rs`.
+
+use sdfc_compiler::check::tracer::MAX_STEPS;
+use sdfc_compiler::check::{self, MAX_DEPTH, MAX_NODES};
+use sdfc_compiler::syntax::{MAX_NESTING, MAX_SOURCE_BYTES};
+use sdfc_compiler::{diag, emit, lower};
+
+/// Checks `source` on a large stack; returns the rendered diagnostics and whether it compiled.
+fn check(source: String) -> (String, Option<sdfc_compiler::scene::Scene>) {
+    let text = source.clone();
+    let checked = sdfc_tests::with_stack(move || check::compile(&text));
+    (
+        diag::render(&checked.diagnostics, "limit.sdf", &source),
+        checked.scene,
+    )
+}
+
+/// Past the limit: one error, at a line and column, with a caret, naming the limit.
+fn refused(source: String, message: &str, limit: String) {
+    let (text, scene) = check(source);
+    assert!(scene.is_none(), "compiled past the limit: {message}");
+    assert!(text.contains(message), "{text}");
+    assert!(
+        text.contains(&limit),
+        "the limit {limit} is not named:\n{text}"
+    );
+    let at = text
+        .lines()
+        .find(|l| l.contains("limit.sdf:"))
+        .unwrap_or("");
+    assert!(
+        at.split(':')
+            .filter(|p| p.trim().parse::<u32>().is_ok())
+            .count()
+            == 2,
+        "no line:column in `{at}`"
+    );
+    assert!(text.contains('^'), "no caret:\n{text}");
+}
+
+fn accepted(source: String) -> sdfc_compiler::scene::Scene {
+    let (text, scene) = check(source);
+    scene.unwrap_or_else(|| panic!("refused at the limit:\n{text}"))
+}
+
+/// A union of `n` spheres: n + 1 nodes.
+fn spheres(n: usize) -> String {
+    let mut s = String::from("union {\n");
+    for i in 0..n {
+        s += &format!("sphere({})\n", 1 + i % 100);
+    }
+    s + "}\n"
+}
+
+#[test]
+fn nodes() {
+    refused(
+        spheres(MAX_NODES),
+        "too many nodes",
+        format!("{MAX_NODES} nodes"),
+    );
+    let scene = accepted(spheres(MAX_NODES - 1));
+    assert_eq!(scene.nodes.len(), MAX_NODES);
+    let settings = lower::tracer::Options::from_scene(&scene);
+    let module = sdfc_tests::with_stack(move || {
+        emit::module(&scene, lower::Entry::Library, &settings).map(|m| m.0.functions.len())
+    });
+    assert!(
+        module.is_ok(),
+        "a scene at the node limit must emit a valid module"
+    );
+}
+
+#[test]
+fn bracket_nesting() {
+    let deep = |n: usize| format!("sphere({}1{})", "(".repeat(n), ")".repeat(n));
+    refused(
+        deep(MAX_NESTING + 1),
+        "nesting is too deep",
+        format!("{MAX_NESTING} levels"),
+    );
+    accepted(deep(MAX_NESTING - 2));
+}
+
+/// Regression (found by this file): the grammar tried `(` as a vector before a parenthesised
+/// expression, so each level of parentheses was parsed twice — 18 levels took 0.65 s, the
+/// 198 allowed would have taken days. Each kind of bracket, nested as deep as allowed.
+#[test]
+fn deep_brackets_of_every_kind_parse() {
+    let n = MAX_NESTING - 4;
+    for source in [
+        format!("sphere(1) at ({}1{}, 2, 3)", "(".repeat(n), ")".repeat(n)),
+        format!("sphere({}1{})", "sqrt(".repeat(n), ")".repeat(n)),
+        format!("{}sphere(1){}", "union { ".repeat(n), " }".repeat(n)),
+        format!(
+            "sphere(1) @lipschitz({}1{})",
+            "(-".repeat(n / 2),
+            ")".repeat(n / 2)
+        ),
+    ] {
+        accepted(source);
+    }
+}
+
+#[test]
+fn expression_depth() {
+    // A chain of additions: deep without brackets (those have their own limit, above).
+    let deep = |n: usize| format!("sphere({}1)", "1 + ".repeat(n));
+    refused(
+        deep(MAX_DEPTH + 1),
+        "expression nested too deeply",
+        format!("{MAX_DEPTH} levels"),
+    );
+    accepted(deep(MAX_DEPTH - 2));
+}
+
+#[test]
+fn step_budget() {
+    let steps = |n: f64| format!("trace basic {{ steps {n} }}\nsphere(1)");
+    refused(steps(MAX_STEPS + 1.0), "steps", format!("{MAX_STEPS}"));
+    accepted(steps(MAX_STEPS));
+}
+
+#[test]
+fn source_size() {
+    let mut s = String::from("sphere(1)\n");
+    s += &" ".repeat(MAX_SOURCE_BYTES);
+    refused(s, "too large", format!("{MAX_SOURCE_BYTES} bytes"));
+}
