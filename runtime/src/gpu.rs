@@ -4,6 +4,7 @@
 use sdfc_compiler::passes::Pass;
 use sdfc_compiler::view::View;
 use std::borrow::Cow;
+use std::sync::{Arc, Mutex};
 
 /// Which graphics API to use.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -30,6 +31,9 @@ pub struct Gpu {
     /// What the adapter says it is.
     pub info: wgpu::AdapterInfo,
     limits: wgpu::Limits,
+    /// The first error wgpu reported outside an error scope, or the device's loss; checked
+    /// after every wait so that a render ends with it instead of a panic or a hang.
+    trouble: Arc<Mutex<Option<String>>>,
 }
 
 /// The per-pixel outputs of a render, row-major, y down.
@@ -91,11 +95,26 @@ impl Gpu {
             };
             let (device, queue) = pollster::block_on(adapter.request_device(&desc))
                 .map_err(|e| format!("the GPU adapter refused a device: {e}"))?;
+            // wgpu's default for an error outside a scope is a panic; keep the first instead.
+            let trouble = Arc::new(Mutex::new(None));
+            let keep = trouble.clone();
+            device.on_uncaptured_error(Arc::new(move |e: wgpu::Error| {
+                note(&keep, format!("the GPU reported an error: {e}"))
+            }));
+            let keep = trouble.clone();
+            device.set_device_lost_callback(move |reason, message| {
+                let why = match message.is_empty() {
+                    true => format!("{reason:?}"),
+                    false => format!("{reason:?}: {message}"),
+                };
+                note(&keep, format!("the GPU device was lost ({why})"))
+            });
             return Ok(Gpu {
                 device,
                 queue,
                 info: adapter.get_info(),
                 limits,
+                trouble,
             });
         }
         Err(match choice {
@@ -392,11 +411,26 @@ impl Gpu {
             })
     }
 
+    /// Waits for the queue, then reports any error or loss the device had meanwhile.
     fn wait(&self) -> Result<(), String> {
         self.device
             .poll(wgpu::PollType::wait_indefinitely())
-            .map(|_| ())
-            .map_err(|e| format!("the GPU device was lost or timed out: {e}"))
+            .map_err(|e| format!("the GPU device was lost or timed out: {e}"))?;
+        match self
+            .trouble
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .clone()
+        {
+            Some(message) => Err(message),
+            None => Ok(()),
+        }
+    }
+
+    /// Destroys the device as a driver reset would lose it, so that tests can show a render
+    /// that loses its device midway ending with an error. The `Gpu` is unusable afterwards.
+    pub fn lose_device(&self) {
+        self.device.destroy();
     }
 
     fn read(&self, buffer: &wgpu::Buffer, size: u64) -> Result<Vec<u8>, String> {
@@ -425,4 +459,12 @@ impl Gpu {
         staging.unmap();
         Ok(data)
     }
+}
+
+/// Keeps the first message of trouble (later ones are usually its consequences).
+fn note(trouble: &Mutex<Option<String>>, message: String) {
+    trouble
+        .lock()
+        .unwrap_or_else(|e| e.into_inner())
+        .get_or_insert(message);
 }
