@@ -45,10 +45,19 @@ pub const CONE_PIXELS: f64 = 2.0;
 pub const ENHANCED_GUARD: f64 = 1e-5;
 
 /// Relative margin of the overlap test of consecutive unbounding spheres (relaxed, enhanced,
-/// auto): spheres whose gap is below this fraction of the step count as touching. On a plane
-/// the auto step makes consecutive spheres exactly tangent, so without a margin rounding
-/// decides each fallback, differently in f32 and f64; the margin is far below any ε.
+/// auto): spheres whose gap is below this fraction of their radii, and below ε, count as
+/// touching (see [`apart`]). On a plane the auto step makes consecutive spheres exactly
+/// tangent, so without a margin rounding decides each fallback, differently in f32 and f64.
 pub const TOUCH: f64 = 1e-5;
+
+/// Whether the unbounding spheres of radii `r` and `rn`, `step` apart, fail to overlap: the gap
+/// must exceed the [`TOUCH`] margin, which is kept below `eps` (ε where the step starts). A
+/// margin relative to the radii alone let a step of 7·10⁵ leap a sphere of radius 1 (the
+/// extremes suite, "leaving a wall head-on, ω = 1.99", enhanced).
+pub fn apart(step: f64, r: f64, rn: f64, eps: f64) -> bool {
+    let reach = r.abs() + rn.abs();
+    step > reach + (TOUCH * reach).min(eps)
+}
 
 /// Largest over-relaxation the auto tracer infers (its ω = 2 / (1 − m) grows without bound as
 /// the slope average m approaches 1, a ray leaving a surface head-on).
@@ -369,7 +378,7 @@ fn relaxed(trace: &Trace, eps: &Threshold, f: &mut impl FnMut(f64) -> f64) -> Tr
         let r = f(t);
         steps += 1;
         let radius = r.abs();
-        let fail = omega > 1.0 && (radius + prev_radius) * (1.0 + TOUCH) < step;
+        let fail = omega > 1.0 && apart(step, radius, prev_radius, eps.at(t));
         if fail {
             step -= omega * step;
             omega = 1.0;
@@ -417,7 +426,7 @@ fn enhanced(trace: &Trace, eps: &Threshold, f: &mut impl FnMut(f64) -> f64) -> T
         };
         let rn = f(t + dn);
         steps += 1;
-        if dn > (r + rn.abs()) * (1.0 + TOUCH) {
+        if apart(dn, r, rn, eps.at(t)) {
             d = 0.0;
             continue;
         }
@@ -456,7 +465,7 @@ fn auto(trace: &Trace, eps: &Threshold, f: &mut impl FnMut(f64) -> f64) -> Trace
         let tn = t + z;
         let rn = f(tn);
         steps += 1;
-        let back = z > (rn.abs() + r) * (1.0 + TOUCH);
+        let back = apart(z, r, rn, eps.at(t));
         let slope = (rn - r) / z;
         if back {
             m = -1.0;

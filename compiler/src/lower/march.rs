@@ -161,19 +161,28 @@ impl Cx {
     }
 
     /// Evaluates the field `step` ahead of the current point (at t0 + step) and tests whether
-    /// the unbounding spheres there and here (radius `r`) fail to overlap, with the [`TOUCH`]
-    /// margin. Returns (t0 + step, the point, the field there, the test).
+    /// the unbounding spheres there and here (radius `r`) fail to overlap (see [`Cx::apart`]).
+    /// Returns (t0 + step, the point, the field there, the test).
     pub fn probe(&self, b: &mut FnBuilder, t0: Ex, r: Ex, step: Ex) -> (Ex, Ex, Ex, Ex) {
         let at = b.add(t0, step);
         let point = self.ahead(b, step);
         let rn = self.field_at(b, point, at);
         b.name(rn, "r_next");
-        let ra = b.abs(rn);
-        let reach = b.add(r, ra);
-        let margin = b.f(1.0 + TOUCH);
-        let reach = b.mul(reach, margin);
-        let apart = b.gt(step, reach);
+        let apart = self.apart(b, step, (r, rn), t0);
         (at, point, rn, apart)
+    }
+
+    /// `crate::trace::apart`: spheres of radii `r.0`, `r.1` a `step` apart fail to overlap by
+    /// more than the [`TOUCH`] margin, kept below ε at `t`.
+    pub fn apart(&self, b: &mut FnBuilder, step: Ex, r: (Ex, Ex), t: Ex) -> Ex {
+        let (a, c) = (b.abs(r.0), b.abs(r.1));
+        let reach = b.add(a, c);
+        let touch = b.f(TOUCH);
+        let margin = b.mul(reach, touch);
+        let e = self.eps(b, t);
+        let margin = b.min(margin, e);
+        let reach = b.add(reach, margin);
+        b.gt(step, reach)
     }
 
     /// `t = t0 + step; p = p + rd·step`.

@@ -4,7 +4,7 @@
 use super::builder::{Ex, FnBuilder};
 use super::march::{Cx, EXHAUSTED, HIT};
 use crate::scene::Method;
-use crate::trace::{AUTO_MAX_OMEGA, CONE_PIXELS, ENHANCED_GUARD, TOUCH};
+use crate::trace::{AUTO_MAX_OMEGA, CONE_PIXELS, ENHANCED_GUARD};
 use naga::BinaryOperator as B;
 
 /// The chosen variant's loop, then discontinuity reduction if asked.
@@ -151,10 +151,7 @@ fn relaxed(b: &mut FnBuilder, cx: &Cx) {
         let (om, st, pr) = (b.load(omega), b.load(step), b.load(prev_radius));
         let one = b.f(1.0);
         let relaxing = b.gt(om, one);
-        let reach = b.add(radius, pr);
-        let margin = b.f(1.0 + TOUCH);
-        let reach = b.mul(reach, margin);
-        let apart = b.lt(reach, st);
+        let apart = cx.apart(b, st, (radius, pr), t);
         let fail = b.bin(B::LogicalAnd, relaxing, apart);
         b.name(fail, "fail");
         let back = b.mul(om, st);
