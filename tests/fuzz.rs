@@ -10,9 +10,9 @@ const CASES: u32 = 20_000;
 
 fn config(seed: u64) -> Config {
     Config {
-        cases: CASES,
+        cases: sdfc_tests::fuzz_cases(CASES),
         failure_persistence: None,
-        rng_seed: RngSeed::Fixed(seed),
+        rng_seed: RngSeed::Fixed(sdfc_tests::fuzz_seed(seed)),
         ..Config::default()
     }
 }
@@ -120,6 +120,36 @@ proptest! {
     #[test]
     fn random_ascii_never_panics(s in "[ -~\n]{0,120}") {
         front_end(&s);
+    }
+}
+
+/// Brackets of every kind nested in random order up to the nesting limit: each parses, in time
+/// linear in the depth (a grammar that backtracked over one kind took 2^depth).
+fn nested(kinds: &[usize]) -> String {
+    let (mut open, mut close) = (String::new(), String::new());
+    for &k in kinds {
+        let (o, c) = [
+            ("(", ")"),
+            ("sqrt(", ")"),
+            ("(1, 2, ", ")"),
+            ("max(1, ", ")"),
+        ][k];
+        open += o;
+        close.insert_str(0, c);
+    }
+    format!("sphere(1) at ({open}1{close}, 0, 0)")
+}
+
+proptest! {
+    #![proptest_config(Config { cases: sdfc_tests::fuzz_cases(CASES) / 10, ..config(0x5d_f0_0b_ac) })]
+
+    #[test]
+    fn random_deep_nesting_below_the_limit_parses(
+        kinds in proptest::collection::vec(0..4usize, 1..sdfc_compiler::syntax::MAX_NESTING - 4)
+    ) {
+        let source = nested(&kinds);
+        let parsed = sdfc_tests::with_stack(move || sdfc_compiler::syntax::parse(&source).is_ok());
+        prop_assert!(parsed);
     }
 }
 

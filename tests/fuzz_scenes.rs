@@ -186,9 +186,9 @@ fn check_scene(source: &str, index: usize) {
 fn random_valid_scenes_compile_validate_and_evaluate_finitely() {
     sdfc_tests::with_stack(|| {
         let config = Config {
-            cases: CASES,
+            cases: sdfc_tests::fuzz_cases(CASES),
             failure_persistence: None,
-            rng_seed: RngSeed::Fixed(0x5dfc_5ce9e),
+            rng_seed: RngSeed::Fixed(sdfc_tests::fuzz_seed(0x5dfc_5ce9e)),
             ..Config::default()
         };
         let counter = AtomicUsize::new(0);

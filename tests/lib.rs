@@ -57,3 +57,20 @@ pub fn example(path: &Path) -> Scene {
     let source = std::fs::read_to_string(path).expect("read example");
     scene(&path.display().to_string(), &source)
 }
+
+/// Cases per fuzzing property: `default` in CI, `SDFC_FUZZ_CASES` for longer runs by hand.
+pub fn fuzz_cases(default: u32) -> u32 {
+    std::env::var("SDFC_FUZZ_CASES")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(default)
+}
+
+/// The fuzzers' seed: `default` in CI (the same inputs every run), `SDFC_FUZZ_SEED` (a
+/// number) to explore others; a failure prints the input, which then becomes a test.
+pub fn fuzz_seed(default: u64) -> u64 {
+    std::env::var("SDFC_FUZZ_SEED")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .map_or(default, |s: u64| s ^ default)
+}

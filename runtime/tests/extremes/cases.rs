@@ -80,6 +80,12 @@ pub fn cases() -> Vec<Case> {
         1.0,
     ));
     v.push(Case::new(
+        "distance",
+        "the same through a 0.6° field of view",
+        "camera { eye (100000, 1, -5) target (100000, 0.99, 0) fov 0.6deg }\ntrace basic { max_distance 50 }\nsphere(1) at (100000, 0, 0)\nplane(y, -1)",
+        1.0,
+    ));
+    v.push(Case::new(
         "grazing",
         "camera 0.01 above a plane",
         "camera { eye (0, 0.01, -5) target (0, 0.01, 5) }\ntrace basic { steps 400 }\nplane(y, 0)\nsphere(0.5) at (0, 0.5, 6)",
@@ -107,7 +113,10 @@ pub fn cases() -> Vec<Case> {
         let tolerance = if steps == 1 { 1.0 } else { 0.01 };
         v.push(Case::new(
             "budget",
-            &format!("{steps} steps"),
+            &format!(
+                "a budget of {steps} step{}",
+                if steps == 1 { "" } else { "s" }
+            ),
             &source,
             tolerance,
         ));
@@ -133,6 +142,15 @@ pub fn cases() -> Vec<Case> {
     let leaving = "camera { eye (0, 0, 0.05) target (0, 0, 1) fov 30deg }\nbox((20, 20, 0.1)) at (0, 0, -0.1)\nsphere(1) at (0, 0, 30)";
     let guards = "step guards";
     v.push(Case::new(guards, "leaving a wall head-on", leaving, 0.01));
+    let small = leaving
+        .replace("sphere(1)", "sphere(0.1)")
+        .replace("30deg", "2deg");
+    v.push(Case::new(
+        guards,
+        "leaving a wall towards a sphere of radius 0.1",
+        &small,
+        0.01,
+    ));
     v.push(Case::new(guards, "leaving a wall head-on, β = 1", leaving, 0.01).with("beta", "1"));
     v.push(
         Case::new(guards, "leaving a wall head-on, ω = 1.99", leaving, 0.01).with("omega", "1.99"),
