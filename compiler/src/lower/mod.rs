@@ -9,6 +9,7 @@ mod entry;
 pub mod march;
 pub mod ops;
 pub mod prims;
+mod rays;
 mod shading;
 pub mod tracer;
 mod variants;

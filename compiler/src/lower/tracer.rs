@@ -4,7 +4,7 @@
 
 use super::builder::{Ex, FnBuilder, ModuleBuilder};
 use super::march::{self, Inputs};
-use super::{entry, shading};
+use super::{entry, rays, shading};
 use crate::scene::{Epsilon, Scene};
 use glam::DVec3;
 use naga::{Function, Handle, StructMember, Type, TypeInner};
@@ -166,7 +166,7 @@ pub fn add(
             let f = b.finish();
             mb.add_function(f);
         }
-        Entry::Rays => entry::add_rays(mb, &tracer),
+        Entry::Rays => rays::add_rays(mb, &tracer),
         Entry::Compute | Entry::Fragment => {
             let fns = entry::Fns::new(mb, tracer, normal, shade, material, options.passes);
             if entry == Entry::Compute {
