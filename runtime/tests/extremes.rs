@@ -11,6 +11,7 @@ mod cases;
 mod common;
 use cases::{Case, cases};
 use common::{compile, gpu};
+use glam::DVec3;
 use sdfc::gpu::Gpu;
 use sdfc_compiler::check::tracer::{TRACE_METHODS, with_overrides};
 use sdfc_compiler::lower::{Entry, tracer::Options};
@@ -32,6 +33,8 @@ struct Cell {
     /// Hits where the truth sees nothing but the ray passes within 2ε(t) of a surface: what
     /// the tracer's ε asks for (mostly rays grazing the ground plane near the horizon).
     grazes: usize,
+    /// Hits on a surface behind the first one the ray meets: the tracer went through it.
+    behind: usize,
     /// Hits where the truth hits too.
     hits: usize,
     /// Of those, hit points with |f| > 2ε(t) (a ray stopped short, or a candidate).
@@ -70,6 +73,7 @@ enum Judged {
     False,
     Graze,
     Hit { off: bool, footprints: f64 },
+    Behind,
     Inside,
 }
 
@@ -94,9 +98,16 @@ fn judge(
         (i as u32 % WIDTH) as f64 + 0.5,
         (i as u32 / WIDTH) as f64 + 0.5,
     );
-    let f = eval::distance(scene, view.eye + view.ray(x, y) * t);
+    let rd = view.ray(x, y);
+    let f = eval::distance(scene, view.eye + rd * t);
     if f < 0.0 && t <= eps.at(0.0) {
         return Judged::Inside;
+    }
+    if let Some(first) = truth
+        && t > first + 2.0 * eps.at(t)
+        && leaves_solid(scene, view.eye, rd, (first, t), eps)
+    {
+        return Judged::Behind;
     }
     let near = f.abs() <= 2.0 * eps.at(t);
     match truth {
@@ -107,6 +118,22 @@ fn judge(
             footprints: f.abs() / (2.0 * view.pixel * t).max(eps.at(0.0)),
         },
     }
+}
+
+/// Whether the ray, between its first surface at `span.0` and the tracer's hit at `span.1`,
+/// comes out of the solid again (f > 2ε(t) somewhere): then the hit lies on a surface behind
+/// the first, which the tracer went through. Marched in f64 by |f|, a safe step both inside and
+/// outside a solid, at least ε.
+fn leaves_solid(scene: &Scene, eye: DVec3, rd: DVec3, span: (f64, f64), eps: &Threshold) -> bool {
+    let mut s = span.0 + eps.at(span.0);
+    while s < span.1 {
+        let f = eval::distance(scene, eye + rd * s);
+        if f > 2.0 * eps.at(s) {
+            return true;
+        }
+        s += f.abs().max(eps.at(s));
+    }
+    false
 }
 
 /// Runs `scene` with its tracer on the GPU and the CPU; `None` when the tracer does not take
@@ -149,6 +176,7 @@ fn run(gpu: &Gpu, case: &Case, base: &Scene, method: &str, truth: &[Option<f64>]
             Judged::False => cell.false_hits += 1,
             Judged::Graze => cell.grazes += 1,
             Judged::Inside => cell.inside += 1,
+            Judged::Behind => cell.behind += 1,
             Judged::Hit { off, footprints } => {
                 cell.hits += 1;
                 cell.off += off as usize;
@@ -166,7 +194,9 @@ fn run(gpu: &Gpu, case: &Case, base: &Scene, method: &str, truth: &[Option<f64>]
         let cpu_hit = r.hit.then_some(r.t);
         cell.masks[1].push(cpu_hit.is_some());
         cell.cpu_vs_gpu += (cpu_hit.is_some() != gpu_hit.is_some()) as usize;
-        if let Judged::Hole | Judged::False = judge(base, &view, &eps, i, cpu_hit, gt) {
+        if let Judged::Hole | Judged::False | Judged::Behind =
+            judge(base, &view, &eps, i, cpu_hit, gt)
+        {
             cell.cpu_wrong += 1;
         }
     }
@@ -182,6 +212,9 @@ fn verdict(cell: &Cell) -> String {
     }
     if cell.false_hits > 0 {
         wrong.push(format!("{} false hits", cell.false_hits));
+    }
+    if cell.behind > 0 {
+        wrong.push(format!("{} hits behind a surface", cell.behind));
     }
     if cell.off > 0 {
         let share = 100.0 * cell.off as f64 / cell.hits.max(1) as f64;
@@ -220,7 +253,7 @@ fn extremes() {
     let mut summary = format!("| group | case | {} |\n|---|---|", names.join(" | "));
     summary += &"---|".repeat(names.len());
     let mut detail = String::from(
-        "| case | tracer | holes | false hits | ε-grazes | hits | \\|f\\| > 2ε | > 1 footprint | worst (footprints) | budget out | steps per pixel | zero normals | CPU holes + false | CPU ≠ GPU |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
+        "| case | tracer | holes | false hits | behind | ε-grazes | hits | \\|f\\| > 2ε | > 1 footprint | worst (footprints) | budget out | steps per pixel | zero normals | CPU holes + false | CPU ≠ GPU |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
     );
     let mut broken = Vec::new();
     // Hit masks (GPU, CPU) per tracer of each scaled copy of the scene: all must be the same.
@@ -236,11 +269,11 @@ fn extremes() {
                 cells.push("—".to_string());
                 continue;
             };
-            let wrong = (cell.holes + cell.false_hits) as f64 / pixels;
+            let wrong = (cell.holes + cell.false_hits + cell.behind) as f64 / pixels;
             if wrong > case.tolerance {
                 broken.push(format!(
-                    "{} / {name}: {} holes and {} false hits",
-                    case.name, cell.holes, cell.false_hits
+                    "{} / {name}: {} holes, {} false hits, {} hits behind a surface",
+                    case.name, cell.holes, cell.false_hits, cell.behind
                 ));
             }
             if case.group == "distance" && cell.beyond_footprint > 0 {
@@ -250,10 +283,11 @@ fn extremes() {
                 ));
             }
             detail += &format!(
-                "| {} | {name} | {} | {} | {} | {} | {} | {} | {:.2} | {} | {:.1} | {} | {} | {} |\n",
+                "| {} | {name} | {} | {} | {} | {} | {} | {} | {} | {:.2} | {} | {:.1} | {} | {} | {} |\n",
                 case.name,
                 cell.holes,
                 cell.false_hits,
+                cell.behind,
                 cell.grazes,
                 cell.hits,
                 cell.off,

@@ -108,6 +108,21 @@ pub fn cases() -> Vec<Case> {
         let name = format!("ω = {omega}");
         v.push(Case::new("ω", &name, &base(""), 0.01).with("omega", omega));
     }
+    // The other tracers' parameters at the ends of their ranges.
+    for (param, value) in [
+        ("omega", "0.5"),
+        ("beta", "0"),
+        ("linear", "16"),
+        ("linear", "999"),
+        ("refine", "0"),
+        ("refine", "16"),
+    ] {
+        let name = format!("{param} = {value}");
+        // Hybrid's linear steps of linear·ε(t) pass through anything thinner along the ray
+        // (Liktor §5.4's trade): long steps go through thin parts of the scene (stated).
+        let tolerance = if param == "linear" { 0.1 } else { 0.01 };
+        v.push(Case::new("parameters", &name, &base(""), tolerance).with(param, value));
+    }
     for steps in [1, 100000] {
         let source = base(&format!("trace basic {{ steps {steps} }}"));
         let tolerance = if steps == 1 { 1.0 } else { 0.01 };
