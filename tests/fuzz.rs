@@ -141,7 +141,7 @@ fn nested(kinds: &[usize]) -> String {
 }
 
 proptest! {
-    #![proptest_config(Config { cases: sdfc_tests::fuzz_cases(CASES) / 10, ..config(0x5d_f0_0b_ac) })]
+    #![proptest_config(Config { cases: (sdfc_tests::fuzz_cases(CASES) / 10).max(1), ..config(0x5d_f0_0b_ac) })]
 
     #[test]
     fn random_deep_nesting_below_the_limit_parses(

@@ -76,13 +76,14 @@ fn nodes() {
 
 #[test]
 fn bracket_nesting() {
+    // `sphere(` is one level, so deep(n) nests n + 1 brackets.
     let deep = |n: usize| format!("sphere({}1{})", "(".repeat(n), ")".repeat(n));
     refused(
-        deep(MAX_NESTING + 1),
+        deep(MAX_NESTING),
         "nesting is too deep",
         format!("{MAX_NESTING} levels"),
     );
-    accepted(deep(MAX_NESTING - 2));
+    accepted(deep(MAX_NESTING - 1));
 }
 
 /// Regression (found by this file): the grammar tried `(` as a vector before a parenthesised
@@ -109,8 +110,9 @@ fn deep_brackets_of_every_kind_parse() {
 fn expression_depth() {
     // A chain of additions: deep without brackets (those have their own limit, above).
     let deep = |n: usize| format!("sphere({}1)", "1 + ".repeat(n));
+    // The call and its argument take two levels, each addition one more.
     refused(
-        deep(MAX_DEPTH + 1),
+        deep(MAX_DEPTH - 1),
         "expression nested too deeply",
         format!("{MAX_DEPTH} levels"),
     );
@@ -120,13 +122,25 @@ fn expression_depth() {
 #[test]
 fn step_budget() {
     let steps = |n: f64| format!("trace basic {{ steps {n} }}\nsphere(1)");
-    refused(steps(MAX_STEPS + 1.0), "steps", format!("{MAX_STEPS}"));
+    refused(
+        steps(MAX_STEPS + 1.0),
+        "`steps` must be a whole number from 1 to",
+        format!("{MAX_STEPS}"),
+    );
     accepted(steps(MAX_STEPS));
 }
 
 #[test]
 fn source_size() {
-    let mut s = String::from("sphere(1)\n");
-    s += &" ".repeat(MAX_SOURCE_BYTES);
-    refused(s, "too large", format!("{MAX_SOURCE_BYTES} bytes"));
+    let file = |bytes: usize| {
+        let mut s = String::from("sphere(1)\n");
+        s += &" ".repeat(bytes - s.len());
+        s
+    };
+    refused(
+        file(MAX_SOURCE_BYTES + 1),
+        "too large",
+        format!("{MAX_SOURCE_BYTES} bytes"),
+    );
+    accepted(file(MAX_SOURCE_BYTES));
 }

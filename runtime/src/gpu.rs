@@ -31,9 +31,9 @@ pub struct Gpu {
     /// What the adapter says it is.
     pub info: wgpu::AdapterInfo,
     limits: wgpu::Limits,
-    /// The first error wgpu reported outside an error scope, or the device's loss; checked
-    /// after every wait so that a render ends with it instead of a panic or a hang.
-    trouble: Arc<Mutex<Option<String>>>,
+    /// What went wrong outside an error scope, checked after every wait so that a render ends
+    /// with it instead of a panic or a hang.
+    trouble: Arc<Mutex<Trouble>>,
 }
 
 /// The per-pixel outputs of a render, row-major, y down.
@@ -96,10 +96,12 @@ impl Gpu {
             let (device, queue) = pollster::block_on(adapter.request_device(&desc))
                 .map_err(|e| format!("the GPU adapter refused a device: {e}"))?;
             // wgpu's default for an error outside a scope is a panic; keep the first instead.
-            let trouble = Arc::new(Mutex::new(None));
+            let trouble = Arc::new(Mutex::new(Trouble::default()));
             let keep = trouble.clone();
             device.on_uncaptured_error(Arc::new(move |e: wgpu::Error| {
-                note(&keep, format!("the GPU reported an error: {e}"))
+                lock(&keep)
+                    .error
+                    .get_or_insert(format!("the GPU reported an error: {e}"));
             }));
             let keep = trouble.clone();
             device.set_device_lost_callback(move |reason, message| {
@@ -107,7 +109,9 @@ impl Gpu {
                     true => format!("{reason:?}"),
                     false => format!("{reason:?}: {message}"),
                 };
-                note(&keep, format!("the GPU device was lost ({why})"))
+                lock(&keep)
+                    .lost
+                    .get_or_insert(format!("the GPU device was lost ({why})"));
             });
             return Ok(Gpu {
                 device,
@@ -416,14 +420,12 @@ impl Gpu {
         self.device
             .poll(wgpu::PollType::wait_indefinitely())
             .map_err(|e| format!("the GPU device was lost or timed out: {e}"))?;
-        match self
-            .trouble
-            .lock()
-            .unwrap_or_else(|e| e.into_inner())
-            .clone()
-        {
-            Some(message) => Err(message),
-            None => Ok(()),
+        let mut trouble = lock(&self.trouble);
+        let error = trouble.error.take();
+        match (&trouble.lost, error) {
+            (Some(lost), _) => Err(lost.clone()),
+            (None, Some(error)) => Err(error),
+            (None, None) => Ok(()),
         }
     }
 
@@ -461,10 +463,16 @@ impl Gpu {
     }
 }
 
-/// Keeps the first message of trouble (later ones are usually its consequences).
-fn note(trouble: &Mutex<Option<String>>, message: String) {
-    trouble
-        .lock()
-        .unwrap_or_else(|e| e.into_inner())
-        .get_or_insert(message);
+/// What went wrong on the device outside an error scope: the first of each kind (later ones
+/// are usually its consequences).
+#[derive(Default)]
+struct Trouble {
+    /// The device's loss: every later wait fails with it.
+    lost: Option<String>,
+    /// An uncaptured error: reported by the next wait, then forgotten.
+    error: Option<String>,
+}
+
+fn lock(trouble: &Mutex<Trouble>) -> std::sync::MutexGuard<'_, Trouble> {
+    trouble.lock().unwrap_or_else(|e| e.into_inner())
 }

@@ -54,7 +54,8 @@ pub const ENHANCED_GUARD: f64 = 1e-5;
 pub const TOUCH: f64 = 1e-5;
 
 /// Whether the unbounding spheres of radii `r` and `rn`, `step` apart, fail to overlap: the gap
-/// must exceed the [`TOUCH`] margin, which is kept below `eps` (ε where the step starts). A
+/// must exceed the [`TOUCH`] margin, which is kept below `eps` (ε at the tracer's current point:
+/// where the step starts for enhanced and auto, where it ends for relaxed). A
 /// margin relative to the radii alone let a step of 7·10⁵ leap a sphere of radius 1 (the
 /// extremes suite, "leaving a wall head-on, ω = 1.99", enhanced).
 pub fn apart(step: f64, r: f64, rn: f64, eps: f64) -> bool {

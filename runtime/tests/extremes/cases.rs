@@ -77,13 +77,13 @@ pub fn cases() -> Vec<Case> {
         "distance",
         "unit sphere and camera 1e5 from the origin",
         "camera { eye (100000, 1, -5) target (100000, 0, 0) }\ntrace basic { max_distance 50 }\nsphere(1) at (100000, 0, 0)\nplane(y, -1)",
-        1.0,
+        0.01,
     ));
     v.push(Case::new(
         "distance",
         "the same through a 0.6° field of view",
         "camera { eye (100000, 1, -5) target (100000, 0.99, 0) fov 0.6deg }\ntrace basic { max_distance 50 }\nsphere(1) at (100000, 0, 0)\nplane(y, -1)",
-        1.0,
+        0.01,
     ));
     v.push(Case::new(
         "grazing",
