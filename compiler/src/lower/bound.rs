@@ -3,7 +3,7 @@
 //! volume's far side; step for step the same as `crate::trace::bounded`.
 
 use super::builder::{Ex, FnBuilder, ModuleBuilder};
-use super::march::{EXHAUSTED, HIT, Inputs};
+use super::march::{EXHAUSTED, HIT, Inputs, is_hit};
 use crate::scene::{AXIS_GUARD, BoundShape, Convex};
 use naga::{BinaryOperator as B, Function, Handle, Type};
 
@@ -123,10 +123,8 @@ fn backwards(
         let (s, steps, flags) = (b.at(r, 0), b.at(r, 1), b.at(r, 2));
         let one = b.u(1);
         let steps = b.add(steps, one);
+        let hit = is_hit(b, flags);
         let hit_bit = b.u(HIT);
-        let hit = b.bin(B::And, flags, hit_bit);
-        let zero_u = b.u(0);
-        let hit = b.bin(B::NotEqual, hit, zero_u);
         let exit = b.sub(hi, s);
         let t = b.select(hit, exit, lo);
         let ex = b.u(EXHAUSTED);

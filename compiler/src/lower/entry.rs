@@ -3,7 +3,7 @@
 //! the tests; the view uniform and the pinhole camera they share.
 
 use super::builder::{Ex, FnBuilder, ModuleBuilder};
-use super::march::{HIT, epsilon};
+use super::march::{epsilon, is_hit};
 use super::tracer::{Options, Pass, Tracer, VIEW_FIELDS, WORKGROUP, struct_ty};
 use crate::scene::{Epsilon, Scene};
 use naga::{
@@ -207,10 +207,7 @@ fn shade_hit(
 /// Whether a `TraceResult` has its hit bit.
 fn hit_bit(b: &mut FnBuilder, result: Ex) -> Ex {
     let flags = b.at(result, 2);
-    let bit = b.u(HIT);
-    let masked = b.bin(naga::BinaryOperator::And, flags, bit);
-    let zero = b.u(0);
-    b.bin(naga::BinaryOperator::NotEqual, masked, zero)
+    is_hit(b, flags)
 }
 
 /// `@compute @workgroup_size(8, 8)` `main`: one pixel per invocation, offset by the tile origin

@@ -14,6 +14,14 @@ pub const HIT: u32 = 1;
 /// Bit of `TraceResult.flags`: the step budget ran out.
 pub const EXHAUSTED: u32 = 2;
 
+/// Whether `flags` (a `TraceResult`'s) have the [`HIT`] bit.
+pub fn is_hit(b: &mut FnBuilder, flags: Ex) -> Ex {
+    let bit = b.u(HIT);
+    let masked = b.bin(naga::BinaryOperator::And, flags, bit);
+    let zero = b.u(0);
+    b.bin(naga::BinaryOperator::NotEqual, masked, zero)
+}
+
 /// `struct TraceResult { t: f32, steps: u32, flags: u32 }` (flags: [`HIT`] | [`EXHAUSTED`]),
 /// with cone anti-aliasing also `cover_t: f32, cover: f32` (see `crate::trace::Traced`).
 pub fn trace_result_type(mb: &mut ModuleBuilder, antialias: bool) -> Handle<Type> {
@@ -168,18 +176,18 @@ impl Cx {
         let point = self.ahead(b, step);
         let rn = self.field_at(b, point, at);
         b.name(rn, "r_next");
-        let apart = self.apart(b, step, (r, rn), t0);
+        let e = self.eps(b, t0);
+        let apart = self.apart(b, step, (r, rn), e);
         (at, point, rn, apart)
     }
 
     /// `crate::trace::apart`: spheres of radii `r.0`, `r.1` a `step` apart fail to overlap by
-    /// more than the [`TOUCH`] margin, kept below ε at `t`.
-    pub fn apart(&self, b: &mut FnBuilder, step: Ex, r: (Ex, Ex), t: Ex) -> Ex {
+    /// more than the [`TOUCH`] margin, kept below `e` (ε at the current point).
+    pub fn apart(&self, b: &mut FnBuilder, step: Ex, r: (Ex, Ex), e: Ex) -> Ex {
         let (a, c) = (b.abs(r.0), b.abs(r.1));
         let reach = b.add(a, c);
         let touch = b.f(TOUCH);
         let margin = b.mul(reach, touch);
-        let e = self.eps(b, t);
         let margin = b.min(margin, e);
         let reach = b.add(reach, margin);
         b.gt(step, reach)

@@ -2,7 +2,7 @@
 //! step as its CPU reference in `crate::trace` (whose doc comments cite the seeds).
 
 use super::builder::{Ex, FnBuilder};
-use super::march::{Cx, EXHAUSTED, HIT};
+use super::march::{Cx, EXHAUSTED, HIT, is_hit};
 use crate::scene::Method;
 use crate::trace::{AUTO_MAX_OMEGA, CONE_PIXELS, ENHANCED_GUARD};
 use naga::BinaryOperator as B;
@@ -76,10 +76,7 @@ fn basic(b: &mut FnBuilder, cx: &Cx) {
     if let Some(run) = run {
         // A run still open at a hit is the hit surface's own approach.
         let fl = b.load(cx.flags);
-        let bit = b.u(HIT);
-        let masked = b.bin(B::And, fl, bit);
-        let zero_u = b.u(0);
-        let hit = b.bin(B::NotEqual, masked, zero_u);
+        let hit = is_hit(b, fl);
         b.if_(hit, |_| {}, |b| close_run(b, cx, run));
     }
 }
@@ -151,7 +148,9 @@ fn relaxed(b: &mut FnBuilder, cx: &Cx) {
         let (om, st, pr) = (b.load(omega), b.load(step), b.load(prev_radius));
         let one = b.f(1.0);
         let relaxing = b.gt(om, one);
-        let apart = cx.apart(b, st, (radius, pr), t);
+        // ε here serves the overlap test and, if the step stands, the hit test.
+        let e = cx.eps(b, t);
+        let apart = cx.apart(b, st, (radius, pr), e);
         let fail = b.bin(B::LogicalAnd, relaxing, apart);
         b.name(fail, "fail");
         let back = b.mul(om, st);
@@ -169,7 +168,6 @@ fn relaxed(b: &mut FnBuilder, cx: &Cx) {
         b.if_(
             ok,
             |b| {
-                let e = cx.eps(b, t);
                 let error = b.div(radius, e);
                 let ce = b.load(candidate_error);
                 let smaller = b.lt(error, ce);
