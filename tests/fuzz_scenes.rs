@@ -138,9 +138,7 @@ fn scene(seed: u64) -> String {
 /// Every how many scenes `spirv-val` is run: 25 in CI (a call costs ~8 ms, the whole run 20 000
 /// scenes), `SDFC_FUZZ_SPIRV_EVERY=1` for runs by hand that check every module.
 fn spirv_every() -> usize {
-    std::env::var("SDFC_FUZZ_SPIRV_EVERY")
-        .ok()
-        .and_then(|v| v.parse().ok())
+    sdfc_tests::env_number("SDFC_FUZZ_SPIRV_EVERY")
         .filter(|&n| n > 0)
         .unwrap_or(25)
 }

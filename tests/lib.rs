@@ -58,19 +58,18 @@ pub fn example(path: &Path) -> Scene {
     scene(&path.display().to_string(), &source)
 }
 
+/// A number from the environment variable `name`, if it is set and parses.
+pub fn env_number<T: std::str::FromStr>(name: &str) -> Option<T> {
+    std::env::var(name).ok()?.parse().ok()
+}
+
 /// Cases per fuzzing property: `default` in CI, `SDFC_FUZZ_CASES` for longer runs by hand.
 pub fn fuzz_cases(default: u32) -> u32 {
-    std::env::var("SDFC_FUZZ_CASES")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(default)
+    env_number("SDFC_FUZZ_CASES").unwrap_or(default)
 }
 
 /// The fuzzers' seed: `default` in CI (the same inputs every run), `SDFC_FUZZ_SEED` (a
 /// number) to explore others; a failure prints the input, which then becomes a test.
 pub fn fuzz_seed(default: u64) -> u64 {
-    std::env::var("SDFC_FUZZ_SEED")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .map_or(default, |s: u64| s ^ default)
+    env_number("SDFC_FUZZ_SEED").map_or(default, |s: u64| s ^ default)
 }

@@ -80,13 +80,12 @@ enum Judged {
     Inside,
 }
 
-/// Judges the tracer's `hit` depth at pixel `i` against the truth by the exact field at the hit
-/// point — not by depth along the ray, which at grazing incidence is ε/sin(angle) off.
+/// Judges the tracer's `hit` depth on the camera ray `rd` against the truth by the exact field
+/// at the hit point — not by depth along the ray, which at grazing incidence is ε/sin(angle) off.
 fn judge(
     scene: &Scene,
-    view: &View,
+    (view, rd): (&View, DVec3),
     eps: &Threshold,
-    i: usize,
     hit: Option<f64>,
     truth: Option<f64>,
 ) -> Judged {
@@ -97,11 +96,6 @@ fn judge(
             Judged::Agree
         };
     };
-    let (x, y) = (
-        (i as u32 % WIDTH) as f64 + 0.5,
-        (i as u32 / WIDTH) as f64 + 0.5,
-    );
-    let rd = view.ray(x, y);
     let f = eval::distance(scene, view.eye + rd * t);
     if f < 0.0 && t <= eps.at(0.0) {
         return Judged::Inside;
@@ -151,11 +145,15 @@ fn run(gpu: &Gpu, case: &Case, base: &Scene, method: &str, truth: &[Option<f64>]
     let frame = gpu.render(&module, &view, None, |_, _| {}).unwrap();
     let eps = Threshold::new(&scene, &scene.trace, view.pixel);
     let mut cell = Cell {
-        color: frame.color.clone(),
         budget: scene.trace.steps,
         ..Cell::default()
     };
     for (i, &gt) in truth.iter().enumerate() {
+        let (x, y) = (
+            (i as u32 % WIDTH) as f64 + 0.5,
+            (i as u32 / WIDTH) as f64 + 0.5,
+        );
+        let ray = (&view, view.ray(x, y));
         let (d, n) = (frame.depth[i], frame.normal[i]);
         let at = format!("{} {method}, pixel {i}", case.name);
         // No NaN or Inf in any channel; a normal is unit length or, at a zero gradient, zero.
@@ -173,7 +171,7 @@ fn run(gpu: &Gpu, case: &Case, base: &Scene, method: &str, truth: &[Option<f64>]
         }
         cell.budget_out += (frame.steps[i] >= scene.trace.steps) as usize;
         cell.steps += frame.steps[i] as u64;
-        match judge(base, &view, &eps, i, gpu_hit, gt) {
+        match judge(base, ray, &eps, gpu_hit, gt) {
             Judged::Agree => {}
             Judged::Hole => cell.holes += 1,
             Judged::False => cell.false_hits += 1,
@@ -188,59 +186,51 @@ fn run(gpu: &Gpu, case: &Case, base: &Scene, method: &str, truth: &[Option<f64>]
             }
         }
         // The CPU reference: the same variant in f64.
-        let (x, y) = (
-            (i as u32 % WIDTH) as f64 + 0.5,
-            (i as u32 / WIDTH) as f64 + 0.5,
-        );
-        let r = trace::ray(&scene, &scene.trace, view.eye, view.ray(x, y), view.pixel);
+        let r = trace::ray(&scene, &scene.trace, view.eye, ray.1, view.pixel);
         assert!(r.t.is_finite(), "{at}: CPU t {}", r.t);
         let cpu_hit = r.hit.then_some(r.t);
         cell.masks[1].push(cpu_hit.is_some());
         cell.cpu_vs_gpu += (cpu_hit.is_some() != gpu_hit.is_some()) as usize;
-        if let Judged::Hole | Judged::False | Judged::Behind =
-            judge(base, &view, &eps, i, cpu_hit, gt)
-        {
+        if let Judged::Hole | Judged::False | Judged::Behind = judge(base, ray, &eps, cpu_hit, gt) {
             cell.cpu_wrong += 1;
         }
     }
+    cell.color = frame.color;
     Some(cell)
 }
 
 /// The summary cell of docs/stability.md.
 fn verdict(cell: &Cell) -> String {
-    let mut wrong = Vec::new();
-    let mut notes = Vec::new();
-    if cell.holes > 0 {
-        wrong.push(format!("{} holes", cell.holes));
-    }
-    if cell.false_hits > 0 {
-        wrong.push(format!("{} false hits", cell.false_hits));
-    }
-    if cell.behind > 0 {
-        wrong.push(format!("{} hits behind a surface", cell.behind));
-    }
-    if cell.off > 0 {
-        let share = 100.0 * cell.off as f64 / cell.hits.max(1) as f64;
-        wrong.push(format!("\\|f\\| > 2ε at {share:.1}% of hits"));
-    }
-    if cell.budget_out > 0 {
-        notes.push(format!(
-            "budget ({}) out on {}",
-            cell.budget, cell.budget_out
-        ));
-    }
-    if cell.grazes > 0 {
-        notes.push(format!("{} ε-grazes", cell.grazes));
-    }
-    if cell.inside > 0 {
-        notes.push(format!("{} hits at t = 0 inside", cell.inside));
-    }
-    if cell.zero_normals > 0 {
-        notes.push(format!("{} zero normals", cell.zero_normals));
-    }
-    if cell.cpu_vs_gpu > 0 {
-        notes.push(format!("CPU ≠ GPU on {}", cell.cpu_vs_gpu));
-    }
+    let share = 100.0 * cell.off as f64 / cell.hits.max(1) as f64;
+    let wrong = [
+        (cell.holes, format!("{} holes", cell.holes)),
+        (cell.false_hits, format!("{} false hits", cell.false_hits)),
+        (
+            cell.behind,
+            format!("{} hits behind a surface", cell.behind),
+        ),
+        (cell.off, format!("\\|f\\| > 2ε at {share:.1}% of hits")),
+    ];
+    let notes = [
+        (
+            cell.budget_out,
+            format!("budget ({}) out on {}", cell.budget, cell.budget_out),
+        ),
+        (cell.grazes, format!("{} ε-grazes", cell.grazes)),
+        (cell.inside, format!("{} hits at t = 0 inside", cell.inside)),
+        (
+            cell.zero_normals,
+            format!("{} zero normals", cell.zero_normals),
+        ),
+        (cell.cpu_vs_gpu, format!("CPU ≠ GPU on {}", cell.cpu_vs_gpu)),
+    ];
+    let present = |list: &[(usize, String)]| -> Vec<String> {
+        list.iter()
+            .filter(|(n, _)| *n > 0)
+            .map(|(_, s)| s.clone())
+            .collect()
+    };
+    let (wrong, notes) = (present(&wrong), present(&notes));
     match (wrong.is_empty(), notes.is_empty()) {
         (true, true) => "holds".into(),
         (true, false) => format!("holds ({})", notes.join(", ")),
