@@ -102,6 +102,14 @@ const TOKENS: &[&str] = &[
     "blob",
     "0/0",
     "sin",
+    "cos",
+    "log",
+    "atan2",
+    "1e17",
+    "3e16",
+    "-1e300",
+    "64",
+    "65",
 ];
 
 proptest! {

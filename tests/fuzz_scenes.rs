@@ -8,37 +8,21 @@ use proptest::test_runner::{Config, RngSeed};
 use sdfc_compiler::catalog::{Arity, OPERATORS, PRIMITIVES, Param, Ty};
 use sdfc_compiler::emit::{self, Output, Target};
 use sdfc_compiler::lower::{Entry, tracer::Options};
+use sdfc_tests::Rng;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// Scenes generated; the total is stated in the issue notes.
 const CASES: u32 = 20_000;
 
-/// A small deterministic generator driven by proptest's seed for each case.
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        self.0
-    }
-    fn below(&mut self, n: usize) -> usize {
-        (self.next() % n.max(1) as u64) as usize
-    }
-    fn pick<'a, T>(&mut self, items: &'a [T]) -> &'a T {
-        &items[self.below(items.len())]
-    }
-    /// A magnitude: mostly ordinary, sometimes tiny or huge.
-    fn magnitude(&mut self) -> f64 {
-        *self.pick(&[
-            0.0, 1e-4, 0.01, 0.1, 0.3, 0.5, 1.0, 1.5, 2.0, 7.0, 100.0, 1e4,
-        ])
-    }
+/// A magnitude: mostly ordinary, sometimes tiny or huge.
+fn magnitude(r: &mut Rng) -> f64 {
+    *r.pick(&[
+        0.0, 1e-4, 0.01, 0.1, 0.3, 0.5, 1.0, 1.5, 2.0, 7.0, 100.0, 1e4,
+    ])
 }
 
 fn number(r: &mut Rng, ty: Ty) -> String {
-    let m = r.magnitude();
+    let m = magnitude(r);
     match ty {
         Ty::Number => format!("{}", if r.below(2) == 0 { m } else { -m }),
         Ty::Length => format!("{m}"),
@@ -124,7 +108,7 @@ fn shape(r: &mut Rng, depth: usize) -> String {
 
 fn scene(seed: u64) -> String {
     // Xorshift needs a non-zero state.
-    let mut r = Rng(seed.max(1));
+    let mut r = Rng::new(seed);
     let tracer = r
         .pick(&["basic", "relaxed", "enhanced", "hybrid", "auto"])
         .to_string();

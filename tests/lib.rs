@@ -73,3 +73,37 @@ pub fn fuzz_cases(default: u32) -> u32 {
 pub fn fuzz_seed(default: u64) -> u64 {
     env_number("SDFC_FUZZ_SEED").map_or(default, |s: u64| s ^ default)
 }
+
+/// A small deterministic generator (xorshift) for the fuzzers and samplers; the seed comes from
+/// proptest or a fixed constant, so runs repeat.
+pub struct Rng(pub u64);
+
+impl Rng {
+    /// A generator from `seed` (0 is replaced: xorshift needs a non-zero state).
+    pub fn new(seed: u64) -> Rng {
+        Rng(seed.max(1))
+    }
+    /// The next 64 random bits.
+    pub fn bits(&mut self) -> u64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        self.0
+    }
+    /// A number in [0, 1).
+    pub fn unit(&mut self) -> f64 {
+        (self.bits() >> 11) as f64 / (1u64 << 53) as f64
+    }
+    /// A number in [lo, hi).
+    pub fn range(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * self.unit()
+    }
+    /// A whole number below `n` (0 for n = 0).
+    pub fn below(&mut self, n: usize) -> usize {
+        (self.bits() % n.max(1) as u64) as usize
+    }
+    /// One of `items`.
+    pub fn pick<'a, T>(&mut self, items: &'a [T]) -> &'a T {
+        &items[self.below(items.len())]
+    }
+}

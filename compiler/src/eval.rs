@@ -34,9 +34,13 @@ pub fn node(scene: &Scene, id: NodeId, p: DVec3) -> Sample {
         },
         NodeKind::Operator { op, ctx, children } => {
             let mut seen = vec![None; children.len()];
+            // A child evaluated more than once (the copies of a `repeat`) gives the material
+            // of its nearest evaluation.
             let mut child = |i: usize, q: DVec3| {
                 let s = node(scene, children[i], q);
-                seen[i] = Some(s);
+                if seen[i].is_none_or(|old: Sample| s.d < old.d) {
+                    seen[i] = Some(s);
+                }
                 s.d
             };
             let d = (op.eval)(ctx, p, &mut child);

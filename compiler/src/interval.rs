@@ -9,6 +9,9 @@ pub struct Interval {
     pub hi: f64,
 }
 
+/// Magnitude above which [`Interval::periodic`] gives [-1, 1] without looking for extremes.
+const PERIODIC_LIMIT: f64 = 1e15;
+
 impl Interval {
     /// Everything.
     pub const ALL: Interval = Interval {
@@ -69,7 +72,10 @@ impl Interval {
     /// Image of sin or cos (`phase` 0 for sin, π/2 for cos): exact extremes when the interval is
     /// narrower than a period, else [-1, 1].
     pub fn periodic(self, f: fn(f64) -> f64, phase: f64) -> Interval {
-        if self.hi - self.lo >= std::f64::consts::TAU || self.hi.is_nan() || self.lo.is_nan() {
+        // Past 2⁵⁰ the extremes' spacing (π) is near f64's resolution and the search below
+        // would not advance (k + 1 == k beyond 2⁵³): there, the whole range.
+        let width = self.hi - self.lo;
+        if width.is_nan() || width >= std::f64::consts::TAU || self.mag() > PERIODIC_LIMIT {
             return Interval::new(-1.0, 1.0);
         }
         let mut r = Interval::point(f(self.lo)).hull(Interval::point(f(self.hi)));

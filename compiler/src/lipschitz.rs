@@ -7,18 +7,36 @@ use crate::syntax::BinOp;
 use glam::DVec3;
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
+/// The largest |n| for which `a ^ n` with a whole n is multiplied out (on the GPU as on the
+/// CPU), so that it is defined for negative bases.
+pub const MAX_WHOLE_POWER: f64 = 64.0;
+
 /// A bound on |∇f| over all of space for an `implicit` body, by forward-mode differentiation in
 /// interval arithmetic (Liktor §4: the Lipschitz constant is the supremum of the gradient's
 /// length). Infinite when no finite bound follows (e.g. `x*x`), and the checker then asks for an
-/// annotation.
-pub fn infer(field: &Field) -> f64 {
-    let (_, g) = grad(field);
+/// annotation. An error names a function whose argument may leave its domain (`sqrt` of a
+/// possibly negative value, `log` of a possibly non-positive one, a fractional power of a
+/// possibly negative base): the field would be NaN there, which no annotation mends.
+pub fn infer(field: &Field) -> Result<f64, String> {
+    let mut undefined = None;
+    let (_, g) = grad(field, &mut undefined, &mut false);
+    if let Some(what) = undefined {
+        return Err(what);
+    }
     let l = g.iter().map(|i| i.mag().powi(2)).sum::<f64>().sqrt();
-    if l.is_nan() { f64::INFINITY } else { l }
+    Ok(if l.is_nan() { f64::INFINITY } else { l })
+}
+
+/// Whether the body takes `atan2(a, b)` where a may cross 0 while b is negative: the angle
+/// jumps by 2π there, so no slope bound holds across it (the reason an inference failed).
+pub fn crosses_branch_cut(field: &Field) -> bool {
+    let mut cut = false;
+    grad(field, &mut None, &mut cut);
+    cut
 }
 
 /// Value range and gradient ranges of a field over all of space.
-fn grad(f: &Field) -> (Interval, [Interval; 3]) {
+fn grad(f: &Field, undefined: &mut Option<String>, cut: &mut bool) -> (Interval, [Interval; 3]) {
     let zero = Interval::point(0.0);
     match f {
         Field::Const(c) => (Interval::point(*c), [zero; 3]),
@@ -28,16 +46,21 @@ fn grad(f: &Field) -> (Interval, [Interval; 3]) {
             (Interval::ALL, g)
         }
         Field::Neg(a) => {
-            let (v, g) = grad(a);
+            let (v, g) = grad(a, undefined, cut);
             (v.neg(), g.map(Interval::neg))
         }
         Field::Binary(op, a, b) => {
-            let ((va, ga), (vb, gb)) = (grad(a), grad(b));
+            let ((va, ga), (vb, gb)) = (grad(a, undefined, cut), grad(b, undefined, cut));
             let each =
                 |f: &dyn Fn(Interval, Interval) -> Interval| [0, 1, 2].map(|i| f(ga[i], gb[i]));
             match op {
                 BinOp::Add => (va.add(vb), each(&|x, y| x.add(y))),
                 BinOp::Sub => (va.sub(vb), each(&|x, y| x.sub(y))),
+                // a·a is a square: ≥ 0, which plain interval products cannot see.
+                BinOp::Mul if a == b => (
+                    va.powi(2),
+                    each(&|x, _| x.mul(va).mul(Interval::point(2.0))),
+                ),
                 BinOp::Mul => (va.mul(vb), each(&|x, y| x.mul(vb).add(va.mul(y)))),
                 BinOp::Div => {
                     let q = va.div(vb);
@@ -54,13 +77,36 @@ fn grad(f: &Field) -> (Interval, [Interval; 3]) {
                         };
                         (va.powi(n), ga.map(|x| d.mul(x)))
                     }
-                    _ => (Interval::ALL, [Interval::ALL; 3]),
+                    _ => {
+                        // A negative base is defined only for the whole exponents the
+                        // lowering multiplies out (|n| ≤ 64); `pow` is NaN or undefined there.
+                        let whole = matches!(**b, Field::Const(n) if n.fract() == 0.0 && n.abs() <= MAX_WHOLE_POWER);
+                        if va.lo < 0.0 && !whole {
+                            undefined.get_or_insert_with(|| {
+                                format!("`^` may raise a negative base (as low as {}) to a power that is not a whole number from -64 to 64", va.lo)
+                            });
+                        }
+                        (Interval::ALL, [Interval::ALL; 3])
+                    }
                 },
             }
         }
         Field::Call(func, args) => {
-            let parts: Vec<(Interval, [Interval; 3])> = args.iter().map(grad).collect();
+            let parts: Vec<(Interval, [Interval; 3])> =
+                args.iter().map(|a| grad(a, undefined, cut)).collect();
             let vals: Vec<Interval> = parts.iter().map(|p| p.0).collect();
+            if func.name == "atan2" && vals[0].has_zero() && vals[1].lo < 0.0 {
+                *cut = true;
+            }
+            if !(func.defined)(&vals) {
+                let range: Vec<String> = vals
+                    .iter()
+                    .map(|v| format!("[{}, {}]", v.lo, v.hi))
+                    .collect();
+                undefined.get_or_insert_with(|| {
+                    format!("`{}` may be given a value outside its domain (its argument ranges over {})", func.name, range.join(", "))
+                });
+            }
             let partials = (func.partials)(&vals);
             let mut g = [zero; 3];
             for (k, (_, ga)) in parts.iter().enumerate() {

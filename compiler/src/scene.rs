@@ -60,8 +60,10 @@ pub struct Node {
     pub lambda: f64,
     /// The bound the catalog's rules give, before any annotation.
     pub inferred_lambda: f64,
-    /// Bounding sphere of its surface.
+    /// Where its surface lies.
     pub bound: Bound,
+    /// Per axis, whether its field is symmetric under reflection of that coordinate.
+    pub mirror: [bool; 3],
     /// Material for surfaces of this subtree that have none of their own.
     pub material: Option<u32>,
     /// The `let` name it was bound to, if any.

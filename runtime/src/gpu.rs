@@ -335,42 +335,73 @@ impl Gpu {
         module: &naga::Module,
         rays: &[([f32; 3], [f32; 3], f32)],
     ) -> Result<Vec<[f32; 4]>, String> {
-        if rays.is_empty() {
+        let input: Vec<f32> = rays
+            .iter()
+            .flat_map(|(o, d, px)| [o[0], o[1], o[2], *px, d[0], d[1], d[2], 0.0])
+            .collect();
+        let groups = (rays.len() as u32).div_ceil(sdfc_compiler::lower::tracer::RAYS_WORKGROUP);
+        self.run_list(module, ("rays", "hits"), &input, rays.len(), groups)
+    }
+
+    /// Evaluates the scene's field at a list of points with a module compiled for
+    /// `Entry::Field`, in one dispatch: `map(p)` (the distance bound, already divided by the
+    /// root's λ) per point.
+    pub fn eval_points(
+        &self,
+        module: &naga::Module,
+        points: &[[f32; 3]],
+    ) -> Result<Vec<f32>, String> {
+        let input: Vec<f32> = points
+            .iter()
+            .flat_map(|p| [p[0], p[1], p[2], 0.0])
+            .collect();
+        let groups = (points.len() as u32).div_ceil(sdfc_compiler::lower::tracer::FIELD_WORKGROUP);
+        let out = self.run_list(module, ("points", "values"), &input, points.len(), groups)?;
+        Ok(out.iter().map(|v| v[0]).collect())
+    }
+
+    /// Runs a list entry (binding 0: `input`, read only; binding 1: one vec4 of output per
+    /// item) in one dispatch of `groups` workgroups and reads the output back.
+    fn run_list(
+        &self,
+        module: &naga::Module,
+        (input_label, output_label): (&str, &str),
+        input: &[f32],
+        items: usize,
+        groups: u32,
+    ) -> Result<Vec<[f32; 4]>, String> {
+        if items == 0 {
             return Ok(Vec::new());
         }
         let device = &self.device;
         let validation = device.push_error_scope(wgpu::ErrorFilter::Validation);
         let pipeline = self.pipeline(module);
-        let input: Vec<u8> = rays
-            .iter()
-            .flat_map(|(o, d, px)| [o[0], o[1], o[2], *px, d[0], d[1], d[2], 0.0])
-            .flat_map(f32::to_le_bytes)
-            .collect();
-        let size = rays.len() as u64 * 16;
-        let rays_buf = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("rays"),
-            size: size * 2,
+        let bytes: Vec<u8> = input.iter().copied().flat_map(f32::to_le_bytes).collect();
+        let input_buf = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some(input_label),
+            size: bytes.len() as u64,
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        self.queue.write_buffer(&rays_buf, 0, &input);
-        let hits = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("hits"),
+        self.queue.write_buffer(&input_buf, 0, &bytes);
+        let size = items as u64 * 16;
+        let output = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some(output_label),
             size,
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
             mapped_at_creation: false,
         });
         let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("rays"),
+            label: Some(input_label),
             layout: &pipeline.get_bind_group_layout(0),
             entries: &[
                 wgpu::BindGroupEntry {
                     binding: 0,
-                    resource: rays_buf.as_entire_binding(),
+                    resource: input_buf.as_entire_binding(),
                 },
                 wgpu::BindGroupEntry {
                     binding: 1,
-                    resource: hits.as_entire_binding(),
+                    resource: output.as_entire_binding(),
                 },
             ],
         });
@@ -379,7 +410,6 @@ impl Gpu {
             let mut pass = enc.begin_compute_pass(&Default::default());
             pass.set_pipeline(&pipeline);
             pass.set_bind_group(0, &bind, &[]);
-            let groups = (rays.len() as u32).div_ceil(sdfc_compiler::lower::tracer::RAYS_WORKGROUP);
             pass.dispatch_workgroups(groups, 1, 1);
         }
         self.queue.submit([enc.finish()]);
@@ -387,7 +417,7 @@ impl Gpu {
         if let Some(e) = pollster::block_on(validation.pop()) {
             return Err(format!("internal error: the GPU rejected the shader: {e}"));
         }
-        let bytes = self.read(&hits, size)?;
+        let bytes = self.read(&output, size)?;
         Ok(bytes
             .chunks_exact(16)
             .map(|c| {

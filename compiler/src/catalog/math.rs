@@ -22,7 +22,13 @@ pub struct MathFn {
     pub lower: naga::MathFunction,
     /// How it treats angles.
     pub units: Units,
+    /// Whether every value in the argument intervals is in the function's domain (a NaN field
+    /// otherwise); the checker refuses an `implicit` where this cannot be shown.
+    pub defined: fn(&[Interval]) -> bool,
 }
+
+/// Defined everywhere.
+const EVERYWHERE: fn(&[Interval]) -> bool = |_| true;
 
 /// How a math function treats angles (numbers with `deg`/`rad`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -50,6 +56,7 @@ fn switch() -> Interval {
 pub static MATH_FUNCTIONS: &[MathFn] = &[
     MathFn {
         name: "abs",
+        defined: EVERYWHERE,
         units: Units::Same,
         lower: naga::MathFunction::Abs,
         arity: 1,
@@ -60,10 +67,11 @@ pub static MATH_FUNCTIONS: &[MathFn] = &[
     },
     MathFn {
         name: "sqrt",
+        defined: |a| a[0].lo >= 0.0,
         units: Units::Plain,
         lower: naga::MathFunction::Sqrt,
         arity: 1,
-        doc: "√a (a < 0 gives NaN, which is an error in constants)",
+        doc: "√a (an argument that may be negative is an error)",
         eval: |a| a[0].sqrt(),
         range: |a| a[0].map_up(|x| x.max(0.0).sqrt()),
         partials: |a| {
@@ -76,6 +84,7 @@ pub static MATH_FUNCTIONS: &[MathFn] = &[
     },
     MathFn {
         name: "sin",
+        defined: EVERYWHERE,
         units: Units::AngleIn,
         lower: naga::MathFunction::Sin,
         arity: 1,
@@ -86,6 +95,7 @@ pub static MATH_FUNCTIONS: &[MathFn] = &[
     },
     MathFn {
         name: "cos",
+        defined: EVERYWHERE,
         units: Units::AngleIn,
         lower: naga::MathFunction::Cos,
         arity: 1,
@@ -96,6 +106,7 @@ pub static MATH_FUNCTIONS: &[MathFn] = &[
     },
     MathFn {
         name: "exp",
+        defined: EVERYWHERE,
         units: Units::Plain,
         lower: naga::MathFunction::Exp,
         arity: 1,
@@ -106,16 +117,18 @@ pub static MATH_FUNCTIONS: &[MathFn] = &[
     },
     MathFn {
         name: "log",
+        defined: |a| a[0].lo > 0.0,
         units: Units::Plain,
         lower: naga::MathFunction::Log,
         arity: 1,
-        doc: "natural logarithm",
+        doc: "natural logarithm (an argument that may be ≤ 0 is an error)",
         eval: |a| a[0].ln(),
         range: |a| a[0].map_up(|x| x.max(0.0).ln()),
         partials: |a| vec![a[0].recip()],
     },
     MathFn {
         name: "min",
+        defined: EVERYWHERE,
         units: Units::Same,
         lower: naga::MathFunction::Min,
         arity: 2,
@@ -126,6 +139,7 @@ pub static MATH_FUNCTIONS: &[MathFn] = &[
     },
     MathFn {
         name: "max",
+        defined: EVERYWHERE,
         units: Units::Same,
         lower: naga::MathFunction::Max,
         arity: 2,
@@ -136,6 +150,7 @@ pub static MATH_FUNCTIONS: &[MathFn] = &[
     },
     MathFn {
         name: "length",
+        defined: EVERYWHERE,
         units: Units::Plain,
         lower: naga::MathFunction::Length,
         arity: 3,
@@ -149,14 +164,19 @@ pub static MATH_FUNCTIONS: &[MathFn] = &[
     },
     MathFn {
         name: "atan2",
+        defined: EVERYWHERE,
         units: Units::AngleOut,
         lower: naga::MathFunction::Atan2,
         arity: 2,
-        doc: "the angle of the point (b, a): atan2(a, b)",
+        doc: "the angle of the point (b, a): atan2(a, b), in (−π, π]; it jumps by 2π where a crosses 0 with b < 0, so it needs an annotation there",
         eval: |a| a[0].atan2(a[1]),
         range: |_| Interval::new(-std::f64::consts::PI, std::f64::consts::PI),
-        // ∂/∂a = b/(a²+b²), ∂/∂b = −a/(a²+b²): unbounded near the origin.
+        // ∂/∂a = b/(a²+b²), ∂/∂b = −a/(a²+b²): unbounded near the origin. Where a can be 0
+        // while b is negative, the angle jumps by 2π across its branch cut: no finite bound.
         partials: |a| {
+            if a[0].has_zero() && a[1].lo < 0.0 {
+                return vec![Interval::ALL, Interval::ALL];
+            }
             let r2 = a[0].powi(2).add(a[1].powi(2));
             vec![a[1].div(r2), a[0].neg().div(r2)]
         },

@@ -16,6 +16,12 @@ const fn num(x: f64) -> Val {
 
 const SAME: fn(&Ctx) -> f64 = |c| c.child_lambda[0];
 const ONE: fn(&Ctx) -> f64 = |_| 1.0;
+/// The child's symmetry (operators that act the same on x and −x).
+const CHILD: fn(&Ctx) -> [bool; 3] = |c| c.child_mirror[0];
+/// Symmetric where every child is.
+const EVERY: fn(&Ctx) -> [bool; 3] = |c| [0, 1, 2].map(|i| c.child_mirror.iter().all(|m| m[i]));
+/// Not known to be symmetric.
+const NONE: fn(&Ctx) -> [bool; 3] = |_| [false; 3];
 
 /// Child `i` at `p`, divided by its λ.
 fn norm(c: &Ctx, child: ChildEval, i: usize, p: DVec3) -> f64 {
@@ -46,7 +52,7 @@ fn smallest(c: &Ctx) -> Bound {
     c.child_bound
         .iter()
         .copied()
-        .min_by(|a, b| a.radius.total_cmp(&b.radius))
+        .reduce(Bound::intersection)
         .unwrap_or(Bound::INFINITE)
 }
 
@@ -58,11 +64,25 @@ fn all(c: &Ctx) -> Bound {
         .unwrap_or(Bound::INFINITE)
 }
 
-fn grow(b: Bound, by: f64) -> Bound {
-    Bound {
-        radius: b.radius + by,
-        ..b
+/// A rotation about a coordinate axis keeps the symmetry along that axis (the two commute); a
+/// quarter or half turn about it also keeps the other two where the child has both (the
+/// reflected result is the child turned by −θ, the same as by θ once the child is invariant under
+/// the half turn 2θ = π, or any multiple of it). Otherwise: not known.
+fn rotated_mirror(c: &Ctx) -> [bool; 3] {
+    let (axis, angle, child) = (c.vec(0), c.num(1), c.child_mirror[0]);
+    let quarters = angle / std::f64::consts::FRAC_PI_2;
+    let whole = (quarters - quarters.round()).abs() < 1e-9;
+    if whole && quarters.round().rem_euclid(4.0) == 0.0 {
+        return child;
     }
+    let Some(k) = (0..3).find(|&k| axis[k].abs() == 1.0) else {
+        return [false; 3];
+    };
+    let (i, j) = ((k + 1) % 3, (k + 2) % 3);
+    let others = whole && child[i] && child[j];
+    let mut m = [others; 3];
+    m[k] = child[k];
+    m
 }
 
 /// Rodrigues' rotation of `v` by `angle` about the unit `axis`.
@@ -149,6 +169,7 @@ pub static OPERATORS: &[Operator] = &[
         arity: Arity::AtLeast(1),
         lipschitz: ONE,
         bound: all,
+        mirror: EVERY,
         eval: |c, p, child| fold(c, p, child, f64::min),
     },
     Operator {
@@ -160,6 +181,7 @@ pub static OPERATORS: &[Operator] = &[
         arity: Arity::AtLeast(1),
         lipschitz: ONE,
         bound: smallest,
+        mirror: EVERY,
         eval: |c, p, child| fold(c, p, child, f64::max),
     },
     Operator {
@@ -172,6 +194,7 @@ pub static OPERATORS: &[Operator] = &[
         arity: Arity::AtLeast(2),
         lipschitz: ONE,
         bound: |c| c.child_bound[0],
+        mirror: EVERY,
         eval: |c, p, child| fold(c, p, child, |a, b| a.max(-b)),
     },
     Operator {
@@ -183,6 +206,7 @@ pub static OPERATORS: &[Operator] = &[
         arity: Arity::Exactly(1),
         lipschitz: SAME,
         bound: |_| Bound::INFINITE,
+        mirror: CHILD,
         eval: |_, p, child| -child(0, p),
     },
     Operator {
@@ -194,7 +218,8 @@ pub static OPERATORS: &[Operator] = &[
         params: &[req("radius", Ty::Length)],
         arity: Arity::AtLeast(1),
         lipschitz: ONE,
-        bound: |c| grow(all(c), c.num(0) / 4.0),
+        bound: |c| all(c).grown(c.num(0) / 4.0),
+        mirror: EVERY,
         eval: |c, p, child| fold(c, p, child, |a, b| smin(a, b, c.num(0))),
     },
     Operator {
@@ -206,6 +231,7 @@ pub static OPERATORS: &[Operator] = &[
         arity: Arity::AtLeast(1),
         lipschitz: ONE,
         bound: smallest,
+        mirror: EVERY,
         eval: |c, p, child| fold(c, p, child, |a, b| smax(a, b, c.num(0))),
     },
     Operator {
@@ -217,6 +243,7 @@ pub static OPERATORS: &[Operator] = &[
         arity: Arity::AtLeast(2),
         lipschitz: ONE,
         bound: |c| c.child_bound[0],
+        mirror: EVERY,
         eval: |c, p, child| fold(c, p, child, |a, b| smax(a, -b, c.num(0))),
     },
     Operator {
@@ -224,11 +251,12 @@ pub static OPERATORS: &[Operator] = &[
         materials: MatRule::Weighted,
         lower: ir::mix,
         doc: "Metamorphosis (Liktor Fig. 9): (1 − `weight`)·a + `weight`·b of the raw fields, \
-              λ = (1 − w)·λa + w·λb; the heavier shape's material.",
+              λ = (1 − w)·λa + w·λb; the heavier shape's material (the second at w = 0.5).",
         params: &[req("weight", Ty::Fraction)],
         arity: Arity::Exactly(2),
         lipschitz: |c| (1.0 - c.num(0)) * c.child_lambda[0] + c.num(0) * c.child_lambda[1],
         bound: all,
+        mirror: EVERY,
         eval: |c, p, child| {
             let w = c.num(0);
             (1.0 - w) * child(0, p) + w * child(1, p)
@@ -247,7 +275,8 @@ pub static OPERATORS: &[Operator] = &[
         ],
         arity: Arity::AtLeast(1),
         lipschitz: ONE,
-        bound: |c| grow(all(c), c.num(0)),
+        bound: |c| all(c).grown(c.num(0)),
+        mirror: EVERY,
         eval: |c, p, child| {
             let (radius, threshold) = (c.num(0), c.num(1));
             let n = c.child_lambda.len();
@@ -270,10 +299,8 @@ pub static OPERATORS: &[Operator] = &[
         params: &[req("offset", Ty::Vec3)],
         arity: Arity::Exactly(1),
         lipschitz: SAME,
-        bound: |c| Bound {
-            center: c.child_bound[0].center + c.vec(0),
-            ..c.child_bound[0]
-        },
+        bound: |c| c.child_bound[0].moved(c.vec(0)),
+        mirror: |c| [0, 1, 2].map(|i| c.child_mirror[0][i] && c.vec(0)[i] == 0.0),
         eval: |c, p, child| child(0, p - c.vec(0)),
     },
     Operator {
@@ -284,10 +311,8 @@ pub static OPERATORS: &[Operator] = &[
         params: &[req("axis", Ty::Axis), req("angle", Ty::Angle)],
         arity: Arity::Exactly(1),
         lipschitz: SAME,
-        bound: |c| Bound {
-            center: rotate(c.child_bound[0].center, c.vec(0), c.num(1)),
-            ..c.child_bound[0]
-        },
+        bound: |c| c.child_bound[0].isometry(|v| rotate(v, c.vec(0), c.num(1))),
+        mirror: rotated_mirror,
         eval: |c, p, child| child(0, rotate(p, c.vec(0), -c.num(1))),
     },
     Operator {
@@ -295,14 +320,13 @@ pub static OPERATORS: &[Operator] = &[
         materials: MatRule::Pass,
         lower: ir::scale,
         doc: "Scales its shape by `factor` (a number, or a vector for non-uniform scale): \
-              f(p/s)·min(s), λ multiplied by max(s)/min(s).",
+              f(p/s)·min(s), λ unchanged (p/s stretches slopes by at most 1/min(s), which the \
+              factor min(s) undoes).",
         params: &[req("factor", Ty::Scale)],
         arity: Arity::Exactly(1),
-        lipschitz: |c| c.child_lambda[0] * c.vec(0).max_element() / c.vec(0).min_element(),
-        bound: |c| Bound {
-            center: c.child_bound[0].center * c.vec(0),
-            radius: c.child_bound[0].radius * c.vec(0).max_element(),
-        },
+        lipschitz: SAME,
+        bound: |c| c.child_bound[0].scaled(c.vec(0)),
+        mirror: CHILD,
         eval: |c, p, child| {
             let s = c.vec(0);
             child(0, p / s) * s.min_element()
@@ -313,19 +337,33 @@ pub static OPERATORS: &[Operator] = &[
         materials: MatRule::Pass,
         lower: ir::repeat,
         doc: "Repeats its shape every `spacing` along each axis (0: not on that axis), `count` \
-              copies per axis (0: without end); λ unchanged while the shape fits in its cell.",
+              copies per axis (0: without end); the neighbouring cells are evaluated too where \
+              the shape is not symmetric about its cell or overflows it (λ unchanged; a shape without \
+              end along a repeated axis needs an annotation).",
         params: &[req("spacing", Ty::Size), opt("count", Ty::Counts, num(0.0))],
         arity: Arity::Exactly(1),
-        lipschitz: SAME,
+        lipschitz: |c| {
+            // Copies of a shape without end along a repeated axis overlap without limit: no
+            // window of cells holds the nearest one.
+            let (s, b) = (c.vec(0), c.child_bound[0]);
+            let unbounded =
+                (0..3).any(|i| s[i] > 0.0 && !(b.lo[i].is_finite() && b.hi[i].is_finite()));
+            if unbounded {
+                f64::INFINITY
+            } else {
+                c.child_lambda[0]
+            }
+        },
         bound: |c| {
             let (s, n) = (c.vec(0), c.vec(1));
             if (0..3).any(|i| s[i] > 0.0 && n[i] == 0.0) {
                 return Bound::INFINITE;
             }
             let half = s * (n - DVec3::ONE).max(DVec3::ZERO) / 2.0;
-            grow(c.child_bound[0], half.length())
+            c.child_bound[0].grown_box(half, half.length())
         },
-        eval: |c, p, child| child(0, repeat_cell(p, c.vec(0), c.vec(1))),
+        mirror: CHILD,
+        eval: |c, p, child| super::repeat::field(c, p, child),
     },
     Operator {
         name: "mirror",
@@ -339,11 +377,17 @@ pub static OPERATORS: &[Operator] = &[
         bound: |c| {
             let b = c.child_bound[0];
             let n = c.vec(0);
-            let mirrored = Bound {
-                center: b.center - 2.0 * b.center.dot(n) * n,
-                ..b
-            };
-            b.union(mirrored)
+            b.union(b.isometry(|v| v - 2.0 * v.dot(n) * n))
+        },
+        mirror: |c| {
+            let n = c.vec(0);
+            [0, 1, 2].map(|i| {
+                if n[i].abs() == 1.0 {
+                    true
+                } else {
+                    n[i] == 0.0 && c.child_mirror[0][i]
+                }
+            })
         },
         eval: |c, p, child| {
             let n = c.vec(0);
@@ -364,11 +408,10 @@ pub static OPERATORS: &[Operator] = &[
         bound: |c| {
             let b = c.child_bound[0];
             let rho = b.cylinder_radius(DVec3::Y);
-            Bound {
-                center: DVec3::new(0.0, b.center.y, 0.0),
-                radius: rho.hypot(b.radius),
-            }
+            Bound::sphere(DVec3::new(0.0, b.center.y, 0.0), rho.hypot(b.radius))
+                .with_box(DVec3::new(-rho, b.lo.y, -rho), DVec3::new(rho, b.hi.y, rho))
         },
+        mirror: NONE,
         eval: |c, p, child| {
             let rho_max = c.child_bound[0].cylinder_radius(DVec3::Y);
             let stretch = twist_stretch(c.num(0), rho_max);
@@ -389,11 +432,10 @@ pub static OPERATORS: &[Operator] = &[
         bound: |c| {
             let b = c.child_bound[0];
             let rho = b.cylinder_radius(DVec3::Z);
-            Bound {
-                center: DVec3::new(0.0, 0.0, b.center.z),
-                radius: rho.hypot(b.radius),
-            }
+            Bound::sphere(DVec3::new(0.0, 0.0, b.center.z), rho.hypot(b.radius))
+                .with_box(DVec3::new(-rho, -rho, b.lo.z), DVec3::new(rho, rho, b.hi.z))
         },
+        mirror: NONE,
         eval: |c, p, child| {
             let rho_max = c.child_bound[0].cylinder_radius(DVec3::Z);
             let stretch = 1.0 + c.num(0).abs() * rho_max;
@@ -410,7 +452,8 @@ pub static OPERATORS: &[Operator] = &[
         params: &[req("radius", Ty::Length)],
         arity: Arity::Exactly(1),
         lipschitz: ONE,
-        bound: |c| grow(c.child_bound[0], c.num(0)),
+        bound: |c| c.child_bound[0].grown(c.num(0)),
+        mirror: CHILD,
         eval: |c, p, child| norm(c, child, 0, p) - c.num(0),
     },
     Operator {
@@ -421,7 +464,8 @@ pub static OPERATORS: &[Operator] = &[
         params: &[req("thickness", Ty::Length)],
         arity: Arity::Exactly(1),
         lipschitz: ONE,
-        bound: |c| grow(c.child_bound[0], c.num(0)),
+        bound: |c| c.child_bound[0].grown(c.num(0)),
+        mirror: CHILD,
         eval: |c, p, child| norm(c, child, 0, p).abs() - c.num(0),
     },
     Operator {
@@ -433,34 +477,11 @@ pub static OPERATORS: &[Operator] = &[
         params: &[req("amount", Ty::Size)],
         arity: Arity::Exactly(1),
         lipschitz: SAME,
-        bound: |c| grow(c.child_bound[0], c.vec(0).length() / 2.0),
+        bound: |c| c.child_bound[0].grown_box(c.vec(0) / 2.0, c.vec(0).length() / 2.0),
+        mirror: CHILD,
         eval: |c, p, child| {
             let h = c.vec(0) / 2.0;
             child(0, p - p.clamp(-h, h))
         },
     },
 ];
-
-/// The point of `p`'s repetition cell that the original shape is evaluated at.
-pub fn repeat_cell(p: DVec3, spacing: DVec3, count: DVec3) -> DVec3 {
-    let mut q = p;
-    for i in 0..3 {
-        let s = spacing[i];
-        if s <= 0.0 {
-            continue;
-        }
-        let n = count[i];
-        q[i] = if n == 0.0 {
-            p[i] - s * round_half_up(p[i] / s)
-        } else {
-            let half = (n - 1.0) / 2.0;
-            p[i] - s * (round_half_up(p[i] / s + half).clamp(0.0, n - 1.0) - half)
-        };
-    }
-    q
-}
-
-/// floor(x + 0.5): the rounding the shaders use too, so cells agree at exact halves.
-pub fn round_half_up(x: f64) -> f64 {
-    (x + 0.5).floor()
-}

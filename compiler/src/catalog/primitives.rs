@@ -9,6 +9,7 @@ use crate::lower::prims as ir;
 use glam::{DVec2, DVec3};
 
 const ONE: fn(&Ctx) -> f64 = |_| 1.0;
+const ALL_AXES: fn(&Ctx) -> [bool; 3] = |_| [true; 3];
 
 const fn num(x: f64) -> Val {
     Val::Num(x)
@@ -28,6 +29,7 @@ pub static PRIMITIVES: &[Primitive] = &[
         exact: true,
         lipschitz: ONE,
         bound: |c| Bound::origin(c.num(0)),
+        mirror: ALL_AXES,
         eval: |c, p| p.length() - c.num(0),
     },
     Primitive {
@@ -37,7 +39,8 @@ pub static PRIMITIVES: &[Primitive] = &[
         params: &[opt("size", Ty::Size, num(1.0))],
         exact: true,
         lipschitz: ONE,
-        bound: |c| Bound::origin(c.vec(0).length() / 2.0),
+        bound: |c| Bound::centered_box(c.vec(0) / 2.0),
+        mirror: ALL_AXES,
         eval: |c, p| sd_box(p, c.vec(0) / 2.0),
     },
     Primitive {
@@ -51,7 +54,8 @@ pub static PRIMITIVES: &[Primitive] = &[
         ],
         exact: true,
         lipschitz: ONE,
-        bound: |c| Bound::origin(c.vec(0).length() / 2.0),
+        bound: |c| Bound::centered_box(c.vec(0) / 2.0),
+        mirror: ALL_AXES,
         eval: |c, p| {
             let half = c.vec(0) / 2.0;
             let r = c.num(1).min(half.min_element());
@@ -69,6 +73,7 @@ pub static PRIMITIVES: &[Primitive] = &[
         exact: true,
         lipschitz: ONE,
         bound: |_| Bound::INFINITE,
+        mirror: |c| c.vec(0).to_array().map(|n| n == 0.0),
         eval: |c, p| p.dot(c.vec(0)) - c.num(1),
     },
     Primitive {
@@ -82,7 +87,11 @@ pub static PRIMITIVES: &[Primitive] = &[
         ],
         exact: true,
         lipschitz: ONE,
-        bound: |c| Bound::origin(c.num(0) + c.num(1)),
+        bound: |c| {
+            let (r, t) = (c.num(0) + c.num(1), c.num(1));
+            Bound::origin(r).with_box(-DVec3::new(r, t, r), DVec3::new(r, t, r))
+        },
+        mirror: ALL_AXES,
         eval: |c, p| DVec2::new(DVec2::new(p.x, p.z).length() - c.num(0), p.y).length() - c.num(1),
     },
     Primitive {
@@ -95,7 +104,11 @@ pub static PRIMITIVES: &[Primitive] = &[
         ],
         exact: true,
         lipschitz: ONE,
-        bound: |c| Bound::origin(c.num(0) / 2.0 + c.num(1)),
+        bound: |c| {
+            let (r, h) = (c.num(1), c.num(0) / 2.0 + c.num(1));
+            Bound::origin(h).with_box(-DVec3::new(r, h, r), DVec3::new(r, h, r))
+        },
+        mirror: ALL_AXES,
         eval: |c, p| {
             let h = c.num(0) / 2.0;
             DVec3::new(p.x, p.y - p.y.clamp(-h, h), p.z).length() - c.num(1)
@@ -111,7 +124,11 @@ pub static PRIMITIVES: &[Primitive] = &[
         ],
         exact: true,
         lipschitz: ONE,
-        bound: |c| Bound::origin(DVec2::new(c.num(0), c.num(1) / 2.0).length()),
+        bound: |c| {
+            let half = DVec3::new(c.num(0), c.num(1) / 2.0, c.num(0));
+            Bound::origin(DVec2::new(c.num(0), c.num(1) / 2.0).length()).with_box(-half, half)
+        },
+        mirror: ALL_AXES,
         eval: |c, p| {
             let d = DVec2::new(DVec2::new(p.x, p.z).length(), p.y).abs()
                 - DVec2::new(c.num(0), c.num(1) / 2.0);
@@ -129,7 +146,12 @@ pub static PRIMITIVES: &[Primitive] = &[
         ],
         exact: true,
         lipschitz: ONE,
-        bound: |c| Bound::origin(DVec2::new(c.num(0).max(c.num(2)), c.num(1) / 2.0).length()),
+        bound: |c| {
+            let r = c.num(0).max(c.num(2));
+            let half = DVec3::new(r, c.num(1) / 2.0, r);
+            Bound::origin(DVec2::new(r, c.num(1) / 2.0).length()).with_box(-half, half)
+        },
+        mirror: |_| [true, false, true],
         eval: |c, p| sd_capped_cone(p, c.num(1) / 2.0, c.num(0), c.num(2)),
     },
     Primitive {
@@ -139,7 +161,8 @@ pub static PRIMITIVES: &[Primitive] = &[
         params: &[opt("radii", Ty::Size, vec3(1.0, 0.5, 0.5))],
         exact: false,
         lipschitz: ONE,
-        bound: |c| Bound::origin(c.vec(0).max_element()),
+        bound: |c| Bound::origin(c.vec(0).max_element()).with_box(-c.vec(0), c.vec(0)),
+        mirror: ALL_AXES,
         // |p / r| - 1 has gradient at most 1 / min(r); scaling by min(r) makes it 1-Lipschitz.
         eval: |c, p| {
             let r = c.vec(0).max(DVec3::splat(ELLIPSOID_MIN_RADIUS));
@@ -154,6 +177,7 @@ pub static PRIMITIVES: &[Primitive] = &[
         exact: true,
         lipschitz: ONE,
         bound: |c| Bound::origin(c.num(0)),
+        mirror: ALL_AXES,
         eval: |c, p| sd_octahedron(p, c.num(0)),
     },
     Primitive {
@@ -175,6 +199,7 @@ pub static PRIMITIVES: &[Primitive] = &[
         },
         // The inradius-r dodecahedron has circumradius r·√3·tan(π/5)·φ ≈ 1.2584 r.
         bound: |c| Bound::origin(c.num(0) * 1.2585),
+        mirror: ALL_AXES,
         eval: |c, p| gdf_dodecahedron(p, c.num(0), c.num(1)),
     },
     Primitive {
@@ -193,6 +218,7 @@ pub static PRIMITIVES: &[Primitive] = &[
         exact: false,
         lipschitz: ONE,
         bound: |c| Bound::origin(mandelbulb_radius(c.num(0))),
+        mirror: |_| [false; 3],
         eval: |c, p| mandelbulb(p, c.num(0), c.num(1) as u32),
     },
 ];

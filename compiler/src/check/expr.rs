@@ -1,12 +1,11 @@
-//! Checking expressions: numbers with units, vectors, colours, names, calls of primitives,
-//! operators and math functions, pipes, materials, annotations and `implicit` bodies.
+//! Checking expressions: numbers with units, vectors, colours, names, calls of primitives and
+//! operators, pipes, material tags and where annotations apply (`implicit.rs` has the rest).
 
 use super::{Binding, Checker, Dim, MAX_DEPTH, Value};
 use crate::catalog::{self, Arity, Ctx};
 use crate::diag::{Diagnostic, Span, did_you_mean};
-use crate::lipschitz;
 use crate::scene::{Field, NodeId, NodeKind, binary};
-use crate::syntax::{Arg, BinOp, Call, Expr, ExprKind, Ident};
+use crate::syntax::{BinOp, Call, Expr, ExprKind, Ident};
 use glam::DVec3;
 
 /// Units a number may carry, and the factor to radians.
@@ -92,8 +91,20 @@ impl Checker<'_> {
             ExprKind::Tag(lhs, material) => {
                 let n = self.shape(lhs);
                 let m = self.material_ref(material);
-                let n = self.copy_node(n?)?;
-                self.nodes[n].material = Some(m?);
+                let (n, m) = (n?, m?);
+                if let Some(inner) = self.nodes[n].material {
+                    // The innermost tag wins (a tag covers only parts without a material of
+                    // their own), so this one has no effect: say so rather than ignore it.
+                    let inner = self.materials[inner as usize].name.clone();
+                    self.diags.push(
+                        Diagnostic::warning(material.span, "this material has no effect")
+                            .label(format!("the shape is already `{inner}`"))
+                            .note("a tag applies only to parts that have no material of their own; the innermost tag wins"),
+                    );
+                    return Some(Value::Shape(n));
+                }
+                let n = self.copy_node(n)?;
+                self.nodes[n].material = Some(m);
                 self.nodes[n].span = e.span;
                 Some(Value::Shape(n))
             }
@@ -239,7 +250,7 @@ impl Checker<'_> {
         self.material_spans.contains(&span)
     }
 
-    fn no_arithmetic(&mut self, span: Span, op: &str, v: &Value) -> Option<Value> {
+    pub(super) fn no_arithmetic(&mut self, span: Span, op: &str, v: &Value) -> Option<Value> {
         let mut d = Diagnostic::error(
             span,
             format!("`{op}` cannot be applied to {}", v.describe()),
@@ -319,7 +330,7 @@ impl Checker<'_> {
         }
     }
 
-    fn finite(&mut self, x: f64, span: Span) -> Option<f64> {
+    pub(super) fn finite(&mut self, x: f64, span: Span) -> Option<f64> {
         if x.is_finite() {
             return Some(x);
         }
@@ -378,6 +389,7 @@ impl Checker<'_> {
                 args,
                 child_lambda: Vec::new(),
                 child_bound: Vec::new(),
+                child_mirror: Vec::new(),
             };
             let lambda = (prim.lipschitz)(&ctx);
             let bound = (prim.bound)(&ctx);
@@ -483,148 +495,6 @@ impl Checker<'_> {
         Some(children)
     }
 
-    fn math_call(&mut self, f: &'static catalog::MathFn, call: &Call) -> Option<Value> {
-        if call.block.is_some()
-            || call.args.iter().any(|a| a.name.is_some())
-            || call.args.len() != f.arity
-        {
-            let s = if f.arity == 1 { "" } else { "s" };
-            self.diags.push(
-                Diagnostic::error(
-                    call.span,
-                    format!("`{}` takes {} argument{s}", f.name, f.arity),
-                )
-                .label(format!("`{}`: {}", f.name, f.doc)),
-            );
-            return None;
-        }
-        let mut args = Vec::new();
-        for a in &call.args {
-            args.push(self.value(&a.value));
-        }
-        let args: Vec<Value> = args.into_iter().collect::<Option<_>>()?;
-        if let Some((bad, arg)) = args
-            .iter()
-            .zip(&call.args)
-            .find(|(a, _)| !matches!(a, Value::Num(..) | Value::Field(_)))
-        {
-            return self.no_arithmetic(arg.value.span, f.name, bad);
-        }
-        let dims: Vec<Dim> = args
-            .iter()
-            .map(|a| {
-                if let Value::Num(_, d) = a {
-                    *d
-                } else {
-                    Dim::None
-                }
-            })
-            .collect();
-        let out = match f.units {
-            catalog::Units::AngleIn => Dim::None,
-            catalog::Units::Same if dims.iter().all(|d| *d == dims[0]) => dims[0],
-            catalog::Units::AngleOut | catalog::Units::Plain | catalog::Units::Same => {
-                if let Some(i) = dims.iter().position(|d| *d == Dim::Angle) {
-                    let d = Diagnostic::error(
-                        call.args[i].value.span,
-                        format!("`{}` takes plain numbers", f.name),
-                    )
-                    .label("this is an angle")
-                    .help("drop the unit, or divide by `1rad` to get the plain number of radians");
-                    self.diags.push(d);
-                    return None;
-                }
-                if f.units == catalog::Units::AngleOut {
-                    Dim::Angle
-                } else {
-                    Dim::None
-                }
-            }
-        };
-        if args.iter().all(|a| matches!(a, Value::Num(..))) {
-            let xs: Vec<f64> = args
-                .iter()
-                .map(|a| if let Value::Num(x, _) = a { *x } else { 0.0 })
-                .collect();
-            return self
-                .finite((f.eval)(&xs), call.span)
-                .map(|r| Value::Num(r, out));
-        }
-        Some(Value::Field(Field::Call(
-            f,
-            args.into_iter().map(as_field).collect(),
-        )))
-    }
-
-    fn implicit(&mut self, call: &Call, piped: Option<NodeId>) -> Option<Value> {
-        let body = match (&call.block, piped, call.args.is_empty()) {
-            (Some(b), None, true) if b.len() == 1 => &b[0],
-            _ => {
-                self.diags.push(
-                    Diagnostic::error(
-                        call.span,
-                        "`implicit` takes one expression of x, y and z in a block",
-                    )
-                    .label("e.g. `implicit { length(x, y, z) - 1 }`"),
-                );
-                return None;
-            }
-        };
-        let outer = std::mem::replace(&mut self.in_implicit, true);
-        let v = self.value(body);
-        self.in_implicit = outer;
-        let field = match v? {
-            Value::Field(f) => f,
-            Value::Num(x, Dim::None) => Field::Const(x),
-            other => {
-                self.diags.push(
-                    Diagnostic::error(body.span, "`implicit` needs a number-valued expression")
-                        .label(format!("this is {}", other.describe())),
-                );
-                return None;
-            }
-        };
-        let lambda = lipschitz::infer(&field);
-        self.push_node(
-            NodeKind::Implicit { field },
-            lambda,
-            catalog::Bound::INFINITE,
-            call.span,
-        )
-        .map(Value::Shape)
-    }
-
-    fn annotation(&mut self, name: &Ident, args: &[Arg], span: Span) -> Option<f64> {
-        if name.name != "lipschitz" {
-            let mut d =
-                Diagnostic::error(name.span, format!("unknown annotation `@{}`", name.name))
-                    .label("not an annotation");
-            d = match did_you_mean(&name.name, ["lipschitz"]) {
-                Some(s) => d.help(format!("did you mean `@{s}`?")),
-                None => d.note("the only annotation is `@lipschitz(L)`"),
-            };
-            self.diags.push(d);
-            return None;
-        }
-        let [Arg { name: None, value }] = args else {
-            self.diags.push(
-                Diagnostic::error(span, "`@lipschitz` takes one number")
-                    .label("e.g. `@lipschitz(2)`"),
-            );
-            return None;
-        };
-        match self.value(value)? {
-            Value::Num(l, Dim::None) if l.is_finite() && l > 0.0 => Some(l),
-            other => {
-                self.diags.push(
-                    Diagnostic::error(value.span, "a Lipschitz bound must be a finite number > 0")
-                        .label(format!("found {}", other.describe())),
-                );
-                None
-            }
-        }
-    }
-
     fn material_ref(&mut self, id: &Ident) -> Option<u32> {
         if let Some(i) = self.materials.iter().position(|m| m.name == id.name) {
             return Some(i as u32);
@@ -672,7 +542,7 @@ fn signature_of_prim(p: &catalog::Primitive) -> String {
     super::signature(p.name, p.params)
 }
 
-fn as_field(v: Value) -> Field {
+pub(super) fn as_field(v: Value) -> Field {
     match v {
         Value::Num(x, _) => Field::Const(x),
         Value::Field(f) => f,

@@ -3,6 +3,7 @@
 
 mod args;
 mod expr;
+mod implicit;
 mod settings;
 pub mod tracer;
 
@@ -97,6 +98,7 @@ fn check_with_lines(file: &syntax::File, source: &str) -> Checked {
         c.check_bounded(root);
         c.check_bound(root);
         c.check_epsilon();
+        c.check_f32_range(root);
     }
     c.diags.sort_by_key(|d| (d.span.start, d.span.end));
     let ok = !c.diags.iter().any(Diagnostic::is_error);
@@ -291,7 +293,13 @@ impl<'a> Checker<'a> {
         }
         // A zero slope (a constant field) would divide by zero; any larger λ is still a bound.
         let lambda = lambda.max(MIN_LAMBDA);
+        let mirror = match &kind {
+            NodeKind::Primitive { prim, ctx } => (prim.mirror)(ctx),
+            NodeKind::Operator { op, ctx, .. } => (op.mirror)(ctx),
+            NodeKind::Implicit { .. } => [false; 3],
+        };
         self.nodes.push(Node {
+            mirror,
             kind,
             span,
             lambda,
@@ -316,6 +324,7 @@ impl<'a> Checker<'a> {
             args,
             child_lambda: children.iter().map(|&c| self.nodes[c].lambda).collect(),
             child_bound: children.iter().map(|&c| self.nodes[c].bound).collect(),
+            child_mirror: children.iter().map(|&c| self.nodes[c].mirror).collect(),
         };
         let lambda = (op.lipschitz)(&ctx);
         let bound = (op.bound)(&ctx);
@@ -330,22 +339,23 @@ impl<'a> Checker<'a> {
         )
     }
 
-    /// A repeated shape that does not fit its cell makes the field jump between cells, and
-    /// stepping by it can pass through a neighbour's surface: warn.
+    /// A `repeat` evaluates the copies that can be nearest (see `catalog::repeat`); a shape
+    /// spanning many cells would need too many of them per evaluation: an error.
     fn check_repeat_cell(&mut self, ctx: &Ctx, span: Span) {
-        let (b, spacing) = (ctx.child_bound[0], ctx.vec(0));
-        for i in 0..3 {
-            let s = spacing[i];
-            let reach = (b.center[i].abs() + b.radius) * 2.0;
-            if s > 0.0 && reach > s {
-                self.diags.push(
-                    Diagnostic::warning(span, "the repeated shape does not fit its cell")
-                        .label(format!("it spans up to {reach:.3} along {}, the spacing is {s}", ["x", "y", "z"][i]))
-                        .note("distances across cell borders are then not bounds, and rays may pass through surfaces")
-                        .help(format!("use a spacing of at least {reach:.3}")),
-                );
-                return;
-            }
+        let plan = crate::catalog::repeat::Plan::new(ctx);
+        let copies = plan.copies();
+        if copies > crate::catalog::repeat::MAX_COPIES as f64 {
+            let b = ctx.child_bound[0];
+            let size = b.hi - b.lo;
+            self.diags.push(
+                Diagnostic::error(span, "the repeated shape spans too many cells")
+                    .label(format!(
+                        "each evaluation would look at {copies:.0} copies (the shape is {:.3} × {:.3} × {:.3}, the spacing {} × {} × {})",
+                        size.x, size.y, size.z, ctx.vec(0).x, ctx.vec(0).y, ctx.vec(0).z
+                    ))
+                    .note(format!("at most {} copies are evaluated per point", crate::catalog::repeat::MAX_COPIES))
+                    .help("use a larger spacing, or a smaller shape"),
+            );
         }
     }
 
@@ -370,6 +380,14 @@ impl<'a> Checker<'a> {
                 )
                 .label("no Lipschitz bound")
                 .help("add `@lipschitz(L)` after it with a bound L on the gradient's length");
+                if let NodeKind::Implicit { field } = &node.kind
+                    && crate::lipschitz::crosses_branch_cut(field)
+                {
+                    d = d.note("`atan2(a, b)` jumps by 2π where a crosses 0 while b < 0; only a field that is periodic in the angle (e.g. `sin(n * atan2(a, b))` with a whole n) stays continuous there, and then an annotation is right");
+                }
+                if what == "repeat" {
+                    d = d.note("`repeat` can only be bounded when its shape is bounded along the repeated axes");
+                }
                 if what == "twist" || what == "bend" {
                     d = d.note(format!(
                         "`{what}` can only be bounded when its shape is bounded"

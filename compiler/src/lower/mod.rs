@@ -214,9 +214,25 @@ impl Walk<'_> {
         let (d, m) = match &node.kind {
             NodeKind::Operator { op, ctx, children } => {
                 let mut seen: Vec<Option<(Ex, Option<Ex>)>> = vec![None; children.len()];
+                // A child lowered more than once (the copies of a `repeat`) gives the material
+                // of its nearest evaluation, as in `eval::node`.
                 let mut child = |b: &mut FnBuilder, i: usize, q: Ex| {
                     let (d, m) = self.with_material(b, children[i], q);
-                    seen[i] = Some((d, m));
+                    seen[i] = Some(match seen[i] {
+                        None => (d, m),
+                        Some((d0, m0)) => {
+                            let nearer = b.lt(d, d0);
+                            let m = match (m, m0) {
+                                (None, None) => None,
+                                (m, m0) => {
+                                    let m = m.unwrap_or_else(|| b.u(0));
+                                    let m0 = m0.unwrap_or_else(|| b.u(0));
+                                    Some(b.select(nearer, m, m0))
+                                }
+                            };
+                            (b.select(nearer, d, d0), m)
+                        }
+                    });
                     d
                 };
                 let d = (op.lower)(b, ctx, p, &mut child);
@@ -285,8 +301,9 @@ fn literal(b: &mut FnBuilder, ty: Ty, v: crate::catalog::Val) -> Ex {
     }
 }
 
-/// An `implicit` body in IR. Whole powers up to 16 are multiplied out (WGSL's `pow` is undefined
-/// for negative bases, f64's `powi` is not).
+/// An `implicit` body in IR. Whole powers with |n| ≤ 64 are multiplied out by repeated squaring
+/// (WGSL's `pow` is undefined for negative bases; the CPU's `powf` is exact there), negative
+/// ones as the reciprocal.
 fn lower_field(b: &mut FnBuilder, f: &Field, p: Ex) -> Ex {
     match f {
         Field::Const(c) => b.f(*c),
@@ -295,11 +312,17 @@ fn lower_field(b: &mut FnBuilder, f: &Field, p: Ex) -> Ex {
             let a = lower_field(b, a, p);
             b.neg(a)
         }
-        Field::Binary(BinOp::Pow, a, n) if matches!(**n, Field::Const(k) if k.fract() == 0.0 && (1.0..=16.0).contains(&k)) =>
+        Field::Binary(BinOp::Pow, a, n) if matches!(**n, Field::Const(k) if k.fract() == 0.0 && k.abs() <= crate::lipschitz::MAX_WHOLE_POWER) =>
         {
             let Field::Const(k) = **n else { unreachable!() };
             let a = lower_field(b, a, p);
-            (1..k as u32).fold(a, |acc, _| b.mul(acc, a))
+            let power = whole_power(b, a, k.abs() as u32);
+            if k < 0.0 {
+                let one = b.f(1.0);
+                b.div(one, power)
+            } else {
+                power
+            }
         }
         Field::Binary(op, x, y) => {
             let (x, y) = (lower_field(b, x, p), lower_field(b, y, p));
@@ -320,4 +343,24 @@ fn lower_field(b: &mut FnBuilder, f: &Field, p: Ex) -> Ex {
             b.math(func.lower, &args)
         }
     }
+}
+
+/// aⁿ by repeated squaring (n = 0 gives 1).
+fn whole_power(b: &mut FnBuilder, a: Ex, n: u32) -> Ex {
+    let mut result: Option<Ex> = None;
+    let mut square = a;
+    let mut n = n;
+    while n > 0 {
+        if n & 1 == 1 {
+            result = Some(match result {
+                Some(r) => b.mul(r, square),
+                None => square,
+            });
+        }
+        n >>= 1;
+        if n > 0 {
+            square = b.mul(square, square);
+        }
+    }
+    result.unwrap_or_else(|| b.f(1.0))
 }

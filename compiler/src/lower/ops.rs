@@ -4,6 +4,7 @@
 use super::builder::{Ex, FnBuilder};
 use crate::catalog::Ctx;
 use crate::catalog::operators::{FALLOFF_SLOPE, rotate as rotate_point, twist_stretch};
+use crate::catalog::repeat::{AxisPlan, Plan};
 use glam::DVec3;
 use naga::{MathFunction as M, VectorSize};
 
@@ -205,36 +206,89 @@ pub fn scale(b: &mut FnBuilder, c: &Ctx, p: Ex, child: ChildLower) -> Ex {
     scale_by(b, d, s.min_element())
 }
 
-/// The repetition cell, per axis as in `repeat_cell`.
+/// The repeated field as `catalog::repeat::field`: per axis the own cell, every copy, or the
+/// window of copies from K₋ on, unrolled; the smallest of them.
 pub fn repeat(b: &mut FnBuilder, c: &Ctx, p: Ex, child: ChildLower) -> Ex {
-    let (spacing, count) = (c.vec(0), c.vec(1));
-    let mut parts = Vec::new();
+    let plan = Plan::new(c);
     let comps = b.xyz(p);
-    for i in 0..3 {
-        let (s, n, x) = (spacing[i], count[i], comps[i]);
-        if s <= 0.0 {
-            parts.push(x);
-            continue;
+    let mut coords: [Vec<Ex>; 3] = Default::default();
+    for (i, &x) in comps.iter().enumerate() {
+        let (s, half) = (plan.spacing[i], plan.half(i));
+        match plan.axes[i] {
+            AxisPlan::Plain => coords[i].push(x),
+            AxisPlan::Own => {
+                let inv = b.f(1.0 / s);
+                let at = b.mul(x, inv);
+                let at = shift(b, at, half);
+                let k = b.round_half_up(at, None);
+                let k = clamp_copy(b, &plan, i, k);
+                let c = center(b, &plan, i, k);
+                coords[i].push(b.sub(x, c));
+            }
+            AxisPlan::All => {
+                for k in 0..plan.count[i] as u32 {
+                    let c = b.f(plan.center(i, f64::from(k)));
+                    coords[i].push(b.sub(x, c));
+                }
+            }
+            AxisPlan::Window(n) => {
+                // K₋ = ⌊(x − hi)/s + half⌋
+                let hi = b.f(plan.hi[i]);
+                let from = b.sub(x, hi);
+                let inv = b.f(1.0 / s);
+                let at = b.mul(from, inv);
+                let at = shift(b, at, half);
+                let first = b.math(naga::MathFunction::Floor, &[at]);
+                for j in 0..n {
+                    let k = shift(b, first, f64::from(j));
+                    let k = clamp_copy(b, &plan, i, k);
+                    let c = center(b, &plan, i, k);
+                    coords[i].push(b.sub(x, c));
+                }
+            }
         }
-        let inv = b.f(1.0 / s);
-        let cell = b.mul(x, inv);
-        let id = if n == 0.0 {
-            b.round_half_up(cell, None)
-        } else {
-            let half = (n - 1.0) / 2.0;
-            let h = b.f(half);
-            let shifted = b.add(cell, h);
-            let r = b.round_half_up(shifted, None);
-            let (lo, hi) = (b.f(0.0), b.f(n - 1.0));
-            let r = b.clamp(r, lo, hi);
-            b.sub(r, h)
-        };
-        let sv = b.f(s);
-        let off = b.mul(sv, id);
-        parts.push(b.sub(x, off));
     }
-    let q = b.compose_vec3([parts[0], parts[1], parts[2]]);
-    child(b, 0, q)
+    let mut d: Option<Ex> = None;
+    for &x in &coords[0] {
+        for &y in &coords[1] {
+            for &z in &coords[2] {
+                let q = b.compose_vec3([x, y, z]);
+                let di = child(b, 0, q);
+                d = Some(match d {
+                    Some(a) => b.min(a, di),
+                    None => di,
+                });
+            }
+        }
+    }
+    d.expect("one copy at least")
+}
+
+/// x + k, skipped when k = 0.
+fn shift(b: &mut FnBuilder, x: Ex, k: f64) -> Ex {
+    if k == 0.0 {
+        return x;
+    }
+    let k = b.f(k);
+    b.add(x, k)
+}
+
+/// Copy index `k` clamped to the existing copies, as `Plan::clamp`.
+fn clamp_copy(b: &mut FnBuilder, plan: &Plan, i: usize, k: Ex) -> Ex {
+    let n = plan.count[i];
+    if n == 0.0 {
+        return k;
+    }
+    let (lo, hi) = (b.f(0.0), b.f(n - 1.0));
+    b.clamp(k, lo, hi)
+}
+
+/// The centre of copy `k` along axis `i`, as `Plan::center`: k·s − half·s.
+fn center(b: &mut FnBuilder, plan: &Plan, i: usize, k: Ex) -> Ex {
+    let s = plan.spacing[i];
+    let sv = b.f(s);
+    let at = b.mul(k, sv);
+    shift(b, at, -plan.half(i) * s)
 }
 
 /// p − 2·min(p·n, 0)·n

@@ -1,53 +1,28 @@
-//! The ray-list compute entry of the tests: one ray (origin, direction, footprint, start) in,
-//! one `vec4(t, steps, flags, cover)` out per invocation.
+//! The list entries of the tests: the ray list (one ray — origin, direction, footprint, start —
+//! in, one `vec4(t, steps, flags, cover)` out per invocation) and the field list (one point in,
+//! `map` at it out).
 
-use super::builder::{FnBuilder, ModuleBuilder};
+use super::builder::{Ex, FnBuilder, ModuleBuilder};
 use super::entry::{compute_main, global};
-use super::tracer::{Pass, RAYS_WORKGROUP, Tracer};
+use super::tracer::{FIELD_WORKGROUP, Pass, RAYS_WORKGROUP, Tracer};
 use naga::{
-    AddressSpace, Binding, BuiltIn, Expression, ScalarKind, StorageAccess, TypeInner, VectorSize,
+    AddressSpace, Binding, BuiltIn, Expression, Function, Handle, ScalarKind, StorageAccess,
+    TypeInner, VectorSize,
 };
 
 /// The ray-list compute entry ([`Entry::Rays`]), 64 rays per workgroup.
 pub(super) fn add_rays(mb: &mut ModuleBuilder, tracer: &Tracer) {
-    let v4 = mb.vec(VectorSize::Quad);
-    let u3 = mb.uvec(VectorSize::Tri);
-    let arr = mb.ty(TypeInner::Array {
-        base: v4,
-        size: naga::ArraySize::Dynamic,
-        stride: 16,
-    });
-    let rays = global(
-        mb,
-        "rays",
-        arr,
-        AddressSpace::Storage {
-            access: StorageAccess::LOAD,
-        },
-        0,
-    );
-    let hits = global(
-        mb,
-        "hits",
-        arr,
-        AddressSpace::Storage {
-            access: StorageAccess::LOAD | StorageAccess::STORE,
-        },
-        1,
-    );
-    let mut b = FnBuilder::new(mb, "main", &[("gid", u3)], None);
-    b.func.arguments[0].binding = Some(Binding::BuiltIn(BuiltIn::GlobalInvocationId));
-    let gid = b.arg(0);
-    let i = b.at(gid, 0);
-    let out = b.expr(Expression::GlobalVariable(hits));
-    let n = b.expr(Expression::ArrayLength(out));
-    let beyond = b.ge(i, n);
-    b.if_(beyond, |b| b.ret(None), |_| {});
+    let List {
+        mut b,
+        i,
+        input,
+        out,
+        v4,
+    } = List::new(mb, ["rays", "hits"]);
     let two = b.u(2);
     let first = b.mul(i, two);
     let one = b.u(1);
     let second = b.add(first, one);
-    let input = b.expr(Expression::GlobalVariable(rays));
     let [o, d] = [first, second].map(|index| {
         let ptr = b.expr(Expression::Access { base: input, index });
         b.load(ptr)
@@ -82,4 +57,83 @@ pub(super) fn add_rays(mb: &mut ModuleBuilder, tracer: &Tracer) {
     b.store(ptr, v);
     let f = b.finish();
     compute_main(mb, f, [RAYS_WORKGROUP, 1, 1]);
+}
+
+/// The field-list compute entry ([`Entry::Field`](super::Entry::Field)), 64 points per
+/// workgroup: `vec4(map(p), map(p)·λ, 0, 0)` for each point `p` (the `xyz` of its vec4), λ the
+/// root's bound, so that `y` is the root's raw field (up to one f32 rounding when λ ≠ 1).
+pub(super) fn add_field(mb: &mut ModuleBuilder, map: Handle<Function>, lambda: f64) {
+    let List {
+        mut b,
+        i,
+        input,
+        out,
+        v4,
+    } = List::new(mb, ["points", "values"]);
+    let ptr = b.expr(Expression::Access {
+        base: input,
+        index: i,
+    });
+    let q = b.load(ptr);
+    let p = b.swizzle(q, &[0, 1, 2]);
+    let d = b.call(map, vec![p]);
+    let raw = if lambda == 1.0 {
+        d
+    } else {
+        let l = b.f(lambda);
+        b.mul(d, l)
+    };
+    let zero = b.f(0.0);
+    let v = b.compose(v4, vec![d, raw, zero, zero]);
+    let ptr = b.expr(Expression::Access {
+        base: out,
+        index: i,
+    });
+    b.store(ptr, v);
+    let f = b.finish();
+    compute_main(mb, f, [FIELD_WORKGROUP, 1, 1]);
+}
+
+/// What the two list entries share: an input and an output array of vec4 (bindings 0 and 1),
+/// `main` with the invocation's index `i`, returning early past the output's end.
+struct List<'m> {
+    b: FnBuilder<'m>,
+    i: Ex,
+    input: Ex,
+    out: Ex,
+    v4: Handle<naga::Type>,
+}
+
+impl<'m> List<'m> {
+    fn new(mb: &'m mut ModuleBuilder, names: [&str; 2]) -> List<'m> {
+        let v4 = mb.vec(VectorSize::Quad);
+        let u3 = mb.uvec(VectorSize::Tri);
+        let arr = mb.ty(TypeInner::Array {
+            base: v4,
+            size: naga::ArraySize::Dynamic,
+            stride: 16,
+        });
+        let read = StorageAccess::LOAD;
+        let write = StorageAccess::LOAD | StorageAccess::STORE;
+        let [input, output] =
+            [(names[0], read, 0), (names[1], write, 1)].map(|(name, access, binding)| {
+                global(mb, name, arr, AddressSpace::Storage { access }, binding)
+            });
+        let mut b = FnBuilder::new(mb, "main", &[("gid", u3)], None);
+        b.func.arguments[0].binding = Some(Binding::BuiltIn(BuiltIn::GlobalInvocationId));
+        let gid = b.arg(0);
+        let i = b.at(gid, 0);
+        let out = b.expr(Expression::GlobalVariable(output));
+        let n = b.expr(Expression::ArrayLength(out));
+        let beyond = b.ge(i, n);
+        b.if_(beyond, |b| b.ret(None), |_| {});
+        let input = b.expr(Expression::GlobalVariable(input));
+        List {
+            b,
+            i,
+            input,
+            out,
+            v4,
+        }
+    }
 }

@@ -1,6 +1,7 @@
 //! What a module has besides `map`: the chosen tracer (`trace_<method>`, behind a convex
 //! bound's `trace_bounded` if the scene declares one), `normal`, `shade`, and the compute,
-//! fragment, library or ray-list interface (`entry.rs`); the options that choose them.
+//! fragment, library, ray-list or field-list interface (`entry.rs`, `rays.rs`); the options
+//! that choose them.
 
 use super::builder::{Ex, FnBuilder, ModuleBuilder};
 use super::march::{self, Inputs};
@@ -24,6 +25,12 @@ pub enum Entry {
     /// binding 1 receives `vec4(t, steps, flags, cover)` per ray (cover: the anti-aliasing
     /// coverage, 0 without). Not offered on the command line.
     Rays,
+    /// `main` compute entry point evaluating the scene's field at a list of points (for
+    /// tests): binding 0 holds one `vec4<f32>` per point (xyz, w unused), binding 1 receives
+    /// `vec4(map(p), raw, 0, 0)` per point, `raw` being the root's field before the division by
+    /// its λ (`map(p)·λ`); 64 points per workgroup. The module has no tracer, `normal` or
+    /// `shade`. Not offered on the command line.
+    Field,
 }
 
 /// Tracer settings after command-line overrides.
@@ -116,7 +123,11 @@ impl Tracer {
 /// Workgroup size of the ray-list entry.
 pub const RAYS_WORKGROUP: u32 = 64;
 
-/// Adds the tracer, normal, shading and the entry interface to a module that has `map`.
+/// Workgroup size of the field-list entry.
+pub const FIELD_WORKGROUP: u32 = 64;
+
+/// Adds the tracer, normal, shading and the entry interface to a module that has `map` (for
+/// [`Entry::Field`], only the entry: it calls `map` alone).
 pub fn add(
     mb: &mut ModuleBuilder,
     scene: &Scene,
@@ -125,6 +136,10 @@ pub fn add(
     entry: Entry,
     options: &Options,
 ) {
+    if entry == Entry::Field {
+        rays::add_field(mb, map, scene.root_node().lambda);
+        return;
+    }
     let floor = scene.camera.epsilon_floor();
     let result_ty = march::trace_result_type(mb, options.trace.antialias);
     let inputs = Inputs {
@@ -167,6 +182,7 @@ pub fn add(
             mb.add_function(f);
         }
         Entry::Rays => rays::add_rays(mb, &tracer),
+        Entry::Field => unreachable!("the field entry returned above"),
         Entry::Compute | Entry::Fragment => {
             let fns = entry::Fns::new(mb, tracer, normal, shade, material, options.passes);
             if entry == Entry::Compute {

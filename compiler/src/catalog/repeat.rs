@@ -1,0 +1,166 @@
+//! `repeat` with neighbours: which copies of the shape an evaluation looks at, so that the
+//! repeated field is the union of every copy for any shape (Inigo Quilez, "domain repetition":
+//! a shape that is not symmetric about its cell, or overflows it, needs the neighbouring cells).
+//!
+//! Per repeated axis (spacing s; the shape's extent [lo, hi] along it, from its bounding box):
+//! - **own cell** when the shape fits its cell (−s/2 ≤ lo, hi ≤ s/2) and is symmetric under
+//!   reflection of that coordinate: every other copy is the mirror image of the own one across a
+//!   plane between them, so the own copy is the nearest (the folded field is exact);
+//! - **every copy** when a finite count is no more than the window below would be;
+//! - otherwise a **window** from K₋ = ⌊(x − hi)/s⌋, the last copy whose extent ends at or before
+//!   the point, to K₊ = ⌈(x − lo)/s⌉, the first that starts at or after it (x measured from the
+//!   first copy's centre). A copy k beyond K₊ is never nearer than K₊: the point of copy K₊ that
+//!   corresponds to the nearest point of copy k lies (k − K₊)·s closer along the axis and still
+//!   on the far side of the point, so it is nearer (likewise below K₋). The window holds at most
+//!   ⌊(hi − lo)/s⌋ + 3 copies, unrolled; no copy outside it is nearer, so the result is the
+//!   union's field for exact shapes, and a bound at every point for any shape.
+
+use super::{ChildEval, Ctx};
+use glam::DVec3;
+
+/// The most copies one evaluation of a `repeat` may look at; the checker refuses more.
+pub const MAX_COPIES: usize = 64;
+
+/// How one axis of a `repeat` is evaluated.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum AxisPlan {
+    /// Not repeated along this axis (spacing 0).
+    Plain,
+    /// The own cell only.
+    Own,
+    /// Every copy (a finite count).
+    All,
+    /// This many copies from K₋ on (clamped to the existing ones).
+    Window(u32),
+}
+
+/// The evaluation plan of one `repeat` node.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Plan {
+    /// Spacing per axis (0: not repeated).
+    pub spacing: DVec3,
+    /// Copies per axis (0: without end).
+    pub count: DVec3,
+    /// How each axis is evaluated.
+    pub axes: [AxisPlan; 3],
+    /// The shape's box (its extent along each axis around its cell's centre).
+    pub lo: DVec3,
+    /// The shape's box, upper corner.
+    pub hi: DVec3,
+}
+
+impl Plan {
+    /// The plan for a `repeat` node's arguments and child.
+    pub fn new(c: &Ctx) -> Plan {
+        let (spacing, count) = (c.vec(0), c.vec(1));
+        let b = c.child_bound[0];
+        let axes = [0, 1, 2].map(|i| {
+            let s = spacing[i];
+            if s <= 0.0 {
+                return AxisPlan::Plain;
+            }
+            let (lo, hi) = (b.lo[i], b.hi[i]);
+            if !(lo.is_finite() && hi.is_finite()) {
+                // A shape without end along the axis: no window holds its copies (λ is then
+                // infinite and the node annotated); the own cell.
+                return AxisPlan::Own;
+            }
+            if c.child_mirror[0][i] && lo >= -s / 2.0 && hi <= s / 2.0 {
+                return AxisPlan::Own;
+            }
+            // (An empty shape, whose box is inverted, still takes one copy.)
+            let window = (((hi - lo) / s).floor() + 3.0).max(1.0);
+            let n = count[i];
+            if n > 0.0 && n <= window {
+                AxisPlan::All
+            } else {
+                AxisPlan::Window(window.min(f64::from(u32::MAX / 4)) as u32)
+            }
+        });
+        Plan {
+            spacing,
+            count,
+            axes,
+            lo: b.lo,
+            hi: b.hi,
+        }
+    }
+
+    /// How many copies one evaluation looks at.
+    pub fn copies(&self) -> f64 {
+        (0..3)
+            .map(|i| match self.axes[i] {
+                AxisPlan::Window(n) => f64::from(n),
+                AxisPlan::All => self.count[i],
+                _ => 1.0,
+            })
+            .product()
+    }
+
+    /// Half the number of copies less one along axis `i` (0 without a count): the index of
+    /// the copy at the centre.
+    pub fn half(&self, i: usize) -> f64 {
+        let n = self.count[i];
+        if n == 0.0 { 0.0 } else { (n - 1.0) / 2.0 }
+    }
+
+    /// The centre of copy `k` along axis `i` (k counts from 0 for a finite count).
+    pub fn center(&self, i: usize, k: f64) -> f64 {
+        (k - self.half(i)) * self.spacing[i]
+    }
+
+    /// The index of the copy whose cell holds coordinate `x` along axis `i`.
+    pub fn cell(&self, i: usize, x: f64) -> f64 {
+        let k = round_half_up(x / self.spacing[i] + self.half(i));
+        self.clamp(i, k)
+    }
+
+    /// The first copy of the window along axis `i` for coordinate `x`: K₋ (not clamped).
+    pub fn first(&self, i: usize, x: f64) -> f64 {
+        ((x - self.hi[i]) / self.spacing[i] + self.half(i)).floor()
+    }
+
+    /// The copy index `k` clamped to the existing copies along axis `i`.
+    pub fn clamp(&self, i: usize, k: f64) -> f64 {
+        let n = self.count[i];
+        if n == 0.0 { k } else { k.clamp(0.0, n - 1.0) }
+    }
+
+    /// Coordinate `x` along axis `i` relative to each copy the plan looks at, in order.
+    pub fn local(&self, i: usize, x: f64) -> Vec<f64> {
+        match self.axes[i] {
+            AxisPlan::Plain => vec![x],
+            AxisPlan::Own => vec![x - self.center(i, self.cell(i, x))],
+            AxisPlan::All => (0..self.count[i] as u32)
+                .map(|k| x - self.center(i, f64::from(k)))
+                .collect(),
+            AxisPlan::Window(n) => {
+                let first = self.first(i, x);
+                (0..n)
+                    .map(|j| x - self.center(i, self.clamp(i, first + f64::from(j))))
+                    .collect()
+            }
+        }
+    }
+}
+
+/// The repeated field at `p`: the smallest of the copies the plan looks at (a raw field, with
+/// the child's λ).
+pub fn field(c: &Ctx, p: DVec3, child: ChildEval) -> f64 {
+    let plan = Plan::new(c);
+    let [xs, ys, zs] = [0, 1, 2].map(|i| plan.local(i, p[i]));
+    let mut d = f64::INFINITY;
+    for &x in &xs {
+        for &y in &ys {
+            for &z in &zs {
+                d = d.min(child(0, DVec3::new(x, y, z)));
+            }
+        }
+    }
+    d
+}
+
+/// floor(x + 0.5): the rounding the shaders use too, so cells agree at exact halves.
+pub fn round_half_up(x: f64) -> f64 {
+    (x + 0.5).floor()
+}

@@ -1,0 +1,164 @@
+//! Checking math-function calls, `implicit` bodies (their Lipschitz bound inferred, their domain
+//! checked) and `@lipschitz` annotations.
+
+use super::{Checker, Dim, Value};
+use crate::catalog::{self};
+use crate::diag::{Diagnostic, Span, did_you_mean};
+use crate::lipschitz;
+use crate::scene::{Field, NodeId, NodeKind};
+use crate::syntax::{Arg, Call, Ident};
+
+impl Checker<'_> {
+    pub(super) fn math_call(&mut self, f: &'static catalog::MathFn, call: &Call) -> Option<Value> {
+        if call.block.is_some()
+            || call.args.iter().any(|a| a.name.is_some())
+            || call.args.len() != f.arity
+        {
+            let s = if f.arity == 1 { "" } else { "s" };
+            self.diags.push(
+                Diagnostic::error(
+                    call.span,
+                    format!("`{}` takes {} argument{s}", f.name, f.arity),
+                )
+                .label(format!("`{}`: {}", f.name, f.doc)),
+            );
+            return None;
+        }
+        let mut args = Vec::new();
+        for a in &call.args {
+            args.push(self.value(&a.value));
+        }
+        let args: Vec<Value> = args.into_iter().collect::<Option<_>>()?;
+        if let Some((bad, arg)) = args
+            .iter()
+            .zip(&call.args)
+            .find(|(a, _)| !matches!(a, Value::Num(..) | Value::Field(_)))
+        {
+            return self.no_arithmetic(arg.value.span, f.name, bad);
+        }
+        let dims: Vec<Dim> = args
+            .iter()
+            .map(|a| {
+                if let Value::Num(_, d) = a {
+                    *d
+                } else {
+                    Dim::None
+                }
+            })
+            .collect();
+        let out = match f.units {
+            catalog::Units::AngleIn => Dim::None,
+            catalog::Units::Same if dims.iter().all(|d| *d == dims[0]) => dims[0],
+            catalog::Units::AngleOut | catalog::Units::Plain | catalog::Units::Same => {
+                if let Some(i) = dims.iter().position(|d| *d == Dim::Angle) {
+                    let d = Diagnostic::error(
+                        call.args[i].value.span,
+                        format!("`{}` takes plain numbers", f.name),
+                    )
+                    .label("this is an angle")
+                    .help("drop the unit, or divide by `1rad` to get the plain number of radians");
+                    self.diags.push(d);
+                    return None;
+                }
+                if f.units == catalog::Units::AngleOut {
+                    Dim::Angle
+                } else {
+                    Dim::None
+                }
+            }
+        };
+        if args.iter().all(|a| matches!(a, Value::Num(..))) {
+            let xs: Vec<f64> = args
+                .iter()
+                .map(|a| if let Value::Num(x, _) = a { *x } else { 0.0 })
+                .collect();
+            return self
+                .finite((f.eval)(&xs), call.span)
+                .map(|r| Value::Num(r, out));
+        }
+        Some(Value::Field(Field::Call(
+            f,
+            args.into_iter().map(super::expr::as_field).collect(),
+        )))
+    }
+
+    pub(super) fn implicit(&mut self, call: &Call, piped: Option<NodeId>) -> Option<Value> {
+        let body = match (&call.block, piped, call.args.is_empty()) {
+            (Some(b), None, true) if b.len() == 1 => &b[0],
+            _ => {
+                self.diags.push(
+                    Diagnostic::error(
+                        call.span,
+                        "`implicit` takes one expression of x, y and z in a block",
+                    )
+                    .label("e.g. `implicit { length(x, y, z) - 1 }`"),
+                );
+                return None;
+            }
+        };
+        let outer = std::mem::replace(&mut self.in_implicit, true);
+        let v = self.value(body);
+        self.in_implicit = outer;
+        let field = match v? {
+            Value::Field(f) => f,
+            Value::Num(x, Dim::None) => Field::Const(x),
+            other => {
+                self.diags.push(
+                    Diagnostic::error(body.span, "`implicit` needs a number-valued expression")
+                        .label(format!("this is {}", other.describe())),
+                );
+                return None;
+            }
+        };
+        let lambda = match lipschitz::infer(&field) {
+            Ok(l) => l,
+            Err(what) => {
+                self.diags.push(
+                    Diagnostic::error(body.span, "this field is not defined everywhere")
+                        .label(what)
+                        .note("the field would be NaN there, and rays would pass through or stop at random")
+                        .help("keep the argument in the domain, e.g. `sqrt(abs(a))`, `log(1 + a^2)`, `sqrt(max(a, 0))`"),
+                );
+                return None;
+            }
+        };
+        self.push_node(
+            NodeKind::Implicit { field },
+            lambda,
+            catalog::Bound::INFINITE,
+            call.span,
+        )
+        .map(Value::Shape)
+    }
+
+    pub(super) fn annotation(&mut self, name: &Ident, args: &[Arg], span: Span) -> Option<f64> {
+        if name.name != "lipschitz" {
+            let mut d =
+                Diagnostic::error(name.span, format!("unknown annotation `@{}`", name.name))
+                    .label("not an annotation");
+            d = match did_you_mean(&name.name, ["lipschitz"]) {
+                Some(s) => d.help(format!("did you mean `@{s}`?")),
+                None => d.note("the only annotation is `@lipschitz(L)`"),
+            };
+            self.diags.push(d);
+            return None;
+        }
+        let [Arg { name: None, value }] = args else {
+            self.diags.push(
+                Diagnostic::error(span, "`@lipschitz` takes one number")
+                    .label("e.g. `@lipschitz(2)`"),
+            );
+            return None;
+        };
+        match self.value(value)? {
+            Value::Num(l, Dim::None) if l.is_finite() && l > 0.0 => Some(l),
+            other => {
+                self.diags.push(
+                    Diagnostic::error(value.span, "a Lipschitz bound must be a finite number > 0")
+                        .label(format!("found {}", other.describe())),
+                );
+                None
+            }
+        }
+    }
+}

@@ -1,0 +1,447 @@
+//! The Lipschitz promise, sampled: for random scenes built from every catalog entry and
+//! operator (random parameters, including asymmetric and rotated children of `repeat`, counts,
+//! non-uniform scales up to 10⁴, twist and bend rates up to 100, thin and degenerate shapes,
+//! smooth radii larger than the shapes, nesting, `implicit` bodies), at every node:
+//! - **slope**: |f(p) − f(q)| ≤ λ·|p − q|·(1 + 1e-6) (plus f64 rounding) for pairs of points;
+//! - **ball test**: for a point outside (f > 0), no point of the ball of radius f/λ around it is
+//!   inside (f < 0) — probed along the descent direction and at random directions.
+//!
+//! Fixed seed in CI; `SDFC_LIPSCHITZ_SCENES` and `SDFC_FUZZ_SEED` for larger runs by hand. The
+//! per-rule tightness (λ over the largest sampled slope) is printed for `docs/lipschitz.md`.
+
+use glam::DVec3;
+use sdfc_compiler::catalog::repeat::{AxisPlan, Plan};
+use sdfc_compiler::catalog::{Arity, OPERATORS, PRIMITIVES, Param, Ty};
+use sdfc_compiler::eval;
+use sdfc_compiler::scene::{NodeId, NodeKind, Scene};
+use sdfc_tests::Rng;
+use std::collections::BTreeMap;
+
+/// Scenes per CI run (each contributes sampled points at every node).
+const SCENES: usize = 700;
+/// Points sampled per node.
+const POINTS: usize = 48;
+
+/// Directions and lengths for the sampler.
+trait Sampling {
+    fn dir(&mut self) -> DVec3;
+    fn length(&mut self) -> f64;
+}
+
+impl Sampling for Rng {
+    fn dir(&mut self) -> DVec3 {
+        loop {
+            let v = DVec3::new(
+                self.range(-1.0, 1.0),
+                self.range(-1.0, 1.0),
+                self.range(-1.0, 1.0),
+            );
+            let l = v.length();
+            if l > 1e-3 && l <= 1.0 {
+                return v / l;
+            }
+        }
+    }
+    /// A length: mostly ordinary, sometimes degenerate or thin.
+    fn length(&mut self) -> f64 {
+        match self.below(10) {
+            0 => 0.0,
+            1 => 1e-3,
+            _ => self.range(0.05, 1.5),
+        }
+    }
+}
+
+fn f(x: f64) -> String {
+    format!("{x:.4}")
+}
+
+fn vec3(r: &mut Rng, g: impl Fn(&mut Rng) -> f64) -> String {
+    let (a, b, c) = (g(r), g(r), g(r));
+    format!("({}, {}, {})", f(a), f(b), f(c))
+}
+
+/// An argument of the given type for `name` of operator or primitive `owner`.
+fn value(r: &mut Rng, owner: &str, p: &Param) -> String {
+    match (owner, p.name) {
+        ("twist" | "bend", "rate") => return f(*r.pick(&[0.5, 3.0, -10.0, 100.0])),
+        ("scale", "factor") => {
+            return match r.below(3) {
+                0 => f(r.range(0.2, 3.0)),
+                1 => vec3(r, |r| r.range(0.3, 3.0)),
+                _ => format!("(1, 1, {})", f(*r.pick(&[10.0, 1e4, 0.01]))),
+            };
+        }
+        ("repeat", "spacing") => {
+            return vec3(r, |r| {
+                if r.below(3) == 0 {
+                    0.0
+                } else {
+                    r.range(0.5, 3.0)
+                }
+            });
+        }
+        ("repeat", "count") => return vec3(r, |r| r.below(4) as f64),
+        ("smooth_union" | "smooth_intersect" | "smooth_subtract", "radius") => {
+            return f(*r.pick(&[0.0, 0.1, 0.5, 2.0, 5.0]));
+        }
+        _ => {}
+    }
+    match p.ty {
+        Ty::Number => f(r.range(-1.5, 1.5)),
+        Ty::Length => f(r.length()),
+        Ty::Positive => f(r.range(0.05, 2.0)),
+        Ty::Fraction => f(*r.pick(&[0.0, 0.3, 0.5, 0.8, 1.0])),
+        Ty::Angle => format!("{}deg", r.range(-200.0, 200.0).round()),
+        Ty::Count => format!("{}", 1 + r.below(4)),
+        Ty::CountTo(n) => format!("{}", 1 + r.below(n.min(8) as usize)),
+        Ty::UpTo(n) => format!("{}", r.below(n.min(4) as usize + 1)),
+        Ty::ZeroOrAtLeast(lo) => f(if r.below(2) == 0 { 0.0 } else { lo.max(1.0) }),
+        Ty::Range(lo, hi) => f(r.range(lo, hi.min(lo + 8.0))),
+        Ty::Vec3 => vec3(r, |r| r.range(-1.0, 1.0)),
+        Ty::Size => match r.below(4) {
+            0 => format!(
+                "(0.001, {}, {})",
+                f(r.range(0.3, 2.0)),
+                f(r.range(0.3, 2.0))
+            ),
+            _ => vec3(r, |r| r.length()),
+        },
+        Ty::Scale => f(r.range(0.2, 3.0)),
+        Ty::Counts => vec3(r, |r| r.below(4) as f64),
+        Ty::Axis => r
+            .pick(&["x", "y", "z", "(1, 1, 0)", "(0.3, -1, 0.5)"])
+            .to_string(),
+        Ty::Color => "#888".to_string(),
+        Ty::PositiveOr(words) | Ty::Word(words) => words[0].to_string(),
+    }
+}
+
+fn args(r: &mut Rng, owner: &str, params: &[Param]) -> String {
+    let mut out = Vec::new();
+    for p in params {
+        if p.default.is_some() && r.below(3) == 0 {
+            continue;
+        }
+        out.push(format!("{} = {}", p.name, value(r, owner, p)));
+    }
+    out.join(", ")
+}
+
+/// An `implicit` body of a few terms whose bound the checker infers by intervals.
+fn implicit(r: &mut Rng) -> String {
+    let a = f(r.range(0.2, 1.5));
+    let k = f(r.range(0.5, 6.0));
+    let c = f(r.range(0.02, 0.3));
+    match r.below(5) {
+        0 => format!("length(x, y, z) - {a} + {c} * sin({k} * x) * cos({k} * z)"),
+        1 => format!("max(abs(x) - {a}, length(x, 0, z) - {a} * 0.7) + {c} * sin({k} * y)"),
+        2 => format!("length(x, y - {c}, z) * {a} - {c} + {c} * exp(-(x^2))"),
+        3 => format!("min(length(x, y, z) - {a}, y + {a}) + {c} * atan2(y, x * x + 1)"),
+        _ => format!("sqrt(x^2 + z^2 + {c}) - {a} + {c} * log(1 + y^2)"),
+    }
+}
+
+fn shape(r: &mut Rng, depth: usize) -> String {
+    let s = if depth == 0 || r.below(3) == 0 {
+        if r.below(8) == 0 {
+            format!("implicit {{ {} }}", implicit(r))
+        } else {
+            let p = r.pick(PRIMITIVES);
+            if p.name == "mandelbulb" {
+                // An estimate, not a bound (see docs/lipschitz.md): sampled separately.
+                return shape(r, depth);
+            }
+            format!("{}({})", p.name, args(r, p.name, p.params))
+        }
+    } else {
+        let op = r.pick(OPERATORS);
+        let n = match op.arity {
+            Arity::Exactly(k) => k,
+            Arity::AtLeast(k) => k + r.below(3),
+        };
+        let children: Vec<String> = (0..n).map(|_| shape(r, depth - 1)).collect();
+        format!(
+            "{}({}) {{\n{}\n}}",
+            op.name,
+            args(r, op.name, op.params),
+            children.join("\n")
+        )
+    };
+    // Children placed off-centre and turned, so that `repeat` and `mirror` see asymmetric shapes.
+    match r.below(5) {
+        0 => format!("{s} at {}", vec3(r, |r| r.range(-0.8, 0.8))),
+        1 => format!(
+            "{s} |> rotate({}, {}deg)",
+            r.pick(&["x", "y", "z", "(1, 2, 3)"]),
+            r.below(360)
+        ),
+        _ => s,
+    }
+}
+
+fn scene_source(seed: u64) -> String {
+    let mut r = Rng::new(seed);
+    let depth = 1 + r.below(3);
+    format!("{}\n", shape(&mut r, depth))
+}
+
+/// What the sampling found, per rule.
+#[derive(Default)]
+struct Tally {
+    points: usize,
+    /// Pairs whose slope was not checked (see `steps_allowed`).
+    slope_exempt: usize,
+    /// Per rule name, each sampled node's largest slope / λ.
+    tightness: BTreeMap<&'static str, Vec<f64>>,
+    violations: Vec<String>,
+}
+
+/// Whether a node's field is, outside its surface, its exact distance times λ (built from
+/// exact primitives by operators that keep that): copies of such a shape are ordered like their
+/// distances, which is what keeps a `repeat` window continuous where it moves on.
+fn exact(scene: &Scene, id: NodeId) -> bool {
+    let node = &scene.nodes[id];
+    match &node.kind {
+        NodeKind::Primitive { prim, .. } => prim.exact,
+        NodeKind::Implicit { .. } => false,
+        NodeKind::Operator { op, ctx, children } => {
+            let keeps = match op.name {
+                "union" | "translate" | "rotate" | "round" | "repeat" => true,
+                "scale" => ctx.vec(0).min_element() == ctx.vec(0).max_element(),
+                _ => false,
+            };
+            keeps && children.iter().all(|&c| exact(scene, c))
+        }
+    }
+}
+
+/// Whether the subtree holds a `repeat` that looks at several copies of a shape whose field is
+/// a bound rather than a distance: such a field is a bound at every point (the ball test
+/// applies) but may step where the window of copies moves on (docs/lipschitz.md).
+fn steps_allowed(scene: &Scene, id: NodeId) -> bool {
+    let node = &scene.nodes[id];
+    let here = match &node.kind {
+        NodeKind::Operator { op, ctx, children } if op.name == "repeat" => {
+            let plan = Plan::new(ctx);
+            let several = plan.axes.iter().any(|a| matches!(a, AxisPlan::Window(_)));
+            several && !exact(scene, children[0])
+        }
+        _ => false,
+    };
+    here || node.children().iter().any(|&c| steps_allowed(scene, c))
+}
+
+/// Samples one node: pairs for the slope, balls for the bound.
+fn sample_node(scene: &Scene, id: NodeId, r: &mut Rng, source: &str, tally: &mut Tally) {
+    let node = &scene.nodes[id];
+    let lambda = node.lambda;
+    let field = |p: DVec3| eval::node(scene, id, p).d;
+    // Where to look: the node's box grown by half its size (or 1), else a cube around the origin.
+    let (lo, hi) = if node.bound.is_finite() {
+        let grow = ((node.bound.hi - node.bound.lo) * 0.5).max(DVec3::splat(0.5));
+        (node.bound.lo - grow, node.bound.hi + grow)
+    } else {
+        (DVec3::splat(-4.0), DVec3::splat(4.0))
+    };
+    let scale = (hi - lo).max_element();
+    let name = node.kind_name();
+    let check_slope = !steps_allowed(scene, id);
+    let mut steepest: f64 = 0.0;
+    for _ in 0..POINTS {
+        let p = lo + (hi - lo) * DVec3::new(r.unit(), r.unit(), r.unit());
+        let fp = field(p);
+        assert!(fp.is_finite(), "non-finite field {fp} at {p} in\n{source}");
+        tally.points += 1;
+        // Slope over a short and a long separation.
+        for h in [scale * 1e-4, scale * r.range(0.01, 0.3)] {
+            let q = p + r.dir() * h;
+            let fq = field(q);
+            let slope = (fp - fq).abs() / h;
+            let rounding = 1e-12 * (fp.abs() + fq.abs() + scale) / h;
+            if !check_slope {
+                tally.slope_exempt += 1;
+                continue;
+            }
+            steepest = steepest.max(slope / lambda);
+            if slope > lambda * (1.0 + 1e-6) + rounding {
+                tally.violations.push(format!(
+                    "slope {slope:.6} > λ = {lambda} at `{name}` between {p} and {q} (f {fp} / {fq}) in\n{source}"
+                ));
+            }
+        }
+        // Ball test: no inside point within f/λ.
+        if fp > 0.0 {
+            let radius = fp / lambda * (1.0 - 1e-9);
+            let g = DVec3::new(
+                field(p + DVec3::X * 1e-6 * scale) - fp,
+                field(p + DVec3::Y * 1e-6 * scale) - fp,
+                field(p + DVec3::Z * 1e-6 * scale) - fp,
+            );
+            let mut dirs = vec![r.dir(), r.dir(), r.dir(), r.dir()];
+            if let Some(down) = (-g).try_normalize() {
+                dirs.push(down);
+            }
+            for d in dirs {
+                for frac in [0.25, 0.5, 0.75, 1.0] {
+                    let q = p + d * radius * frac;
+                    let fq = field(q);
+                    if fq < -1e-9 * (scale + fp.abs()) {
+                        tally.violations.push(format!(
+                            "ball test: f = {fq} < 0 at {q}, within f/λ = {radius} of {p} at `{name}` in\n{source}"
+                        ));
+                    }
+                }
+            }
+        }
+    }
+    if check_slope {
+        tally.tightness.entry(name).or_default().push(steepest);
+    }
+}
+
+#[test]
+fn every_rule_is_a_true_bound_where_sampled() {
+    sdfc_tests::with_stack(|| {
+        let scenes = sdfc_tests::env_number("SDFC_LIPSCHITZ_SCENES").unwrap_or(SCENES);
+        let seed = sdfc_tests::fuzz_seed(0x11b5_c412);
+        let mut tally = Tally::default();
+        let mut valid = 0;
+        let mut r = Rng::new(seed);
+        for _ in 0..scenes {
+            let source = scene_source(r.bits());
+            let checked = sdfc_compiler::check::compile(&source);
+            let Some(scene) = checked.scene else {
+                continue;
+            };
+            valid += 1;
+            for id in scene.reachable() {
+                sample_node(&scene, id, &mut r, &source, &mut tally);
+            }
+        }
+        println!(
+            "{valid} of {scenes} scenes valid; {} points sampled ({} slope pairs exempt: a window of copies of a bound)",
+            tally.points, tally.slope_exempt
+        );
+        // Per rule: over the sampled nodes, the steepest slope seen relative to λ (1 = tight),
+        // as the median node and the loosest node.
+        println!("| rule | nodes | median slope/λ | loosest slope/λ |\n|---|---|---|---|");
+        for (name, t) in &mut tally.tightness {
+            t.sort_by(f64::total_cmp);
+            println!(
+                "| `{name}` | {} | {:.3} | {:.3} |",
+                t.len(),
+                t[t.len() / 2],
+                t[0]
+            );
+        }
+        let shown: Vec<&String> = tally.violations.iter().take(5).collect();
+        assert!(
+            tally.violations.is_empty(),
+            "{} violations, first ones:\n{}",
+            tally.violations.len(),
+            shown
+                .iter()
+                .map(|s| s.as_str())
+                .collect::<Vec<_>>()
+                .join("\n\n")
+        );
+        assert!(tally.points >= 100_000, "only {} points", tally.points);
+        assert!(
+            valid * 10 >= scenes * 8,
+            "too few valid scenes: {valid} of {scenes}"
+        );
+    });
+}
+
+/// Each `implicit` case of the Lipschitz audit: an error with a span, or a bound that holds;
+/// never a hang (the periodic interval search past 2⁵³) and never a NaN field.
+#[test]
+fn implicit_domains_branch_cuts_and_huge_arguments() {
+    let refused = [
+        (
+            "implicit { sqrt(x) - 1 } @lipschitz(10)",
+            "not defined everywhere",
+        ),
+        (
+            "implicit { log(-1 - y^2) + length(x, y, z) } @lipschitz(10)",
+            "not defined everywhere",
+        ),
+        (
+            "implicit { log(x) + length(x, y, z) } @lipschitz(10)",
+            "not defined everywhere",
+        ),
+        (
+            "implicit { x ^ 1.5 + length(x, y, z) - 1 } @lipschitz(10)",
+            "not defined everywhere",
+        ),
+        (
+            "implicit { length(x, y, z) - 1 + 0.1 * atan2(y, -1 - x^2) }",
+            "jumps by 2π",
+        ),
+    ];
+    for (source, message) in refused {
+        let checked = sdfc_compiler::check::compile(source);
+        assert!(checked.scene.is_none(), "accepted: {source}");
+        let text = sdfc_compiler::diag::render(&checked.diagnostics, "t.sdf", source);
+        assert!(text.contains(message), "{source}:\n{text}");
+        assert!(text.contains("t.sdf:1:"), "no location:\n{text}");
+    }
+    // Whole powers of negative bases are defined (multiplied out, on the GPU too), and a square
+    // under a root is known to be ≥ 0.
+    for source in [
+        "implicit { length(x, y, z) - 1 + 0.001 * x ^ 17 } @lipschitz(1e9)",
+        "implicit { sqrt(x * x + z * z) - 1 } @lipschitz(1)",
+        "implicit { log(1 + y^2) + length(x, y, z) - 1 } @lipschitz(3)",
+    ] {
+        let scene = sdfc_tests::scene(source, source);
+        let d = eval::distance(&scene, DVec3::new(-1.3, 0.4, 0.2));
+        assert!(d.is_finite(), "{source}: {d}");
+    }
+    // Arguments past f64's integer resolution: the interval of cos is [-1, 1] at once.
+    let (done, wait) = std::sync::mpsc::channel();
+    std::thread::spawn(move || {
+        for big in ["1e17", "3e16", "1e300"] {
+            let source =
+                format!("implicit {{ length(x, y, z) - 1 + 0.1 * cos({big} + 0.1 * sin(x)) }}");
+            let checked = sdfc_compiler::check::compile(&source);
+            assert!(checked.scene.is_some(), "{source}");
+        }
+        done.send(()).unwrap();
+    });
+    wait.recv_timeout(std::time::Duration::from_secs(20))
+        .expect("checking cos of a huge argument finishes (it hung before)");
+}
+
+/// A tag on a shape that already has a material does not replace it (the innermost wins, as
+/// the README says), and says so.
+#[test]
+fn the_innermost_material_tag_wins() {
+    let source = "material red { color #c00 }\nmaterial blue { color #00c }\n(sphere(0.7) : red) : blue\nbox(0.3) : blue at (2, 0, 0)";
+    let checked = sdfc_compiler::check::compile(source);
+    let scene = checked.scene.expect("compiles");
+    let red = scene
+        .materials
+        .iter()
+        .position(|m| m.name == "red")
+        .unwrap() as u32;
+    let blue = scene
+        .materials
+        .iter()
+        .position(|m| m.name == "blue")
+        .unwrap() as u32;
+    assert_eq!(
+        eval::sample(&scene, DVec3::new(0.0, 0.0, -0.9)).mat,
+        Some(red)
+    );
+    assert_eq!(
+        eval::sample(&scene, DVec3::new(2.0, 0.0, -0.4)).mat,
+        Some(blue)
+    );
+    assert!(
+        checked
+            .diagnostics
+            .iter()
+            .any(|d| d.message.contains("no effect"))
+    );
+}
