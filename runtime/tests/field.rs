@@ -71,16 +71,7 @@ struct Known {
 }
 
 /// The known disagreements (remove an entry once its cause is fixed).
-const KNOWN_DISAGREEMENTS: &[Known] = &[Known {
-    row: "cone",
-    // Only a flipped sign: the GPU's value is the CPU's negated.
-    applies: |cpu, gpu, tolerance| (gpu + cpu).abs() <= tolerance,
-    why: "inside a flat cone the sign test `cb.x < 0` of IQ's capped cone reads a cb.x that \
-          f32 cannot resolve (about |d|·2h/|r1 − r2|, from terms as large as |q.x|), so the \
-          GPU's distance is positive there: 0.3% of the interior at radius = 300 × height, \
-          4% at 1000×, 70% at 10⁴× (sdfc-compiler's cone in lower/prims.rs, the same formula \
-          as the catalog's f64 one)",
-}];
+const KNOWN_DISAGREEMENTS: &[Known] = &[];
 
 /// A small deterministic generator (SplitMix64): the same points and arguments on every run.
 struct Rng(u64);

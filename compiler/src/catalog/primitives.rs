@@ -245,7 +245,11 @@ fn sd_capped_cone(p: DVec3, h: f64, r1: f64, r2: f64) -> f64 {
         0.0
     };
     let cb = q - k1 + k2 * t;
-    let s = if cb.x < 0.0 && ca.y < 0.0 { -1.0 } else { 1.0 };
+    // Inside the slanted side: q.x below the side's radius at height q.y, tested on the side
+    // line's equation rather than IQ's `cb.x < 0`, which for a flat cone is the x component
+    // of a nearly vertical vector and flips sign under f32 rounding.
+    let inside_side = 2.0 * h * (q.x - r2) + (r1 - r2) * (q.y - h) < 0.0;
+    let s = if inside_side && ca.y < 0.0 { -1.0 } else { 1.0 };
     s * ca.length_squared().min(cb.length_squared()).sqrt()
 }
 

@@ -130,8 +130,14 @@ pub fn cone(b: &mut FnBuilder, p: Ex, a: &[Ex]) -> Ex {
     let qk = b.sub(q, k1);
     let k2t = b.mul(k2, t);
     let cb = b.add(qk, k2t);
-    let cbx = b.at(cb, 0);
-    let c1 = b.lt(cbx, zero);
+    // Inside the side line (see the catalog's `sd_capped_cone`): 2h(q.x − r2) + (r1 − r2)(q.y − h) < 0.
+    let qr = b.sub(qx, r2);
+    let along = b.mul(h2, qr);
+    let rr = b.sub(r1, r2);
+    let qh = b.sub(qy, h);
+    let across = b.mul(rr, qh);
+    let side = b.add(along, across);
+    let c1 = b.lt(side, zero);
     let c2 = b.lt(cay, zero);
     let both = b.bin(naga::BinaryOperator::LogicalAnd, c1, c2);
     let minus = b.f(-1.0);
