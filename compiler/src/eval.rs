@@ -6,7 +6,7 @@ use crate::scene::{NodeId, NodeKind, Scene};
 use glam::DVec3;
 
 /// The scene's distance bound at `p`: the root's field divided by its λ, so that stepping by it
-/// never passes a surface (Liktor §4, f/λ).
+/// never passes a surface (Liktor §2.2, f/λ).
 pub fn distance(scene: &Scene, p: DVec3) -> f64 {
     sample(scene, p).d
 }
@@ -22,6 +22,18 @@ pub fn sample(scene: &Scene, p: DVec3) -> Sample {
 
 /// The raw field of one node (not divided by its λ).
 pub fn node(scene: &Scene, id: NodeId, p: DVec3) -> Sample {
+    node_seen(scene, id, p, &mut |_, _| {})
+}
+
+/// [`node`], calling `seen(id, q)` for every node evaluated on the way, with the point in that
+/// node's own coordinates (how the annotation check finds where rays evaluate a node).
+pub fn node_seen<F: FnMut(NodeId, DVec3)>(
+    scene: &Scene,
+    id: NodeId,
+    p: DVec3,
+    seen: &mut F,
+) -> Sample {
+    seen(id, p);
     let n = &scene.nodes[id];
     let s = match &n.kind {
         NodeKind::Primitive { prim, ctx } => Sample {
@@ -33,24 +45,24 @@ pub fn node(scene: &Scene, id: NodeId, p: DVec3) -> Sample {
             mat: None,
         },
         NodeKind::Operator { op, ctx, children } => {
-            let mut seen = vec![None; children.len()];
+            let mut nearest = vec![None; children.len()];
             // A child evaluated more than once (the copies of a `repeat`) gives the material
             // of its nearest evaluation.
             let mut child = |i: usize, q: DVec3| {
-                let s = node(scene, children[i], q);
-                if seen[i].is_none_or(|old: Sample| s.d < old.d) {
-                    seen[i] = Some(s);
+                let s = node_seen(scene, children[i], q, seen);
+                if nearest[i].is_none_or(|old: Sample| s.d < old.d) {
+                    nearest[i] = Some(s);
                 }
                 s.d
             };
             let d = (op.eval)(ctx, p, &mut child);
-            let seen: Vec<Sample> = seen
+            let nearest: Vec<Sample> = nearest
                 .into_iter()
                 .map(|s| s.unwrap_or(Sample { d, mat: None }))
                 .collect();
             Sample {
                 d,
-                mat: op.materials.pick(ctx, &seen),
+                mat: op.materials.pick(ctx, &nearest),
             }
         }
     };

@@ -4,6 +4,7 @@ use clap::{Args, Parser, Subcommand};
 use sdfc_compiler::check::{self, Checked};
 use sdfc_compiler::diag::{self, Diagnostic};
 use sdfc_compiler::emit::Target;
+use sdfc_compiler::lipschitz::{self, Effort};
 use sdfc_compiler::lower::Entry;
 use std::path::{Path, PathBuf};
 
@@ -27,6 +28,10 @@ enum Command {
         /// Print the catalog of primitives, operators and functions instead.
         #[arg(long)]
         list: bool,
+        /// Check `@lipschitz` annotations thoroughly (ten times the samples of the quick check
+        /// that `check`, `render` and `emit` always run).
+        #[arg(long)]
+        lipschitz: bool,
     },
     /// Compile a scene to shader code.
     Emit {
@@ -150,8 +155,17 @@ pub fn run() -> i32 {
             1
         }
         Command::Check {
-            file: Some(file), ..
-        } => check_command(&file),
+            file: Some(file),
+            lipschitz,
+            ..
+        } => check_command(
+            &file,
+            if lipschitz {
+                Effort::Thorough
+            } else {
+                Effort::Fast
+            },
+        ),
         Command::Emit {
             file,
             target,
@@ -358,7 +372,13 @@ pub fn load_scene(path: &Path) -> Option<(String, String, sdfc_compiler::scene::
             return None;
         }
     };
-    let Checked { scene, diagnostics } = check::compile(&source);
+    let Checked {
+        scene,
+        mut diagnostics,
+    } = check::compile(&source);
+    if let Some(scene) = &scene {
+        diagnostics.extend(lipschitz::verify_annotations(scene, Effort::Fast));
+    }
     eprint!("{}", diag::render(&diagnostics, &name, &source));
     scene.map(|s| (name, source, s))
 }
@@ -383,7 +403,7 @@ pub fn read_source(path: &Path) -> Result<(String, String), String> {
         })
 }
 
-fn check_command(path: &Path) -> i32 {
+fn check_command(path: &Path, effort: Effort) -> i32 {
     let (name, source) = match read_source(path) {
         Ok(x) => x,
         Err(e) => {
@@ -396,7 +416,7 @@ fn check_command(path: &Path) -> i32 {
         mut diagnostics,
     } = check::compile(&source);
     if let Some(scene) = &scene {
-        diagnostics.extend(sdfc_compiler::lipschitz::verify_annotations(scene));
+        diagnostics.extend(lipschitz::verify_annotations(scene, effort));
     }
     eprint!("{}", diag::render(&diagnostics, &name, &source));
     let Some(scene) = scene else { return 1 };

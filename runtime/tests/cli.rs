@@ -344,3 +344,35 @@ fn render_refuses_bad_input_cleanly() {
         assert!(!out_path.exists(), "{args:?} left a file behind");
     }
 }
+
+/// A too-small annotation renders (exit 0), but `render`, `emit` and `check` say so on standard
+/// error, with the place; `check --lipschitz` too.
+#[test]
+fn a_wrong_annotation_is_a_warning_on_render_emit_and_check() {
+    let d = scratch("lipschitz");
+    let scene = root().join("tests/lipschitz/wrong/uniform_sphere_times3.sdf");
+    let scene = scene.display().to_string();
+    let png = d.join("w.png").display().to_string();
+    for args in [
+        vec![
+            "render",
+            scene.as_str(),
+            "-o",
+            png.as_str(),
+            "--size",
+            "32x18",
+        ],
+        vec!["emit", scene.as_str()],
+        vec!["check", scene.as_str()],
+        vec!["check", "--lipschitz", scene.as_str()],
+    ] {
+        let out = sdfc(&args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success(), "{args:?}: {err}");
+        assert!(
+            err.contains("the annotated Lipschitz bound is too small")
+                && err.contains("uniform_sphere_times3.sdf:"),
+            "{args:?}: {err}"
+        );
+    }
+}

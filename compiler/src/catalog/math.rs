@@ -47,9 +47,25 @@ fn unit() -> Interval {
     Interval::new(-1.0, 1.0)
 }
 
-/// ∂min(a, b)/∂a is 1 where a < b, 0 elsewhere; the hull [0, 1] covers both.
-fn switch() -> Interval {
-    Interval::new(0.0, 1.0)
+/// ∂min(a, b)/∂a (or ∂max(b, a)/∂a): 1 where `a` is surely the one taken (a < b throughout),
+/// 0 where surely not, the hull [0, 1] where either may be.
+fn switch(taken: bool, other: bool) -> Interval {
+    match (taken, other) {
+        (true, _) => Interval::point(1.0),
+        (_, true) => Interval::point(0.0),
+        _ => Interval::new(0.0, 1.0),
+    }
+}
+
+/// The sign of a: d|a|/da.
+fn sign(a: Interval) -> Interval {
+    if a.lo > 0.0 {
+        Interval::point(1.0)
+    } else if a.hi < 0.0 {
+        Interval::point(-1.0)
+    } else {
+        unit()
+    }
 }
 
 /// Every math function.
@@ -63,7 +79,7 @@ pub static MATH_FUNCTIONS: &[MathFn] = &[
         doc: "|a|",
         eval: |a| a[0].abs(),
         range: |a| a[0].abs(),
-        partials: |_| vec![unit()],
+        partials: |a| vec![sign(a[0])],
     },
     MathFn {
         name: "sqrt",
@@ -135,7 +151,10 @@ pub static MATH_FUNCTIONS: &[MathFn] = &[
         doc: "the smaller of a and b",
         eval: |a| a[0].min(a[1]),
         range: |a| Interval::new(a[0].lo.min(a[1].lo), a[0].hi.min(a[1].hi)),
-        partials: |_| vec![switch(), switch()],
+        partials: |a| {
+            let (below, above) = (a[0].hi < a[1].lo, a[0].lo > a[1].hi);
+            vec![switch(below, above), switch(above, below)]
+        },
     },
     MathFn {
         name: "max",
@@ -146,7 +165,10 @@ pub static MATH_FUNCTIONS: &[MathFn] = &[
         doc: "the larger of a and b",
         eval: |a| a[0].max(a[1]),
         range: |a| Interval::new(a[0].lo.max(a[1].lo), a[0].hi.max(a[1].hi)),
-        partials: |_| vec![switch(), switch()],
+        partials: |a| {
+            let (below, above) = (a[0].hi < a[1].lo, a[0].lo > a[1].hi);
+            vec![switch(above, below), switch(below, above)]
+        },
     },
     MathFn {
         name: "length",

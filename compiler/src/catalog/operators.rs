@@ -2,7 +2,7 @@
 //! Lipschitz rule (in its doc line) and f64 evaluation.
 //!
 //! Convention: operators that combine children (CSG, blends, blobs) first divide each child by its
-//! λ, so their own result has λ = 1 (Liktor §4: min/max of 1-Lipschitz functions stay 1-Lipschitz;
+//! λ, so their own result has λ = 1 (Liktor §2.2: min/max of 1-Lipschitz functions stay 1-Lipschitz;
 //! IQ's polynomial smooth minimum is a convex combination of its operands' gradients). Operators
 //! that only move the domain keep the child's λ, or raise it by their Jacobian's norm.
 

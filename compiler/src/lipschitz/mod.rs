@@ -1,25 +1,28 @@
 //! Lipschitz bounds beyond the catalog's rules: inference for `implicit` expressions by interval
-//! arithmetic on the gradient, and an estimate of the true constant by sampling the CPU evaluator.
+//! arithmetic on the gradient (here), and the check of `@lipschitz` annotations (`verify.rs`).
+
+mod verify;
+
+pub use verify::{Effort, verify_annotations};
 
 use crate::interval::Interval;
 use crate::scene::Field;
 use crate::syntax::BinOp;
-use glam::DVec3;
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
-/// The largest |n| for which `a ^ n` with a whole n is multiplied out (on the GPU as on the
-/// CPU), so that it is defined for negative bases.
+/// The largest |n| for which the shaders multiply out `a ^ n` with a whole n (WGSL's `pow` is
+/// undefined for negative bases), so that it agrees with the CPU's `powf`, exact there.
 pub const MAX_WHOLE_POWER: f64 = 64.0;
 
 /// A bound on |∇f| over all of space for an `implicit` body, by forward-mode differentiation in
-/// interval arithmetic (Liktor §4: the Lipschitz constant is the supremum of the gradient's
+/// interval arithmetic (Liktor §2.2: the Lipschitz constant is the supremum of the gradient's
 /// length). Infinite when no finite bound follows (e.g. `x*x`), and the checker then asks for an
 /// annotation. An error names a function whose argument may leave its domain (`sqrt` of a
 /// possibly negative value, `log` of a possibly non-positive one, a fractional power of a
 /// possibly negative base): the field would be NaN there, which no annotation mends.
 pub fn infer(field: &Field) -> Result<f64, String> {
     let mut undefined = None;
-    let (_, g) = grad(field, &mut undefined, &mut false);
+    let (_, g) = grad(field, &[Interval::ALL; 3], &mut undefined, &mut false);
     if let Some(what) = undefined {
         return Err(what);
     }
@@ -31,26 +34,42 @@ pub fn infer(field: &Field) -> Result<f64, String> {
 /// jumps by 2π there, so no slope bound holds across it (the reason an inference failed).
 pub fn crosses_branch_cut(field: &Field) -> bool {
     let mut cut = false;
-    grad(field, &mut None, &mut cut);
+    grad(field, &[Interval::ALL; 3], &mut None, &mut cut);
     cut
 }
 
+/// A bound on |∇f| of an `implicit` body over the box `region` (interval arithmetic, as
+/// [`infer`]); infinite where none follows.
+pub fn bound_in(field: &Field, region: &[Interval; 3]) -> f64 {
+    let (_, g) = grad(field, region, &mut None, &mut false);
+    let l = g.iter().map(|i| i.mag().powi(2)).sum::<f64>().sqrt();
+    if l.is_nan() { f64::INFINITY } else { l }
+}
+
 /// Value range and gradient ranges of a field over all of space.
-fn grad(f: &Field, undefined: &mut Option<String>, cut: &mut bool) -> (Interval, [Interval; 3]) {
+fn grad(
+    f: &Field,
+    region: &[Interval; 3],
+    undefined: &mut Option<String>,
+    cut: &mut bool,
+) -> (Interval, [Interval; 3]) {
     let zero = Interval::point(0.0);
     match f {
         Field::Const(c) => (Interval::point(*c), [zero; 3]),
         Field::Coord(i) => {
             let mut g = [zero; 3];
             g[*i] = Interval::point(1.0);
-            (Interval::ALL, g)
+            (region[*i], g)
         }
         Field::Neg(a) => {
-            let (v, g) = grad(a, undefined, cut);
+            let (v, g) = grad(a, region, undefined, cut);
             (v.neg(), g.map(Interval::neg))
         }
         Field::Binary(op, a, b) => {
-            let ((va, ga), (vb, gb)) = (grad(a, undefined, cut), grad(b, undefined, cut));
+            let ((va, ga), (vb, gb)) = (
+                grad(a, region, undefined, cut),
+                grad(b, region, undefined, cut),
+            );
             let each =
                 |f: &dyn Fn(Interval, Interval) -> Interval| [0, 1, 2].map(|i| f(ga[i], gb[i]));
             match op {
@@ -92,8 +111,10 @@ fn grad(f: &Field, undefined: &mut Option<String>, cut: &mut bool) -> (Interval,
             }
         }
         Field::Call(func, args) => {
-            let parts: Vec<(Interval, [Interval; 3])> =
-                args.iter().map(|a| grad(a, undefined, cut)).collect();
+            let parts: Vec<(Interval, [Interval; 3])> = args
+                .iter()
+                .map(|a| grad(a, region, undefined, cut))
+                .collect();
             let vals: Vec<Interval> = parts.iter().map(|p| p.0).collect();
             if func.name == "atan2" && vals[0].has_zero() && vals[1].lo < 0.0 {
                 *cut = true;
@@ -117,61 +138,4 @@ fn grad(f: &Field, undefined: &mut Option<String>, cut: &mut bool) -> (Interval,
             ((func.range)(&vals), g)
         }
     }
-}
-
-/// Largest |∇f| seen by central differences at `samples` points spread over the cube of half
-/// size `extent` around `center` (a low-discrepancy sequence, so repeatable). A lower estimate of
-/// the true constant: if it exceeds an annotation, the annotation is wrong.
-pub fn estimate(f: impl Fn(DVec3) -> f64, center: DVec3, extent: f64, samples: usize) -> f64 {
-    let h = extent * 1e-5;
-    let mut best: f64 = 0.0;
-    for i in 0..samples {
-        // R3 quasi-random sequence (plastic-number based), in [0, 1)³.
-        let g = 1.220_744_084_605_759_5_f64;
-        let a = DVec3::new(1.0 / g, 1.0 / (g * g), 1.0 / (g * g * g));
-        let u = (DVec3::splat(0.5) + a * i as f64).fract();
-        let p = center + (u * 2.0 - DVec3::ONE) * extent;
-        let grad = DVec3::new(
-            f(p + DVec3::X * h) - f(p - DVec3::X * h),
-            f(p + DVec3::Y * h) - f(p - DVec3::Y * h),
-            f(p + DVec3::Z * h) - f(p - DVec3::Z * h),
-        ) / (2.0 * h);
-        if grad.is_finite() {
-            best = best.max(grad.length());
-        }
-    }
-    best
-}
-
-/// Samples every annotated node's field and warns where its slope exceeds the annotation (the
-/// cause of overstepping artefacts). Unbounded nodes are sampled in a cube of half size 4 around
-/// the origin.
-pub fn verify_annotations(scene: &crate::scene::Scene) -> Vec<crate::diag::Diagnostic> {
-    let mut out = Vec::new();
-    for id in scene.reachable() {
-        let n = &scene.nodes[id];
-        if n.lambda == n.inferred_lambda {
-            continue;
-        }
-        let (center, extent) = if n.bound.radius.is_finite() {
-            (n.bound.center, n.bound.radius * 1.5 + 1e-3)
-        } else {
-            (DVec3::ZERO, 4.0)
-        };
-        let seen = estimate(|p| crate::eval::node(scene, id, p).d, center, extent, 4096);
-        if seen > n.lambda * 1.01 {
-            out.push(
-                crate::diag::Diagnostic::warning(
-                    n.span,
-                    "the annotated Lipschitz bound is too small",
-                )
-                .label(format!(
-                    "the slope reaches {seen:.3} here, above the annotated {}",
-                    n.lambda
-                ))
-                .note("steps of f/λ may pass through the surface; raise the annotation"),
-            );
-        }
-    }
-    out
 }

@@ -1,0 +1,312 @@
+//! Checking `@lipschitz(L)` annotations where rays go: the slope of each annotated node is
+//! sampled at the points the camera's rays make it evaluate (up to `max_distance`, in the node's
+//! own coordinates, through every transform and copy above it), refined around the steepest
+//! samples, and for `implicit` bodies searched by subdividing the region with interval bounds,
+//! which finds features too thin for samples. A slope above the annotation is a warning with
+//! the place, the slope seen (a lower bound of the true one) and a safe bound where one is known.
+
+use super::bound_in;
+use crate::diag::Diagnostic;
+use crate::eval;
+use crate::interval::Interval;
+use crate::scene::{NodeId, NodeKind, Scene};
+use crate::view::View;
+use glam::DVec3;
+use std::collections::HashMap;
+
+/// How hard to look.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Effort {
+    /// What `render` and `emit` run on every compile: a few thousand evaluations.
+    Fast,
+    /// `sdfc check --lipschitz`: ten times the samples and boxes.
+    Thorough,
+}
+
+/// Samples and search sizes for an effort.
+struct Budget {
+    /// Points in the camera's frustum (each evaluates the whole scene once).
+    world: usize,
+    /// Points in the node's own bounding box (or around its origin).
+    local: usize,
+    /// Steepest samples refined by local search, and the search's steps for each.
+    refine: (usize, usize),
+    /// Boxes of the interval search (`implicit` only).
+    boxes: usize,
+}
+
+impl Effort {
+    fn budget(self) -> Budget {
+        match self {
+            Effort::Fast => Budget {
+                world: 1500,
+                local: 500,
+                refine: (6, 24),
+                boxes: 400,
+            },
+            Effort::Thorough => Budget {
+                world: 15_000,
+                local: 5_000,
+                refine: (24, 60),
+                boxes: 6_000,
+            },
+        }
+    }
+}
+
+/// A slope above the annotation by more than this factor is reported (sampling noise and f64
+/// rounding stay far below it; the smallest planted error in the tests is ×1.05).
+const MARGIN: f64 = 1.01;
+
+/// Most scene-node evaluations the frustum sampling may spend (large scenes get fewer points).
+const WORK: usize = 20_000_000;
+
+/// Warnings for every annotation the sampling shows to be too small.
+pub fn verify_annotations(scene: &Scene, effort: Effort) -> Vec<Diagnostic> {
+    let budget = effort.budget();
+    let reachable = scene.reachable();
+    // Annotations at or above the catalog's rule need no check: the rule is a proven bound.
+    let annotated: Vec<NodeId> = reachable
+        .iter()
+        .copied()
+        .filter(|&id| scene.nodes[id].lambda < scene.nodes[id].inferred_lambda)
+        .collect();
+    if annotated.is_empty() {
+        return Vec::new();
+    }
+    let seen = where_rays_evaluate(scene, &annotated, &budget, reachable.len());
+    let mut out = Vec::new();
+    for (k, &id) in annotated.iter().enumerate() {
+        let mut rng = Rng(0x9e37_79b9_7f4a_7c15 ^ (k as u64 + 1));
+        if let Some(d) = check_node(scene, id, &seen[&id], &budget, &mut rng) {
+            out.push(d);
+        }
+    }
+    out
+}
+
+/// The points, in each annotated node's own coordinates, at which the scene's field is
+/// evaluated along the camera's rays (16:9, the default image shape), from the eye to
+/// `max_distance` (half the samples spread evenly along the rays, half towards the eye).
+fn where_rays_evaluate(
+    scene: &Scene,
+    annotated: &[NodeId],
+    budget: &Budget,
+    nodes: usize,
+) -> HashMap<NodeId, Vec<DVec3>> {
+    let mut seen: HashMap<NodeId, Vec<DVec3>> = annotated.iter().map(|&id| (id, vec![])).collect();
+    let view = View::new(&scene.camera, 1280, 720);
+    let far = scene.trace.max_distance;
+    let world = budget.world.min(WORK / nodes.max(1)).max(64);
+    let mut rng = Rng(0x5eed_1a55);
+    for i in 0..world {
+        let rd = view.ray(rng.unit() * 1280.0, rng.unit() * 720.0);
+        let u = rng.unit();
+        let t = if i % 2 == 0 {
+            u * far
+        } else {
+            // Towards the eye: distances spread over orders of magnitude.
+            far * (u * 12.0 - 12.0).exp2()
+        };
+        let p = view.eye + rd * t;
+        eval::node_seen(scene, scene.root, p, &mut |id, q| {
+            if let Some(v) = seen.get_mut(&id) {
+                v.push(q);
+            }
+        });
+    }
+    seen
+}
+
+/// The check of one annotated node given the points rays evaluate it at.
+fn check_node(
+    scene: &Scene,
+    id: NodeId,
+    from_rays: &[DVec3],
+    budget: &Budget,
+    rng: &mut Rng,
+) -> Option<Diagnostic> {
+    let node = &scene.nodes[id];
+    let lambda = node.lambda;
+    let field = |p: DVec3| eval::node(scene, id, p).d;
+    // The region: the points rays reach, and the node's own box (grown), or around its origin.
+    let mut points: Vec<DVec3> = from_rays.to_vec();
+    let (lo, hi) = if node.bound.is_finite() {
+        let grow = ((node.bound.hi - node.bound.lo) * 0.25).max(DVec3::splat(1e-3));
+        (node.bound.lo - grow, node.bound.hi + grow)
+    } else {
+        (DVec3::splat(-4.0), DVec3::splat(4.0))
+    };
+    points.extend((0..budget.local).map(|_| lo + (hi - lo) * rng.vec()));
+    let (mut rlo, mut rhi) = (lo, hi);
+    for p in &points {
+        rlo = rlo.min(*p);
+        rhi = rhi.max(*p);
+    }
+    let size = (rhi - rlo).max_element().max(1e-6);
+    let slope = |p: DVec3| slope_at(&field, p, size * 1e-6);
+    // Sample, keep the steepest, refine them by local search.
+    let mut scored: Vec<(f64, DVec3)> = points.iter().map(|&p| (slope(p), p)).collect();
+    scored.sort_by(|a, b| b.0.total_cmp(&a.0));
+    let (keep, steps) = budget.refine;
+    let mut best = scored.first().copied().unwrap_or((0.0, rlo));
+    for &(s, p) in scored.iter().take(keep) {
+        let found = climb(&slope, p, s, size, steps, rng);
+        if found.0 > best.0 {
+            best = found;
+        }
+    }
+    // An expression: search the region box by box, guided by interval bounds.
+    let mut proven = None;
+    if let NodeKind::Implicit { field: body } = &node.kind {
+        let region = [0, 1, 2].map(|i| Interval::new(rlo[i], rhi[i]));
+        proven = Some(bound_in(body, &region));
+        if best.0 <= lambda * MARGIN {
+            let found = search(body, &slope, region, lambda, budget.boxes, rng);
+            if found.0 > best.0 {
+                best = climb(&slope, found.1, found.0, size, steps, rng);
+            }
+        }
+    }
+    if best.0 <= lambda * MARGIN {
+        return None;
+    }
+    let (seen, at) = best;
+    let safe = proven
+        .filter(|b| b.is_finite())
+        .or(Some(node.inferred_lambda).filter(|b| b.is_finite()));
+    let mut d = Diagnostic::warning(node.span, "the annotated Lipschitz bound is too small")
+        .label(format!(
+            "the slope reaches at least {} at ({}, {}, {}), above the annotated {}",
+            short(seen),
+            short(at.x),
+            short(at.y),
+            short(at.z),
+            lambda
+        ))
+        .note("steps of f/λ may pass through the surface there");
+    d = match safe {
+        Some(b) => d.help(format!(
+            "a safe bound where the camera's rays go is {}: annotate `@lipschitz({})`",
+            short(b),
+            short_up(b)
+        )),
+        None => d.help(format!("raise the annotation above {}", short_up(seen))),
+    };
+    Some(d.note("the point is in the annotated shape's own coordinates"))
+}
+
+/// |∇f| at `p` by central differences with step `h`; 0 where the field is not finite.
+fn slope_at(f: &impl Fn(DVec3) -> f64, p: DVec3, h: f64) -> f64 {
+    let g = DVec3::new(
+        f(p + DVec3::X * h) - f(p - DVec3::X * h),
+        f(p + DVec3::Y * h) - f(p - DVec3::Y * h),
+        f(p + DVec3::Z * h) - f(p - DVec3::Z * h),
+    ) / (2.0 * h);
+    if g.is_finite() { g.length() } else { 0.0 }
+}
+
+/// Local search for a steeper point around `p`: random moves at shrinking radii.
+fn climb(
+    slope: &impl Fn(DVec3) -> f64,
+    p: DVec3,
+    s: f64,
+    size: f64,
+    steps: usize,
+    rng: &mut Rng,
+) -> (f64, DVec3) {
+    let (mut best, mut at) = (s, p);
+    let mut radius = size * 0.02;
+    for _ in 0..steps {
+        let q = at + (rng.vec() * 2.0 - DVec3::ONE) * radius;
+        let sq = slope(q);
+        if sq > best {
+            (best, at) = (sq, q);
+        } else {
+            radius *= 0.8;
+        }
+    }
+    (best, at)
+}
+
+/// Branch and bound over the region: the box with the largest interval bound on |∇f| is
+/// sampled (centre and two random points) and split along its longest side, until a point
+/// steeper than the annotation turns up, every box is proven within it, or the budget ends.
+fn search(
+    body: &crate::scene::Field,
+    slope: &impl Fn(DVec3) -> f64,
+    region: [Interval; 3],
+    lambda: f64,
+    budget: usize,
+    rng: &mut Rng,
+) -> (f64, DVec3) {
+    let mut best = (0.0, DVec3::ZERO);
+    let mut boxes = vec![(bound_in(body, &region), region)];
+    for _ in 0..budget {
+        // The box with the largest bound (a linear scan: the list stays small).
+        let Some(i) = (0..boxes.len()).max_by(|&a, &b| boxes[a].0.total_cmp(&boxes[b].0)) else {
+            break;
+        };
+        let (bound, b) = boxes.swap_remove(i);
+        if bound <= lambda * MARGIN {
+            break;
+        }
+        let lo = DVec3::new(b[0].lo, b[1].lo, b[2].lo);
+        let hi = DVec3::new(b[0].hi, b[1].hi, b[2].hi);
+        for p in [
+            (lo + hi) / 2.0,
+            lo + (hi - lo) * rng.vec(),
+            lo + (hi - lo) * rng.vec(),
+        ] {
+            let s = slope(p);
+            if s > best.0 {
+                best = (s, p);
+            }
+        }
+        if best.0 > lambda * MARGIN {
+            break;
+        }
+        let axis = (hi - lo).max_position();
+        let mid = (lo[axis] + hi[axis]) / 2.0;
+        for half in [Interval::new(lo[axis], mid), Interval::new(mid, hi[axis])] {
+            let mut c = b;
+            c[axis] = half;
+            boxes.push((bound_in(body, &c), c));
+        }
+    }
+    best
+}
+
+/// A number printed with four significant digits.
+fn short(x: f64) -> String {
+    let s = format!("{x:.4}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    if s == "-0" { "0".into() } else { s.into() }
+}
+
+/// A number rounded up to three significant digits (for a suggested annotation).
+fn short_up(x: f64) -> String {
+    if x <= 0.0 || !x.is_finite() {
+        return short(x);
+    }
+    let e = 10f64.powi(x.log10().floor() as i32 - 2);
+    short((x / e).ceil() * e)
+}
+
+/// A small deterministic generator (xorshift), so the check says the same every run.
+struct Rng(u64);
+
+impl Rng {
+    fn bits(&mut self) -> u64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        self.0
+    }
+    fn unit(&mut self) -> f64 {
+        (self.bits() >> 11) as f64 / (1u64 << 53) as f64
+    }
+    fn vec(&mut self) -> DVec3 {
+        DVec3::new(self.unit(), self.unit(), self.unit())
+    }
+}
