@@ -33,6 +33,36 @@ pub fn node_seen<F: FnMut(NodeId, DVec3)>(
     p: DVec3,
     seen: &mut F,
 ) -> Sample {
+    node_with(scene, id, p, seen, &|n, inner| {
+        inner.or(scene.nodes[n].material)
+    })
+}
+
+/// Whether the surface nearest `p` (as the materials pick it: the nearest part of a union, the
+/// bounding one of an intersection…) belongs to a part whose f/λ is not a distance to first
+/// order (`Scene::breaks_unit_gradient`): where a hit needs confirming (`trace::careful`).
+pub fn loose(scene: &Scene, p: DVec3) -> bool {
+    let tag = |id: NodeId, inner: Option<u32>| {
+        if scene.breaks_unit_gradient(id) {
+            Some(1)
+        } else {
+            inner
+        }
+    };
+    node_with(scene, scene.root, p, &mut |_, _| {}, &tag)
+        .mat
+        .is_some()
+}
+
+/// The walk of [`node_seen`] with the tag a node gives its result (`tag(node, the tag its
+/// operator picked from the children)`): the material, or whether the part is loose.
+fn node_with<F: FnMut(NodeId, DVec3)>(
+    scene: &Scene,
+    id: NodeId,
+    p: DVec3,
+    seen: &mut F,
+    tag: &impl Fn(NodeId, Option<u32>) -> Option<u32>,
+) -> Sample {
     seen(id, p);
     let n = &scene.nodes[id];
     let s = match &n.kind {
@@ -49,7 +79,7 @@ pub fn node_seen<F: FnMut(NodeId, DVec3)>(
             // A child evaluated more than once (the copies of a `repeat`) gives the material
             // of its nearest evaluation.
             let mut child = |i: usize, q: DVec3| {
-                let s = node_seen(scene, children[i], q, seen);
+                let s = node_with(scene, children[i], q, seen, tag);
                 if nearest[i].is_none_or(|old: Sample| s.d < old.d) {
                     nearest[i] = Some(s);
                 }
@@ -68,7 +98,7 @@ pub fn node_seen<F: FnMut(NodeId, DVec3)>(
     };
     Sample {
         d: s.d,
-        mat: s.mat.or(n.material),
+        mat: tag(id, s.mat),
     }
 }
 

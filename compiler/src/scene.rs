@@ -36,6 +36,26 @@ impl Scene {
         &self.nodes[self.root]
     }
 
+    /// Whether node `id` is where f/λ stops being a distance to first order: its gradient is
+    /// not of length λ almost everywhere while its children's are, or it is an operator that
+    /// does not keep that, or an annotation. Below such a node everything is loose; above it,
+    /// the loose part is the one the materials' rule picks.
+    pub fn breaks_unit_gradient(&self, id: NodeId) -> bool {
+        let n = &self.nodes[id];
+        if n.unit_gradient {
+            return false;
+        }
+        let annotated = n.lambda != n.inferred_lambda;
+        match &n.kind {
+            NodeKind::Operator { op, ctx, children } => {
+                annotated
+                    || !(op.unit_gradient)(ctx)
+                    || children.iter().all(|&c| self.nodes[c].unit_gradient)
+            }
+            _ => true,
+        }
+    }
+
     /// Nodes reachable from the root, children before parents, each once.
     pub fn reachable(&self) -> Vec<NodeId> {
         let mut seen = vec![false; self.nodes.len()];
@@ -64,6 +84,9 @@ pub struct Node {
     pub bound: Bound,
     /// Per axis, whether its field is symmetric under reflection of that coordinate.
     pub mirror: [bool; 3],
+    /// Whether |∇f| = λ almost everywhere (exact primitives under operators that keep it, no
+    /// annotation): then f/λ < ε means the surface is within ε, to first order.
+    pub unit_gradient: bool,
     /// Material for surfaces of this subtree that have none of their own.
     pub material: Option<u32>,
     /// The `let` name it was bound to, if any.

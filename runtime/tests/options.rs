@@ -119,15 +119,22 @@ fn a_bound_saves_steps_and_misses_nothing() {
                     grazed += 1;
                 }
             }
-            let eps = 2.0 * view.pixel * b.t;
-            if a.hit && b.hit && (a.t - b.t).abs() > eps {
-                deeper += 1;
+            // Both hits must lie within 2ε(t) of the surface, judged by the field's first-order
+            // distance |f|/|∇f| at the hit point (depth along the ray is ε/sin θ off at
+            // grazing incidence θ, so the two may differ by more than 2ε along the ray).
+            for r in [a, b].iter().filter(|r| r.hit) {
+                let p = view.eye + rd * r.t;
+                let f = sdfc_compiler::eval::distance(&free, p);
+                let g = trace::tetra_gradient(|q| sdfc_compiler::eval::distance(&free, q), p, 1e-6);
+                if f.abs() > 2.0 * view.pixel * r.t * g {
+                    deeper += 1;
+                }
             }
         }
     }
     let n = (view.width * view.height) as f64;
     println!(
-        "gem 64×48 relaxed: {:.2} evaluations per pixel with the bound, {:.2} without; {culled} rays culled; missed {missed}, grazed {grazed}, depth off by more than 2ε {deeper}",
+        "gem 64×48 relaxed: {:.2} evaluations per pixel with the bound, {:.2} without; {culled} rays culled; missed {missed}, grazed {grazed}, hits farther than 2ε from the surface {deeper}",
         with as f64 / n,
         without as f64 / n
     );
@@ -158,23 +165,29 @@ fn gpu_passes_agree_with_the_cpu_reference() {
             let frame = gpu.render(&module, &view, Some(&plan), |_, _| {}).unwrap();
             let (mut hit_differs, mut steps_differ) = (0, 0);
             let (mut cpu_steps, mut gpu_steps) = (0u64, 0u64);
+            let mut worst = 0;
             for (i, c) in cpu.iter().enumerate() {
                 let g_hit = frame.depth[i] >= 0.0;
                 hit_differs += (g_hit != c.hit) as u32;
                 steps_differ += (c.steps.abs_diff(frame.steps[i]) > count as u32) as u32;
+                worst = worst.max(c.steps.abs_diff(frame.steps[i]));
                 cpu_steps += c.steps as u64;
                 gpu_steps += frame.steps[i] as u64;
             }
             let n = cpu.len() as f64;
             report += &format!(
-                "{:>14} {count} passes: hit/miss differs on {hit_differs}, steps by more than ±{count} on {steps_differ} of {}; mean steps CPU {:.1} GPU {:.1}\n",
+                "{:>14} {count} passes: hit/miss differs on {hit_differs}, steps by more than ±{count} on {steps_differ} of {}; mean steps CPU {:.1} GPU {:.1}, worst difference {worst}\n",
                 path.file_stem().unwrap().to_string_lossy(),
                 cpu.len(),
                 cpu_steps as f64 / n,
                 gpu_steps as f64 / n
             );
             assert!(hit_differs as f64 <= 0.01 * n, "{report}");
-            assert!(steps_differ as f64 <= 0.02 * n, "{report}");
+            // Over loose parts (implicit's gyroid, blobs, non-uniform scales) a hit is confirmed
+            // by walking the zone of f < ε in quarter-ε steps (trace::careful), where f32 and
+            // f64 can enter and leave a zone a step apart: 4% (2% before that walk), and the
+            // worst difference is printed.
+            assert!(steps_differ as f64 <= 0.04 * n, "{report}");
         }
     }
     println!("{report}");

@@ -116,7 +116,8 @@ fn every_example_matches_the_cpu_reference() {
         );
         assert!(
             frame.depth.iter().all(|d| d.is_finite())
-                && frame.normal.iter().flatten().all(|c| c.is_finite())
+                && frame.normal.iter().flatten().all(|c| c.is_finite()),
+            "{name}: a depth or normal is not finite"
         );
     }
     println!("{report}");

@@ -438,6 +438,10 @@ pub struct Primitive {
     pub params: &'static [Param],
     /// Whether the field is an exact Euclidean distance (else a bound).
     pub exact: bool,
+    /// Whether |∇f| = λ almost everywhere (exact fields, and estimates built to be distances):
+    /// then f/λ < ε means the surface is within ε to first order (see
+    /// [`Operator::unit_gradient`]).
+    pub unit_gradient: fn(&Ctx) -> bool,
     /// Lipschitz bound λ of the field.
     pub lipschitz: fn(&Ctx) -> f64,
     /// Where the surface lies.
@@ -471,6 +475,10 @@ pub struct Operator {
     pub mirror: fn(&Ctx) -> [bool; 3],
     /// The field in f64, given a way to evaluate the children.
     pub eval: fn(&Ctx, DVec3, ChildEval) -> f64,
+    /// Whether the result's gradient has length λ almost everywhere when every child's has
+    /// (its own λ then: f/λ is a distance to first order, so the tracer's hit test f/λ < ε
+    /// needs no confirmation; see `crate::trace::careful`).
+    pub unit_gradient: fn(&Ctx) -> bool,
     /// How materials propagate.
     pub materials: MatRule,
     /// The same field in naga IR.

@@ -22,6 +22,10 @@ const CHILD: fn(&Ctx) -> [bool; 3] = |c| c.child_mirror[0];
 const EVERY: fn(&Ctx) -> [bool; 3] = |c| [0, 1, 2].map(|i| c.child_mirror.iter().all(|m| m[i]));
 /// Not known to be symmetric.
 const NONE: fn(&Ctx) -> [bool; 3] = |_| [false; 3];
+/// Keeps a unit gradient (min, max, moves and folds of unit-gradient fields).
+const KEEPS: fn(&Ctx) -> bool = |_| true;
+/// Makes gradients shorter than λ somewhere (blends, warps, weighted sums).
+const SHORTENS: fn(&Ctx) -> bool = |_| false;
 
 /// Child `i` at `p`, divided by its λ.
 fn norm(c: &Ctx, child: ChildEval, i: usize, p: DVec3) -> f64 {
@@ -162,6 +166,7 @@ pub static OPERATORS: &[Operator] = &[
     Operator {
         name: "union",
         materials: MatRule::Nearest,
+        unit_gradient: KEEPS,
         lower: ir::union,
         doc: "Union of its shapes: min (λ = 1 after dividing each child by its λ); the nearest \
               shape's material.",
@@ -175,6 +180,7 @@ pub static OPERATORS: &[Operator] = &[
     Operator {
         name: "intersect",
         materials: MatRule::Farthest,
+        unit_gradient: KEEPS,
         lower: ir::intersect,
         doc: "Intersection: max (λ = 1); the material of the shape that bounds the result.",
         params: &[],
@@ -187,6 +193,7 @@ pub static OPERATORS: &[Operator] = &[
     Operator {
         name: "subtract",
         materials: MatRule::Cut,
+        unit_gradient: KEEPS,
         lower: ir::subtract,
         doc: "The first shape minus the others: max(a, −b) (λ = 1); cut faces take the cutter's \
               material.",
@@ -200,6 +207,7 @@ pub static OPERATORS: &[Operator] = &[
     Operator {
         name: "complement",
         materials: MatRule::Pass,
+        unit_gradient: KEEPS,
         lower: ir::complement,
         doc: "Inside out: −f (λ unchanged).",
         params: &[],
@@ -212,6 +220,7 @@ pub static OPERATORS: &[Operator] = &[
     Operator {
         name: "smooth_union",
         materials: MatRule::Nearest,
+        unit_gradient: SHORTENS,
         lower: ir::smooth_union,
         doc: "Union blended over `radius` by IQ's polynomial smooth minimum (λ = 1); the nearer \
               shape's material.",
@@ -225,6 +234,7 @@ pub static OPERATORS: &[Operator] = &[
     Operator {
         name: "smooth_intersect",
         materials: MatRule::Farthest,
+        unit_gradient: SHORTENS,
         lower: ir::smooth_intersect,
         doc: "Intersection blended over `radius` (λ = 1).",
         params: &[req("radius", Ty::Length)],
@@ -237,6 +247,7 @@ pub static OPERATORS: &[Operator] = &[
     Operator {
         name: "smooth_subtract",
         materials: MatRule::Cut,
+        unit_gradient: SHORTENS,
         lower: ir::smooth_subtract,
         doc: "The first shape minus the others, blended over `radius` (λ = 1).",
         params: &[req("radius", Ty::Length)],
@@ -249,6 +260,7 @@ pub static OPERATORS: &[Operator] = &[
     Operator {
         name: "mix",
         materials: MatRule::Weighted,
+        unit_gradient: SHORTENS,
         lower: ir::mix,
         doc: "Metamorphosis (Liktor Fig. 9): (1 − `weight`)·a + `weight`·b of the raw fields, \
               λ = (1 − w)·λa + w·λb; the heavier shape's material (the second at w = 0.5).",
@@ -265,6 +277,7 @@ pub static OPERATORS: &[Operator] = &[
     Operator {
         name: "blob",
         materials: MatRule::Nearest,
+        unit_gradient: SHORTENS,
         lower: ir::blob,
         doc: "Blob field (Liktor §2): `threshold` − Σ (1 − (dᵢ/`radius`)²)³ over the children's \
               distances dᵢ ≥ 0, divided by its slope bound n·1.7173/`radius`, and the distance to \
@@ -294,6 +307,7 @@ pub static OPERATORS: &[Operator] = &[
     Operator {
         name: "translate",
         materials: MatRule::Pass,
+        unit_gradient: KEEPS,
         lower: ir::translate,
         doc: "Moves its shape by `offset` (λ unchanged). `s at (x, y, z)` is the same.",
         params: &[req("offset", Ty::Vec3)],
@@ -306,6 +320,7 @@ pub static OPERATORS: &[Operator] = &[
     Operator {
         name: "rotate",
         materials: MatRule::Pass,
+        unit_gradient: KEEPS,
         lower: ir::rotate,
         doc: "Rotates its shape by `angle` about `axis` through the origin (λ unchanged).",
         params: &[req("axis", Ty::Axis), req("angle", Ty::Angle)],
@@ -318,6 +333,7 @@ pub static OPERATORS: &[Operator] = &[
     Operator {
         name: "scale",
         materials: MatRule::Pass,
+        unit_gradient: |c| c.vec(0).min_element() == c.vec(0).max_element(),
         lower: ir::scale,
         doc: "Scales its shape by `factor` (a number, or a vector for non-uniform scale): \
               f(p/s)·min(s), λ unchanged (p/s stretches slopes by at most 1/min(s), which the \
@@ -335,6 +351,7 @@ pub static OPERATORS: &[Operator] = &[
     Operator {
         name: "repeat",
         materials: MatRule::Pass,
+        unit_gradient: KEEPS,
         lower: ir::repeat,
         doc: "Repeats its shape every `spacing` along each axis (0: not on that axis), `count` \
               copies per axis (0: without end); the neighbouring cells are evaluated too where \
@@ -368,6 +385,7 @@ pub static OPERATORS: &[Operator] = &[
     Operator {
         name: "mirror",
         materials: MatRule::Pass,
+        unit_gradient: KEEPS,
         lower: ir::mirror,
         doc: "Mirrors the half-space in front of the plane through the origin with normal `axis` \
               onto the back (λ unchanged).",
@@ -397,6 +415,7 @@ pub static OPERATORS: &[Operator] = &[
     Operator {
         name: "twist",
         materials: MatRule::Pass,
+        unit_gradient: SHORTENS,
         lower: ir::twist,
         doc: "Twists its shape about the y axis by `rate` radians per unit of y; normalised by \
               the Jacobian bound (a + √(a²+4))/2, a = |rate|·ρ, inside the bounding cylinder of \
@@ -423,6 +442,7 @@ pub static OPERATORS: &[Operator] = &[
     Operator {
         name: "bend",
         materials: MatRule::Pass,
+        unit_gradient: SHORTENS,
         lower: ir::bend,
         doc: "Bends its shape in the xy plane by `rate` radians per unit of x; normalised by the \
               Jacobian bound 1 + |rate|·ρ inside the bounding cylinder about z (λ = 1).",
@@ -447,6 +467,7 @@ pub static OPERATORS: &[Operator] = &[
     Operator {
         name: "round",
         materials: MatRule::Pass,
+        unit_gradient: KEEPS,
         lower: ir::round,
         doc: "Rounds its shape outward by `radius`: f/λ − r (λ = 1).",
         params: &[req("radius", Ty::Length)],
@@ -459,6 +480,7 @@ pub static OPERATORS: &[Operator] = &[
     Operator {
         name: "onion",
         materials: MatRule::Pass,
+        unit_gradient: KEEPS,
         lower: ir::onion,
         doc: "Hollows its shape into a shell of `thickness`: |f/λ| − t (λ = 1).",
         params: &[req("thickness", Ty::Length)],
@@ -471,6 +493,7 @@ pub static OPERATORS: &[Operator] = &[
     Operator {
         name: "elongate",
         materials: MatRule::Pass,
+        unit_gradient: KEEPS,
         lower: ir::elongate,
         doc: "Stretches its shape by inserting `amount` of straight extent along each axis at the \
               origin: f(p − clamp(p, −h, h)), h = amount/2 (λ unchanged).",

@@ -27,6 +27,7 @@ pub static PRIMITIVES: &[Primitive] = &[
         doc: "Sphere of `radius` at the origin.",
         params: &[opt("radius", Ty::Length, num(1.0))],
         exact: true,
+        unit_gradient: |_| true,
         lipschitz: ONE,
         bound: |c| Bound::origin(c.num(0)),
         mirror: ALL_AXES,
@@ -38,6 +39,7 @@ pub static PRIMITIVES: &[Primitive] = &[
         doc: "Axis-aligned box of full edge lengths `size`, centred.",
         params: &[opt("size", Ty::Size, num(1.0))],
         exact: true,
+        unit_gradient: |_| true,
         lipschitz: ONE,
         bound: |c| Bound::centered_box(c.vec(0) / 2.0),
         mirror: ALL_AXES,
@@ -53,6 +55,7 @@ pub static PRIMITIVES: &[Primitive] = &[
             opt("radius", Ty::Length, num(0.1)),
         ],
         exact: true,
+        unit_gradient: |_| true,
         lipschitz: ONE,
         bound: |c| Bound::centered_box(c.vec(0) / 2.0),
         mirror: ALL_AXES,
@@ -71,6 +74,7 @@ pub static PRIMITIVES: &[Primitive] = &[
             opt("offset", Ty::Number, num(0.0)),
         ],
         exact: true,
+        unit_gradient: |_| true,
         lipschitz: ONE,
         bound: |_| Bound::INFINITE,
         mirror: |c| c.vec(0).to_array().map(|n| n == 0.0),
@@ -86,6 +90,7 @@ pub static PRIMITIVES: &[Primitive] = &[
             opt("minor", Ty::Length, num(0.25)),
         ],
         exact: true,
+        unit_gradient: |_| true,
         lipschitz: ONE,
         bound: |c| {
             let (r, t) = (c.num(0) + c.num(1), c.num(1));
@@ -103,6 +108,7 @@ pub static PRIMITIVES: &[Primitive] = &[
             opt("radius", Ty::Length, num(0.25)),
         ],
         exact: true,
+        unit_gradient: |_| true,
         lipschitz: ONE,
         bound: |c| {
             let (r, h) = (c.num(1), c.num(0) / 2.0 + c.num(1));
@@ -123,6 +129,7 @@ pub static PRIMITIVES: &[Primitive] = &[
             opt("height", Ty::Length, num(1.0)),
         ],
         exact: true,
+        unit_gradient: |_| true,
         lipschitz: ONE,
         bound: |c| {
             let half = DVec3::new(c.num(0), c.num(1) / 2.0, c.num(0));
@@ -145,6 +152,7 @@ pub static PRIMITIVES: &[Primitive] = &[
             opt("top", Ty::Length, num(0.0)),
         ],
         exact: true,
+        unit_gradient: |_| true,
         lipschitz: ONE,
         bound: |c| {
             let r = c.num(0).max(c.num(2));
@@ -160,6 +168,7 @@ pub static PRIMITIVES: &[Primitive] = &[
         doc: "Ellipsoid with semi-axes `radii`; a bound (λ = 1), exact only for spheres.",
         params: &[opt("radii", Ty::Size, vec3(1.0, 0.5, 0.5))],
         exact: false,
+        unit_gradient: |_| false,
         lipschitz: ONE,
         bound: |c| Bound::origin(c.vec(0).max_element()).with_box(-c.vec(0), c.vec(0)),
         mirror: ALL_AXES,
@@ -175,6 +184,7 @@ pub static PRIMITIVES: &[Primitive] = &[
         doc: "Regular octahedron |x| + |y| + |z| = `size`.",
         params: &[opt("size", Ty::Length, num(1.0))],
         exact: true,
+        unit_gradient: |_| true,
         lipschitz: ONE,
         bound: |c| Bound::origin(c.num(0)),
         mirror: ALL_AXES,
@@ -191,11 +201,15 @@ pub static PRIMITIVES: &[Primitive] = &[
             opt("exponent", Ty::ZeroOrAtLeast(1.0), num(0.0)),
         ],
         exact: false,
+        unit_gradient: |c| c.num(1) == 0.0,
         // The six unit normals form a tight frame (Σ nnᵀ = 2I), so |Np|₂ ≤ √2|p|; and
         // |v|_e ≤ 6^(1/e − 1/2)|v|₂ for e < 2, |v|_e ≤ |v|₂ for e ≥ 2.
+        // ‖Np‖ₑ for the six unit normals N: at most √2·6^max(0, 1/e − 1/2)·|p| (N is a tight
+        // frame, NᵀN = 2I, then Hölder), and at most 6^(1/e)·‖Np‖∞ ≤ 6^(1/e)·|p|; the smaller.
         lipschitz: |c| match c.num(1) {
             0.0 => 1.0,
-            e => std::f64::consts::SQRT_2 * 6f64.powf((1.0 / e - 0.5).max(0.0)),
+            e => (std::f64::consts::SQRT_2 * 6f64.powf((1.0 / e - 0.5).max(0.0)))
+                .min(6f64.powf(1.0 / e)),
         },
         // The inradius-r dodecahedron has circumradius r·√3·tan(π/5)·φ ≈ 1.2584 r.
         bound: |c| Bound::origin(c.num(0) * 1.2585),
@@ -216,6 +230,7 @@ pub static PRIMITIVES: &[Primitive] = &[
             ),
         ],
         exact: false,
+        unit_gradient: |_| true,
         lipschitz: ONE,
         bound: |c| Bound::origin(mandelbulb_radius(c.num(0))),
         mirror: |_| [false; 3],

@@ -126,6 +126,9 @@ impl Checker<'_> {
                 }
                 let n = self.copy_node(n)?;
                 self.nodes[n].lambda = l;
+                // The annotation's λ may exceed the true slope: f/λ is then no longer a
+                // distance to first order.
+                self.nodes[n].unit_gradient = false;
                 self.nodes[n].span = e.span;
                 Some(Value::Shape(n))
             }

@@ -293,6 +293,13 @@ impl<'a> Checker<'a> {
         }
         // A zero slope (a constant field) would divide by zero; any larger λ is still a bound.
         let lambda = lambda.max(MIN_LAMBDA);
+        let unit_gradient = match &kind {
+            NodeKind::Primitive { prim, ctx } => (prim.unit_gradient)(ctx),
+            NodeKind::Operator { op, ctx, children } => {
+                (op.unit_gradient)(ctx) && children.iter().all(|&c| self.nodes[c].unit_gradient)
+            }
+            NodeKind::Implicit { .. } => false,
+        };
         let mirror = match &kind {
             NodeKind::Primitive { prim, ctx } => (prim.mirror)(ctx),
             NodeKind::Operator { op, ctx, .. } => (op.mirror)(ctx),
@@ -300,6 +307,7 @@ impl<'a> Checker<'a> {
         };
         self.nodes.push(Node {
             mirror,
+            unit_gradient,
             kind,
             span,
             lambda,

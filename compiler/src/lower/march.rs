@@ -111,12 +111,20 @@ pub(super) struct Cx {
     pub flags: Ex,
     /// With cone anti-aliasing: the best near miss's t and coverage.
     pub cover: Option<(Ex, Ex)>,
+    /// `map_loose`, if hits are confirmed (`careful.rs`): the scene's f/λ is not a distance to
+    /// first order everywhere.
+    pub loose: Option<Handle<Function>>,
 }
 
 impl Cx {
     /// The pixel footprint argument (present in pixel-ε mode and with anti-aliasing).
     pub fn pixel(&self) -> Option<Ex> {
         self.pixel
+    }
+
+    /// The cone slope argument of a multi-resolution pass, if the function takes one.
+    pub fn cone(&self) -> Option<Ex> {
+        self.cone
     }
 
     /// Distance from the real origin of the point at `t`.
@@ -262,6 +270,7 @@ pub fn add_trace(
     trace: &Trace,
     inputs: Inputs,
     floor: f64,
+    loose: Option<Handle<Function>>,
 ) -> Handle<Function> {
     let f32t = mb.f32();
     let u32t = mb.u32();
@@ -319,6 +328,7 @@ pub fn add_trace(
         steps,
         flags,
         cover,
+        loose,
     };
     variants::body(&mut b, &cx);
     let tv = b.load(t);

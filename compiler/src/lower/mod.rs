@@ -5,6 +5,7 @@
 
 mod bound;
 pub mod builder;
+mod careful;
 mod entry;
 pub mod march;
 pub mod ops;
@@ -62,7 +63,31 @@ pub fn lower(scene: &Scene, entry: Entry, options: &tracer::Options) -> naga::Mo
         let f = b.finish();
         mb.add_helper("map_material", f)
     });
-    tracer::add(&mut mb, scene, map, material, entry, options);
+    // Where the scene's f/λ is not a distance to first order everywhere: `map_loose(p)`, 1 where
+    // the nearest part is loose (`eval::loose`), for the tracer's hit confirmation.
+    let loose = (!scene.root_node().unit_gradient).then(|| {
+        let v3 = mb.vec3();
+        let u32t = mb.u32();
+        let mut b = FnBuilder::new(&mut mb, "map_loose", &[("p", v3)], Some(u32t));
+        let p = b.arg(0);
+        let (_, l) = Walk {
+            scene,
+            named: &named,
+            root_fn: None,
+        }
+        .with_tag(&mut b, scene.root, p, &|b, id, inner| {
+            if scene.breaks_unit_gradient(id) {
+                Some(b.u(1))
+            } else {
+                inner
+            }
+        });
+        let l = l.unwrap_or_else(|| b.u(0));
+        b.ret(Some(l));
+        let f = b.finish();
+        mb.add_helper("map_loose", f)
+    });
+    tracer::add(&mut mb, scene, map, material, loose, entry, options);
     mb.module
 }
 
@@ -169,6 +194,9 @@ fn add_let_functions(
     named
 }
 
+/// How a node tags its field given the tag picked from its children (see `Walk::with_tag`).
+type Tag<'a> = dyn Fn(&mut FnBuilder, NodeId, Option<Ex>) -> Option<Ex> + 'a;
+
 /// A walk over the scene graph emitting IR.
 struct Walk<'s> {
     scene: &'s Scene,
@@ -210,6 +238,27 @@ impl Walk<'_> {
 
     /// Field and material id (1-based; 0 the default; `None`: statically no material) of a node.
     fn with_material(&self, b: &mut FnBuilder, id: NodeId, p: Ex) -> (Ex, Option<Ex>) {
+        let scene = self.scene;
+        self.with_tag(
+            b,
+            id,
+            p,
+            &|b, id, inner| match (scene.nodes[id].material, inner) {
+                (None, m) => m,
+                (Some(k), None) => Some(b.u(k + 1)),
+                (Some(k), Some(inner)) => {
+                    let own = b.u(k + 1);
+                    let zero = b.u(0);
+                    let has = b.bin(naga::BinaryOperator::NotEqual, inner, zero);
+                    Some(b.select(has, inner, own))
+                }
+            },
+        )
+    }
+
+    /// Field and tag of a node: the tag its operator picks from the children by the materials'
+    /// rule, passed through `tag(node, picked)` (as `eval::node_with`).
+    fn with_tag(&self, b: &mut FnBuilder, id: NodeId, p: Ex, tag: &Tag) -> (Ex, Option<Ex>) {
         let node = &self.scene.nodes[id];
         let (d, m) = match &node.kind {
             NodeKind::Operator { op, ctx, children } => {
@@ -217,7 +266,7 @@ impl Walk<'_> {
                 // A child lowered more than once (the copies of a `repeat`) gives the material
                 // of its nearest evaluation, as in `eval::node`.
                 let mut child = |b: &mut FnBuilder, i: usize, q: Ex| {
-                    let (d, m) = self.with_material(b, children[i], q);
+                    let (d, m) = self.with_tag(b, children[i], q, tag);
                     seen[i] = Some(match seen[i] {
                         None => (d, m),
                         Some((d0, m0)) => {
@@ -244,17 +293,7 @@ impl Walk<'_> {
             }
             _ => (self.distance(b, id, p), None),
         };
-        let m = match (node.material, m) {
-            (None, m) => m,
-            (Some(k), None) => Some(b.u(k + 1)),
-            (Some(k), Some(inner)) => {
-                let own = b.u(k + 1);
-                let zero = b.u(0);
-                let has = b.bin(naga::BinaryOperator::NotEqual, inner, zero);
-                Some(b.select(has, inner, own))
-            }
-        };
-        (d, m)
+        (d, tag(b, id, m))
     }
 }
 

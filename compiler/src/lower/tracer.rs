@@ -133,6 +133,7 @@ pub fn add(
     scene: &Scene,
     map: Handle<Function>,
     material: Option<Handle<Function>>,
+    loose: Option<Handle<Function>>,
     entry: Entry,
     options: &Options,
 ) {
@@ -147,7 +148,7 @@ pub fn add(
         segment: scene.bound.is_some() || options.passes,
         pass: options.passes,
     };
-    let variant = march::add_trace(mb, map, result_ty, &options.trace, inputs, floor);
+    let variant = march::add_trace(mb, map, result_ty, &options.trace, inputs, floor, loose);
     let function = match &scene.bound {
         Some(bound) => {
             let out = (result_ty, options.trace.antialias);

@@ -16,6 +16,9 @@ pub(super) fn body(b: &mut FnBuilder, cx: &Cx) {
         Method::Hybrid => hybrid(b, cx),
         Method::Auto => auto(b, cx),
     }
+    if let Some(loose) = cx.loose {
+        super::careful::careful(b, cx, loose);
+    }
     if cx.trace.discontinuity > 0 {
         discontinuity(b, cx);
     }
@@ -319,32 +322,7 @@ fn hybrid(b: &mut FnBuilder, cx: &Cx) {
         b.if_(
             crossed,
             |b| {
-                let (a0, fa0) = (b.load(t_out), b.load(f_out));
-                let f32t = b.m.f32();
-                let a = b.local("lo", f32t, Some(a0));
-                let fa = b.local("f_lo", f32t, Some(fa0));
-                let c = b.local("hi", f32t, Some(t));
-                let fc = b.local("f_hi", f32t, Some(d));
-                if cx.trace.refine > 0 {
-                    let limit = b.u(cx.trace.refine);
-                    b.repeat("k", limit, |b| {
-                        let tm = falsi(b, a, fa, c, fc);
-                        let fm = cx.field(b, tm);
-                        let outside = b.gt(fm, zero);
-                        b.if_(
-                            outside,
-                            |b| {
-                                b.store(a, tm);
-                                b.store(fa, fm);
-                            },
-                            |b| {
-                                b.store(c, tm);
-                                b.store(fc, fm);
-                            },
-                        );
-                    });
-                }
-                let root = falsi(b, a, fa, c, fc);
+                let root = regula_falsi(b, cx, (t_out, f_out), (t, d), cx.trace.refine);
                 b.store(cx.t, root);
                 let hit = b.u(HIT);
                 b.store(cx.flags, hit);
@@ -370,6 +348,44 @@ fn hybrid(b: &mut FnBuilder, cx: &Cx) {
 }
 
 /// The regula falsi point a + (b − a)·f(a)/(f(a) − f(b)) of the bracket in the variables.
+/// The crossing between the outside point in the variables (`t_out`, `f_out`) and the inside
+/// point (t, d), after `iterations` regula falsi steps (each an evaluation).
+pub(super) fn regula_falsi(
+    b: &mut FnBuilder,
+    cx: &Cx,
+    (t_out, f_out): (Ex, Ex),
+    (t, d): (Ex, Ex),
+    iterations: u32,
+) -> Ex {
+    let (a0, fa0) = (b.load(t_out), b.load(f_out));
+    let f32t = b.m.f32();
+    let a = b.local("lo", f32t, Some(a0));
+    let fa = b.local("f_lo", f32t, Some(fa0));
+    let c = b.local("hi", f32t, Some(t));
+    let fc = b.local("f_hi", f32t, Some(d));
+    if iterations > 0 {
+        let limit = b.u(iterations);
+        b.repeat("k", limit, |b| {
+            let tm = falsi(b, a, fa, c, fc);
+            let fm = cx.field(b, tm);
+            let zero = b.f(0.0);
+            let outside = b.gt(fm, zero);
+            b.if_(
+                outside,
+                |b| {
+                    b.store(a, tm);
+                    b.store(fa, fm);
+                },
+                |b| {
+                    b.store(c, tm);
+                    b.store(fc, fm);
+                },
+            );
+        });
+    }
+    falsi(b, a, fa, c, fc)
+}
+
 fn falsi(b: &mut FnBuilder, a: Ex, fa: Ex, c: Ex, fc: Ex) -> Ex {
     let (av, fav, cv, fcv) = (b.load(a), b.load(fa), b.load(c), b.load(fc));
     let width = b.sub(cv, av);

@@ -4,7 +4,10 @@
 //! Each variant marches a one-dimensional function `f(t)` (the field along the ray), so the
 //! same code traces scenes and the closed-form cases of the tests (the grazing plane).
 
+mod careful;
 mod variants;
+pub use careful::{ByScene, CROSSING_REFINE, Confirm, ZONE_STEP, tetra_gradient};
+use careful::{careful, confirmation};
 use variants::stop;
 
 use crate::eval;
@@ -158,7 +161,7 @@ pub fn ray_segment(
     let eps = Threshold::new(scene, trace, pixel);
     let f = |t| eval::distance(scene, ro + rd * t);
     match &scene.bound {
-        None => march_segment(trace, &eps, segment, f),
+        None => march_segment(trace, &eps, segment, f, confirmation(scene, ro, rd)),
         Some(bound) => bounded(scene, trace, bound, &eps, (ro, rd), segment),
     }
 }
@@ -192,10 +195,10 @@ fn bounded(
     };
     let f = |t| eval::distance(scene, ro + rd * t);
     if !bound.convex || near > segment.start {
-        return march_segment(trace, eps, clipped, f);
+        return march_segment(trace, eps, clipped, f, confirmation(scene, ro, rd));
     }
     if f(lo) >= 0.0 {
-        let mut r = march_segment(trace, eps, clipped, f);
+        let mut r = march_segment(trace, eps, clipped, f, confirmation(scene, ro, rd));
         r.steps += 1;
         return r;
     }
@@ -212,9 +215,13 @@ fn bounded(
         offset: 0.0,
         ..*eps
     };
-    let r = march_segment(trace, &eps_back, back, |s| {
-        eval::distance(scene, exit - rd * s)
-    });
+    let r = march_segment(
+        trace,
+        &eps_back,
+        back,
+        |s| eval::distance(scene, exit - rd * s),
+        confirmation(scene, exit, -rd),
+    );
     Traced {
         t: if r.hit { hi - r.t } else { lo },
         steps: r.steps + 1,
@@ -231,6 +238,7 @@ pub fn march_segment(
     eps: &Threshold,
     segment: Segment,
     mut f: impl FnMut(f64) -> f64,
+    confirm: Option<ByScene>,
 ) -> Traced {
     let inner = Trace {
         steps: segment.budget,
@@ -242,22 +250,42 @@ pub fn march_segment(
         ..*eps
     };
     let alpha = segment.cone;
-    let mut r = march(&inner, &shifted, |s| {
-        let t = segment.start + s;
-        let d = f(t);
-        if alpha > 0.0 {
-            (d - alpha * t) / (1.0 + alpha)
-        } else {
-            d
-        }
+    // A coarse pass stops short of surfaces by design: nothing to confirm there.
+    let confirm = confirm.filter(|_| alpha == 0.0).map(|c| ByScene {
+        ro: c.ro + c.rd * segment.start,
+        ..c
     });
+    let mut r = march_confirmed(
+        &inner,
+        &shifted,
+        |s| {
+            let t = segment.start + s;
+            let d = f(t);
+            if alpha > 0.0 {
+                (d - alpha * t) / (1.0 + alpha)
+            } else {
+                d
+            }
+        },
+        confirm,
+    );
     r.t += segment.start;
     r
 }
 
 /// Marches `f` (the field along a ray, already divided by its Lipschitz bound) with the
 /// variant of `trace`, then applies discontinuity reduction if asked.
-pub fn march(trace: &Trace, eps: &Threshold, mut f: impl FnMut(f64) -> f64) -> Traced {
+pub fn march(trace: &Trace, eps: &Threshold, f: impl FnMut(f64) -> f64) -> Traced {
+    march_confirmed(trace, eps, f, None::<ByScene>)
+}
+
+/// [`march`], with each hit confirmed by [`careful`] when `confirm` is given.
+pub fn march_confirmed(
+    trace: &Trace,
+    eps: &Threshold,
+    mut f: impl FnMut(f64) -> f64,
+    confirm: Option<impl Confirm>,
+) -> Traced {
     let mut r = match trace.method {
         Method::Basic => variants::basic(trace, eps, &mut f),
         Method::Relaxed => variants::relaxed(trace, eps, &mut f),
@@ -265,6 +293,12 @@ pub fn march(trace: &Trace, eps: &Threshold, mut f: impl FnMut(f64) -> f64) -> T
         Method::Hybrid => variants::hybrid(trace, eps, &mut f),
         Method::Auto => variants::auto(trace, eps, &mut f),
     };
+    if let Some(mut c) = confirm
+        && r.hit
+        && !r.exhausted
+    {
+        r = careful(trace, eps, r, &mut f, &mut c);
+    }
     if r.hit {
         for _ in 0..trace.discontinuity {
             // Keinert §3.4, Eq. 3: t ← t + (f(t) − err(t)), towards the level set f = ε(t).

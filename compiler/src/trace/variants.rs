@@ -225,18 +225,8 @@ pub(super) fn hybrid(trace: &Trace, eps: &Threshold, f: &mut impl FnMut(f64) -> 
         let d = f(t);
         steps += 1;
         if d < 0.0 && steps > 1 {
-            let (mut a, mut fa, mut b, mut fb) = (t_out, f_out, t, d);
-            for _ in 0..trace.refine {
-                let tm = a + (b - a) * fa / (fa - fb);
-                let fm = f(tm);
-                steps += 1;
-                if fm > 0.0 {
-                    (a, fa) = (tm, fm);
-                } else {
-                    (b, fb) = (tm, fm);
-                }
-            }
-            return stop(a + (b - a) * fa / (fa - fb), steps, true, false);
+            let root = regula_falsi(f, (t_out, f_out), (t, d), trace.refine, &mut steps);
+            return stop(root, steps, true, false);
         }
         let e = eps.at(t);
         if d < e {
@@ -250,4 +240,26 @@ pub(super) fn hybrid(trace: &Trace, eps: &Threshold, f: &mut impl FnMut(f64) -> 
         // the ray, where ε(t) is largest.
         t = (t + d.max(trace.linear * e)).min(trace.max_distance);
     }
+}
+
+/// The crossing between an outside point (a, f(a) > 0) and an inside one (c, f(c) ≤ 0) after
+/// `iterations` regula falsi steps, each an evaluation counted in `steps`.
+pub(super) fn regula_falsi(
+    f: &mut impl FnMut(f64) -> f64,
+    (mut a, mut fa): (f64, f64),
+    (mut c, mut fc): (f64, f64),
+    iterations: u32,
+    steps: &mut u32,
+) -> f64 {
+    for _ in 0..iterations {
+        let tm = a + (c - a) * fa / (fa - fc);
+        let fm = f(tm);
+        *steps += 1;
+        if fm > 0.0 {
+            (a, fa) = (tm, fm);
+        } else {
+            (c, fc) = (tm, fm);
+        }
+    }
+    a + (c - a) * fa / (fa - fc)
 }
