@@ -116,8 +116,8 @@ impl Checker<'_> {
                 self.diags.push(
                     Diagnostic::error(body.span, "this field is not defined everywhere")
                         .label(what)
-                        .note("the field would be NaN there, and rays would pass through or stop at random")
-                        .help("keep the argument in the domain, e.g. `sqrt(abs(a))`, `log(1 + a^2)`, `sqrt(max(a, 0))`"),
+                        .note("the field would be NaN or infinite there, and rays would pass through or stop at random")
+                        .help("keep arguments in their domain and values within f32 (about ±3.4e38), e.g. `sqrt(abs(a))`, `log(1 + a^2)`, `a / max(b, 1e-6)`"),
                 );
                 return None;
             }

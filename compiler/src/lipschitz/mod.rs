@@ -19,7 +19,8 @@ pub const MAX_WHOLE_POWER: f64 = 64.0;
 /// length). Infinite when no finite bound follows (e.g. `x*x`), and the checker then asks for an
 /// annotation. An error names a function whose argument may leave its domain (`sqrt` of a
 /// possibly negative value, `log` of a possibly non-positive one, a fractional power of a
-/// possibly negative base): the field would be NaN there, which no annotation mends.
+/// possibly negative base, a division by a possibly zero divisor): the field would be NaN or
+/// infinite there, which no annotation mends.
 pub fn infer(field: &Field) -> Result<f64, String> {
     let mut undefined = None;
     let (_, g) = grad(field, &[Interval::ALL; 3], &mut undefined, &mut false);
@@ -48,6 +49,26 @@ pub fn bound_in(field: &Field, region: &[Interval; 3]) -> f64 {
 
 /// Value range and gradient ranges of a field over all of space.
 fn grad(
+    f: &Field,
+    region: &[Interval; 3],
+    undefined: &mut Option<String>,
+    cut: &mut bool,
+) -> (Interval, [Interval; 3]) {
+    let r = grad_inner(f, region, undefined, cut);
+    // A value surely beyond f32's range: the shader computes infinities (and NaN from them).
+    let max = f64::from(f32::MAX);
+    if r.0.lo > max || r.0.hi < -max {
+        undefined.get_or_insert_with(|| {
+            format!(
+                "a part of it is always beyond f32's range (its value ranges over [{:e}, {:e}])",
+                r.0.lo, r.0.hi
+            )
+        });
+    }
+    r
+}
+
+fn grad_inner(
     f: &Field,
     region: &[Interval; 3],
     undefined: &mut Option<String>,
@@ -82,6 +103,15 @@ fn grad(
                 ),
                 BinOp::Mul => (va.mul(vb), each(&|x, y| x.mul(vb).add(va.mul(y)))),
                 BinOp::Div => {
+                    // A divisor that may be 0 makes the field infinite or NaN (0/0) there.
+                    if vb.has_zero() {
+                        undefined.get_or_insert_with(|| {
+                            format!(
+                                "`/` may divide by zero (the divisor ranges over [{}, {}])",
+                                vb.lo, vb.hi
+                            )
+                        });
+                    }
                     let q = va.div(vb);
                     (q, each(&|x, y| x.sub(q.mul(y)).div(vb)))
                 }
