@@ -165,15 +165,19 @@ fn bench(args: &BenchArgs) -> Result<(), String> {
         let title = format!("{name}: {w}×{h} on {}", report.adapter);
         sdfc::plot::write(p, &title, &report.cells)?;
     }
-    if args.json {
+    let text = if args.json {
         let text = serde_json::to_string_pretty(&report).map_err(|e| format!("error: {e}"))?;
-        println!("{text}");
+        format!("{text}\n")
     } else if args.csv {
-        print!("{}", csv(&report.cells));
+        csv(&report.cells)
     } else {
-        print!("{}", table(&report));
+        table(&report)
+    };
+    // A closed pipe ends quietly; a full device was reported already.
+    match crate::cli::print_out(&text) {
+        Ok(()) | Err(0) => Ok(()),
+        Err(_) => Err(String::new()),
     }
-    Ok(())
 }
 
 fn split(s: &str) -> Vec<&str> {

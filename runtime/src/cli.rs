@@ -146,10 +146,9 @@ pub fn run() -> i32 {
         }
     };
     match cli.command {
-        Command::Check { list: true, .. } => {
-            print!("{}", sdfc_compiler::docs::catalog_table());
-            0
-        }
+        Command::Check { list: true, .. } => print_out(&sdfc_compiler::docs::catalog_table())
+            .err()
+            .unwrap_or(0),
         Command::Check { file: None, .. } => {
             eprintln!("error: give a scene file to check (or `-` for standard input)");
             1
@@ -383,24 +382,57 @@ pub fn load_scene(path: &Path) -> Option<(String, String, sdfc_compiler::scene::
     scene.map(|s| (name, source, s))
 }
 
-/// Reads a scene file or standard input; the error is a message for the user.
+/// Reads a scene file or standard input; the error is a message for the user. At most the
+/// source limit and one byte more are read (`/dev/zero` is refused, not read until memory runs
+/// out), and a UTF-8 byte-order mark, which Windows editors write, is dropped.
 pub fn read_source(path: &Path) -> Result<(String, String), String> {
-    if path == Path::new("-") {
-        let mut s = String::new();
-        std::io::Read::read_to_string(&mut std::io::stdin(), &mut s)
-            .map_err(|e| format!("error: cannot read standard input: {e}"))?;
-        return Ok(("<stdin>".into(), s));
+    use std::io::Read;
+    let limit = sdfc_compiler::syntax::MAX_SOURCE_BYTES;
+    let (name, reader): (String, Box<dyn Read>) = if path == Path::new("-") {
+        ("<stdin>".into(), Box::new(std::io::stdin()))
+    } else {
+        let name = path.display().to_string();
+        let file =
+            std::fs::File::open(path).map_err(|e| format!("error: cannot read `{name}`: {e}"))?;
+        (name, Box::new(file))
+    };
+    let mut bytes = Vec::new();
+    reader
+        .take(limit as u64 + 1)
+        .read_to_end(&mut bytes)
+        .map_err(|e| format!("error: cannot read `{name}`: {e}"))?;
+    if bytes.len() > limit {
+        return Err(format!(
+            "error: `{name}` is larger than the source limit of {limit} bytes (4 MiB)"
+        ));
     }
-    let name = path.display().to_string();
-    let bytes = std::fs::read(path).map_err(|e| format!("error: cannot read `{name}`: {e}"))?;
-    String::from_utf8(bytes)
-        .map(|s| (name.clone(), s))
-        .map_err(|e| {
-            let at = e.utf8_error().valid_up_to();
-            format!(
-                "error: cannot read `{name}`: it is not UTF-8 text (invalid byte at offset {at})"
-            )
-        })
+    let text = String::from_utf8(bytes).map_err(|e| {
+        let at = e.utf8_error().valid_up_to();
+        format!("error: cannot read `{name}`: it is not UTF-8 text (invalid byte at offset {at})")
+    })?;
+    let text = match text.strip_prefix('\u{feff}') {
+        Some(rest) => rest.to_string(),
+        None => text,
+    };
+    Ok((name, text))
+}
+
+/// Writes command output to standard output: a closed pipe (`sdfc check x.sdf | head -1`) ends
+/// quietly, any other failure (a full device) is an error; `Err` holds the exit code.
+pub fn print_out(text: &str) -> Result<(), i32> {
+    use std::io::Write;
+    let mut stdout = std::io::stdout().lock();
+    match stdout
+        .write_all(text.as_bytes())
+        .and_then(|_| stdout.flush())
+    {
+        Ok(()) => Ok(()),
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Err(0),
+        Err(e) => {
+            eprintln!("error: cannot write to standard output: {e}");
+            Err(1)
+        }
+    }
 }
 
 fn check_command(path: &Path, effort: Effort) -> i32 {
@@ -424,6 +456,6 @@ fn check_command(path: &Path, effort: Effort) -> i32 {
         .iter()
         .filter(|d| !Diagnostic::is_error(d))
         .count();
-    println!("{}", sdfc_compiler::docs::summary(&name, &scene, warnings));
-    0
+    let summary = sdfc_compiler::docs::summary(&name, &scene, warnings);
+    print_out(&format!("{summary}\n")).err().unwrap_or(0)
 }

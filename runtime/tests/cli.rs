@@ -376,3 +376,51 @@ fn a_wrong_annotation_is_a_warning_on_render_emit_and_check() {
         );
     }
 }
+
+/// Standard output that is full or closed, and inputs without end or with a byte-order mark.
+#[test]
+fn hostile_streams_end_cleanly() {
+    let d = scratch("streams");
+    let good = write(&d, "good.sdf", "sphere(1)\n");
+    // A full device: an error, exit 1 (it panicked before).
+    let full = std::fs::OpenOptions::new()
+        .write(true)
+        .open("/dev/full")
+        .unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_sdfc"))
+        .args(["check", good.as_str()])
+        .stdout(full)
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains("error: cannot write to standard output"),
+        "{err}"
+    );
+    // A closed pipe (`sdfc check x.sdf | head -0`): ends quietly, no panic.
+    let mut child = Command::new(env!("CARGO_BIN_EXE_sdfc"))
+        .args(["check", "--list"])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stdout.take());
+    let out = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{err}");
+    assert!(!err.contains("panicked"), "{err}");
+    // An input without end: refused after the source limit, not read until memory runs out.
+    let out = sdfc(&["check", "/dev/zero"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(err.contains("larger than the source limit"), "{err}");
+    // A UTF-8 byte-order mark, as Windows editors write it, is accepted.
+    let bom = write(&d, "bom.sdf", "\u{feff}sphere(1)\n");
+    let out = sdfc(&["check", bom.as_str()]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}

@@ -14,6 +14,16 @@ pub use primitives::PRIMITIVES;
 
 use glam::DVec3;
 
+/// The magnitudes a number in a scene may have besides 0: within f32, with room for a square or
+/// a reciprocal (the shader computes 1/s, s², n·s…), so that nothing the lowering derives from
+/// it overflows f32 (about 3.4e38) or vanishes.
+pub const GPU_RANGE: (f64, f64) = (1e-18, 1e18);
+
+/// Whether `x` is 0 or within [`GPU_RANGE`] in magnitude.
+pub fn fits_gpu(x: f64) -> bool {
+    x == 0.0 || (GPU_RANGE.0..=GPU_RANGE.1).contains(&x.abs())
+}
+
 /// A checked argument value. Colours and axes are vectors; counts are numbers.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Val {

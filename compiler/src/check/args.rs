@@ -1,7 +1,7 @@
 //! Binding call arguments and settings to catalog parameters, with type and range checks.
 
 use super::{Checker, Dim, Value};
-use crate::catalog::{Param, Ty, Val};
+use crate::catalog::{self, Param, Ty, Val};
 use crate::diag::{Diagnostic, Span, did_you_mean};
 use crate::syntax::{Arg, Expr, ExprKind};
 use glam::DVec3;
@@ -206,6 +206,29 @@ impl Checker<'_> {
             return Some(Val::Vec3(-DVec3::AXES[i]));
         }
         let value = self.value(e)?;
+        let v = self.convert_value(e, ty, param, value)?;
+        let fits = match v {
+            Val::Num(x) => catalog::fits_gpu(x),
+            Val::Vec3(v) => v.to_array().iter().all(|&x| catalog::fits_gpu(x)),
+            Val::Word(_) => true,
+        };
+        if !fits {
+            self.diags.push(
+                Diagnostic::error(e.span, format!("`{param}` is beyond what the GPU's f32 arithmetic can use"))
+                    .label("out of range")
+                    .note(format!(
+                        "numbers in a scene must be 0 or between {:e} and {:e} in size: the shader computes in f32, and squares or reciprocals of larger (or smaller) values overflow",
+                        catalog::GPU_RANGE.0,
+                        catalog::GPU_RANGE.1
+                    )),
+            );
+            return None;
+        }
+        Some(v)
+    }
+
+    /// The value of an argument as its parameter's type, or an error.
+    fn convert_value(&mut self, e: &Expr, ty: Ty, param: &str, value: Value) -> Option<Val> {
         let found = value.describe();
         let bad = |this: &mut Self, why: String| {
             this.diags.push(

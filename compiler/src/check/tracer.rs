@@ -150,6 +150,13 @@ pub fn with_overrides(
                 Val::Word(words.iter().position(|x| *x == w).unwrap_or(0))
             }
             (ty, t) => match t.trim().parse::<f64>() {
+                Ok(x) if ty.accepts_number(x) && !crate::catalog::fits_gpu(x) => {
+                    let (lo, hi) = crate::catalog::GPU_RANGE;
+                    return Err(format!(
+                        "`--{}` = {text} is beyond what the GPU's f32 arithmetic can use (numbers must be 0 or between {lo:e} and {hi:e} in size)",
+                        key.replace('_', "-")
+                    ));
+                }
                 Ok(x) if ty.accepts_number(x) => Val::Num(x),
                 _ => {
                     return Err(format!(
