@@ -66,14 +66,11 @@ pub fn run(
     }
 }
 
-/// Writes a file through a temporary sibling and a rename, so a failure leaves no partial file.
+/// Writes a whole file, printing the error; the exit code.
 pub fn write_whole(path: &Path, bytes: &[u8]) -> i32 {
-    let tmp = path.with_extension("sdfc-partial");
-    let result = std::fs::write(&tmp, bytes).and_then(|_| std::fs::rename(&tmp, path));
-    match result {
+    match sdfc::files::write_file(path, bytes) {
         Ok(()) => 0,
         Err(e) => {
-            let _ = std::fs::remove_file(&tmp);
             eprintln!("error: cannot write `{}`: {e}", path.display());
             1
         }

@@ -1,6 +1,7 @@
 //! sdfc's runtime: the headless wgpu renderer and the pictures it writes.
 
 pub mod bench;
+pub mod files;
 pub mod gpu;
 pub mod images;
 pub mod plot;

@@ -24,8 +24,15 @@ pub fn write(path: &Path, title: &str, cells: &[Cell]) -> Result<(), String> {
         let root = BitMapBackend::new(path, SIZE).into_drawing_area();
         draw(&root, title, cells).map_err(|e| fail(e.to_string()))
     } else {
-        let root = SVGBackend::new(path, SIZE).into_drawing_area();
-        draw(&root, title, cells).map_err(|e| fail(e.to_string()))
+        // Drawn to a string and written whole, so that a write error is reported (the SVG
+        // backend writing to the path itself swallowed it).
+        let mut svg = String::new();
+        {
+            let root = SVGBackend::with_string(&mut svg, SIZE).into_drawing_area();
+            draw(&root, title, cells).map_err(|e| fail(e.to_string()))?;
+        }
+        crate::files::write_file(path, svg.as_bytes())
+            .map_err(|e| format!("error: cannot write `{}`: {e}", path.display()))
     }
 }
 

@@ -424,3 +424,133 @@ fn hostile_streams_end_cleanly() {
         String::from_utf8_lossy(&out.stderr)
     );
 }
+
+/// Output paths that are not plain files: a FIFO, a symbolic link and a device are written
+/// straight through and stay what they are; a full device and a missing folder are errors
+/// that leave nothing behind; two writers of one stem never mix their files.
+#[test]
+fn output_paths_are_written_whole_and_never_replaced() {
+    use std::os::unix::fs::FileTypeExt;
+    let d = scratch("paths");
+    let scene = write(&d, "s.sdf", "sphere(1)\n");
+    let expected = sdfc(&["emit", scene.as_str()]).stdout;
+    assert!(expected.len() > 100);
+    // A FIFO, read while sdfc writes it.
+    let fifo = d.join("pipe.wgsl");
+    let _ = std::fs::remove_file(&fifo);
+    assert!(
+        Command::new("mkfifo")
+            .arg(&fifo)
+            .status()
+            .unwrap()
+            .success()
+    );
+    let reader = {
+        let fifo = fifo.clone();
+        std::thread::spawn(move || std::fs::read(fifo).unwrap())
+    };
+    let out = sdfc(&["emit", scene.as_str(), "-o", fifo.to_str().unwrap()]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert_eq!(reader.join().unwrap(), expected);
+    assert!(
+        std::fs::symlink_metadata(&fifo)
+            .unwrap()
+            .file_type()
+            .is_fifo()
+    );
+    // A symbolic link: the file it points to gets the text, the link stays a link.
+    let target = d.join("target.wgsl");
+    let link = d.join("link.wgsl");
+    let _ = std::fs::remove_file(&link);
+    std::fs::write(&target, "old").unwrap();
+    std::os::unix::fs::symlink(&target, &link).unwrap();
+    let out = sdfc(&["emit", scene.as_str(), "-o", link.to_str().unwrap()]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(
+        std::fs::symlink_metadata(&link)
+            .unwrap()
+            .file_type()
+            .is_symlink()
+    );
+    assert_eq!(std::fs::read(&target).unwrap(), expected);
+    // Devices: /dev/null takes it and stays a device; /dev/full is an error (no space).
+    let out = sdfc(&["emit", scene.as_str(), "-o", "/dev/null"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(
+        std::fs::metadata("/dev/null")
+            .unwrap()
+            .file_type()
+            .is_char_device()
+    );
+    let out = sdfc(&["emit", scene.as_str(), "-o", "/dev/full"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(err.contains("cannot write `/dev/full`"), "{err}");
+    assert!(
+        std::fs::metadata("/dev/full")
+            .unwrap()
+            .file_type()
+            .is_char_device()
+    );
+    // A missing folder: an error, nothing written, no temporary file left.
+    let missing = d.join("no/such/folder/x.wgsl");
+    let out = sdfc(&["emit", scene.as_str(), "-o", missing.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(1));
+    // Two writers of one stem at once, many times: each file whole and right.
+    let spirv = {
+        let p = d.join("ref.spv");
+        assert!(
+            sdfc(&[
+                "emit",
+                scene.as_str(),
+                "--target",
+                "spirv",
+                "-o",
+                p.to_str().unwrap()
+            ])
+            .status
+            .success()
+        );
+        std::fs::read(p).unwrap()
+    };
+    let (w, s) = (d.join("x.wgsl"), d.join("x.spv"));
+    for _ in 0..40 {
+        let a = Command::new(env!("CARGO_BIN_EXE_sdfc"))
+            .args(["emit", scene.as_str(), "-o", w.to_str().unwrap()])
+            .spawn()
+            .unwrap();
+        let b = Command::new(env!("CARGO_BIN_EXE_sdfc"))
+            .args([
+                "emit",
+                scene.as_str(),
+                "--target",
+                "spirv",
+                "-o",
+                s.to_str().unwrap(),
+            ])
+            .spawn()
+            .unwrap();
+        assert!(a.wait_with_output().unwrap().status.success());
+        assert!(b.wait_with_output().unwrap().status.success());
+        assert_eq!(std::fs::read(&w).unwrap(), expected);
+        assert_eq!(std::fs::read(&s).unwrap(), spirv);
+    }
+    let leftovers: Vec<_> = std::fs::read_dir(&d)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.ends_with(".partial"))
+        .collect();
+    assert!(leftovers.is_empty(), "temporary files left: {leftovers:?}");
+}
