@@ -116,7 +116,7 @@ pub fn render(diagnostics: &[Diagnostic], file_name: &str, source: &str) -> Stri
     let file = SimpleFile::new(file_name, source);
     let config = term::Config::default();
     let mut out = String::new();
-    for d in diagnostics {
+    for d in diagnostics.iter().take(MAX_SHOWN) {
         let clamp = |s: Span| {
             let end = s.end.min(source.len());
             s.start.min(end)..end
@@ -137,16 +137,39 @@ pub fn render(diagnostics: &[Diagnostic], file_name: &str, source: &str) -> Stri
         // Writing to a String cannot fail; a failure here would only drop a message.
         let _ = term::emit_to_string(&mut out, &config, &file, &diagnostic);
     }
+    if diagnostics.len() > MAX_SHOWN {
+        let rest = &diagnostics[MAX_SHOWN..];
+        let errors = rest.iter().filter(|d| d.is_error()).count();
+        out += &format!(
+            "… and {} more ({errors} errors, {} warnings) not shown\n",
+            rest.len(),
+            rest.len() - errors
+        );
+    }
     out
 }
+
+/// The most diagnostics one report shows; the rest are counted (a file of 100 000 errors
+/// printed 22 MB).
+pub const MAX_SHOWN: usize = 100;
+
+/// The longest name a "did you mean" suggests.
+const MAX_SUGGESTED: usize = 256;
 
 /// The closest of `candidates` to `name`, if one is close enough to be a likely typo.
 pub fn did_you_mean<'a>(
     name: &str,
     candidates: impl IntoIterator<Item = &'a str>,
 ) -> Option<&'a str> {
+    // Names whose lengths differ by more than the allowed distance cannot be close: skipped
+    // before the quadratic comparison (100 000-character names took 90 s).
+    let n = name.chars().count();
     candidates
         .into_iter()
+        .filter(|c| {
+            let m = c.chars().count();
+            n.abs_diff(m) <= 2.max(m / 3) && m <= MAX_SUGGESTED
+        })
         .map(|c| (strsim::damerau_levenshtein(name, c), c))
         .filter(|&(d, c)| d <= 2.max(c.len() / 3) && d < c.len().max(name.len()))
         .min_by_key(|&(d, _)| d)

@@ -408,7 +408,12 @@ pub fn read_source(path: &Path) -> Result<(String, String), String> {
     }
     let text = String::from_utf8(bytes).map_err(|e| {
         let at = e.utf8_error().valid_up_to();
-        format!("error: cannot read `{name}`: it is not UTF-8 text (invalid byte at offset {at})")
+        let before = String::from_utf8_lossy(&e.as_bytes()[..at]);
+        let line = before.matches('\n').count() + 1;
+        let column = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+        format!(
+            "error: cannot read `{name}`: it is not UTF-8 text (an invalid byte at {line}:{column}, offset {at})"
+        )
     })?;
     let text = match text.strip_prefix('\u{feff}') {
         Some(rest) => rest.to_string(),

@@ -51,8 +51,21 @@ pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
 
 /// Runs `sdfc render`; returns the exit code.
 pub fn run(args: &RenderArgs) -> i32 {
-    crate::cli::exit_code(render(args))
+    match render(args) {
+        // An invalid module is a bug in sdfc: exit 2, as `emit` does.
+        Err(e) if e.starts_with(INTERNAL) => {
+            eprintln!("{e}");
+            eprintln!(
+                "note: this is a bug in sdfc, not in the scene; please report it with the scene file"
+            );
+            2
+        }
+        result => crate::cli::exit_code(result),
+    }
 }
+
+/// How an internal compiler error's message starts.
+const INTERNAL: &str = "internal compiler error";
 
 fn render(args: &RenderArgs) -> Result<(), String> {
     let (w, h) = parse_size(args.size)?;
@@ -71,7 +84,7 @@ fn render(args: &RenderArgs) -> Result<(), String> {
     };
     let options = args.tracer.settle(&mut scene)?;
     let (module, _) = emit::module(&scene, Entry::Compute, &options)
-        .map_err(|e| format!("internal compiler error: {}", e.0))?;
+        .map_err(|e| format!("{INTERNAL}: {}", e.0))?;
     let gpu = Gpu::new(args.backend)?;
     let view = View::new(&scene.camera, w * s, h * s);
     let plan = options.passes.then(|| {

@@ -415,6 +415,33 @@ fn hostile_streams_end_cleanly() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(1), "{err}");
     assert!(err.contains("larger than the source limit"), "{err}");
+    // Invalid UTF-8 is located by line and column.
+    let bad = d.join("bad.sdf");
+    std::fs::write(&bad, b"sphere(1)\nsphere(2) \xff\n").unwrap();
+    let out = sdfc(&["check", bad.to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(err.contains("an invalid byte at 2:11"), "{err}");
+    // 300 errors: the first 100 shown, the rest counted.
+    let many = write(&d, "many.sdf", &"sphere(-1)\n".repeat(300));
+    let out = sdfc(&["check", many.as_str()]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(err.matches("error:").count(), 100, "{err}");
+    assert!(
+        err.contains("and 200 more (200 errors, 0 warnings) not shown"),
+        "{err}"
+    );
+    // A name of 100 000 characters against another: "did you mean" skips what cannot be close.
+    let long = write(
+        &d,
+        "long.sdf",
+        &format!(
+            "let {} = sphere(1)\n{}b\n",
+            "a".repeat(100_000),
+            "a".repeat(99_999)
+        ),
+    );
+    assert_eq!(sdfc(&["check", long.as_str()]).status.code(), Some(1));
     // A UTF-8 byte-order mark, as Windows editors write it, is accepted.
     let bom = write(&d, "bom.sdf", "\u{feff}sphere(1)\n");
     let out = sdfc(&["check", bom.as_str()]);
