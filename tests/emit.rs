@@ -209,3 +209,29 @@ fn library_output_is_usable_from_a_host_shader() {
         emit::validate(&module).unwrap_or_else(|e| panic!("{}: {}", path.display(), e.0));
     }
 }
+
+/// User names never reach a target as they are: `let` shapes become `let_<name>`, so names that
+/// are reserved words of a target (`sampler2D` in HLSL, `float4`, `kernel` in MSL, `main`) cannot
+/// leak into its output.
+#[test]
+fn let_names_cannot_collide_with_reserved_words() {
+    use sdfc_compiler::emit::{self, Output, Target};
+    use sdfc_compiler::lower::{Entry, tracer::Options};
+    let source = "let sampler2D = sphere(1)\nlet kernel = box(0.5)\nlet main = torus(1, 0.2)\nunion { sampler2D  kernel at (2, 0, 0)  main at (-2, 0, 0) }\n";
+    let scene = sdfc_tests::scene("reserved", source);
+    let (module, info) =
+        emit::module(&scene, Entry::Library, &Options::from_scene(&scene)).unwrap();
+    for target in [Target::Hlsl, Target::Msl, Target::Glsl, Target::Wgsl] {
+        let Ok(Output::Text(text)) = emit::write(&module, &info, target, Entry::Library) else {
+            continue;
+        };
+        for name in ["sampler2D", "kernel"] {
+            assert!(
+                !text.contains(&format!(" {name}(")),
+                "{target:?} output declares or calls `{name}` bare"
+            );
+        }
+        // (GLSL's own `main` is the back end's; the scene's is `let_main`.)
+        assert!(text.contains("let_main"), "{target:?}: no `let_main`");
+    }
+}

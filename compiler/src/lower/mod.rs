@@ -1,7 +1,7 @@
 //! Lowering: the checked scene graph becomes a naga module — `sd_*` functions for the primitives
-//! used, `op_*` helpers for the blends used, a function per surviving `let` shape, `map`, and
-//! (only when the scene has materials) `map_material`; the tracer and entry points come from
-//! `tracer.rs`.
+//! used, `op_*` helpers for the blends used, a function `let_<name>` per surviving `let` shape,
+//! `map`, (only when the scene has materials) `map_material` and (only when it has a loose part)
+//! `map_loose`; the tracer and entry points come from `tracer.rs`.
 
 mod bound;
 pub mod builder;
@@ -176,10 +176,12 @@ fn add_let_functions(
         let Some(name) = &scene.nodes[n].name else {
             continue;
         };
-        // Tagged or annotated copies share the name; the first keeps it plain.
+        // Tagged or annotated copies share the name; the first keeps it plain. The `let_`
+        // prefix keeps user names clear of every target's reserved words (`sampler2D` made
+        // HLSL that did not compile) and of the module's own functions.
         let v3 = mb.vec3();
         let f32t = mb.f32();
-        let mut b = FnBuilder::new(mb, name, &[("p", v3)], Some(f32t));
+        let mut b = FnBuilder::new(mb, &format!("let_{name}"), &[("p", v3)], Some(f32t));
         let p = b.arg(0);
         let d = Walk {
             scene,
