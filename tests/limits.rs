@@ -4,7 +4,7 @@
 //! `runtime/tests/cli.rs`, device loss in `runtime/tests/device.rs`.
 
 use sdfc_compiler::check::tracer::MAX_STEPS;
-use sdfc_compiler::check::{self, MAX_DEPTH, MAX_NODES};
+use sdfc_compiler::check::{self, MAX_DEPTH, MAX_EVALUATIONS, MAX_NODES};
 use sdfc_compiler::syntax::{MAX_NESTING, MAX_SOURCE_BYTES};
 use sdfc_compiler::{diag, emit, lower};
 
@@ -55,14 +55,31 @@ fn spheres(n: usize) -> String {
     s + "}\n"
 }
 
+/// A union of `nodes − 1` nodes under it, in chains of ten (a sphere rounded nine times) so
+/// that the primitives stay under the evaluation limit: `nodes` nodes in all.
+fn chains(nodes: usize) -> String {
+    let mut s = String::from("union {\n");
+    let mut left = nodes - 1;
+    while left > 0 {
+        let len = if left.is_multiple_of(10) { 10 } else { left % 10 };
+        s += &format!(
+            "sphere({}){}\n",
+            1 + left % 100,
+            " |> round(0.01)".repeat(len - 1)
+        );
+        left -= len;
+    }
+    s + "}\n"
+}
+
 #[test]
 fn nodes() {
     refused(
-        spheres(MAX_NODES),
+        chains(MAX_NODES + 1),
         "too many nodes",
         format!("{MAX_NODES} nodes"),
     );
-    let scene = accepted(spheres(MAX_NODES - 1));
+    let scene = accepted(chains(MAX_NODES));
     assert_eq!(scene.nodes.len(), MAX_NODES);
     let settings = lower::tracer::Options::from_scene(&scene);
     let module = sdfc_tests::with_stack(move || {
@@ -143,4 +160,36 @@ fn source_size() {
         format!("{MAX_SOURCE_BYTES} bytes"),
     );
     accepted(file(MAX_SOURCE_BYTES));
+}
+
+/// `let` sharing and `repeat` copies multiply work without adding nodes: the evaluations one
+/// evaluation of the field costs are limited, exactly at the limit and one past it.
+#[test]
+fn evaluations() {
+    let limit = MAX_EVALUATIONS as usize;
+    let _ = accepted(spheres(limit));
+    refused(
+        spheres(limit + 1),
+        "too many evaluations",
+        format!("the limit is {limit}"),
+    );
+    // 2^13 uses of one sphere through 13 shared lets pass, 2^14 do not (16 levels grew the
+    // render to 7 GB): the error names the count and sits on the `let` that crosses the limit.
+    let shared = |levels: usize| {
+        let mut s = String::from("let s0 = sphere(0.1)\n");
+        for i in 1..=levels {
+            s += &format!(
+                "let s{i} = union {{ s{}  s{} at (0.001, 0, 0) }}\n",
+                i - 1,
+                i - 1
+            );
+        }
+        s + &format!("s{levels}\n")
+    };
+    let _ = accepted(shared(13));
+    refused(
+        shared(14),
+        "too many evaluations",
+        "16384 primitives".to_string(),
+    );
 }

@@ -87,6 +87,9 @@ pub struct Node {
     /// Whether |∇f| = λ almost everywhere (exact primitives under operators that keep it, no
     /// annotation): then f/λ < ε means the surface is within ε, to first order.
     pub unit_gradient: bool,
+    /// Primitive (and `implicit`) evaluations one evaluation of this node costs, counting every
+    /// use of a shared `let` and every copy a `repeat` looks at.
+    pub evaluations: f64,
     /// Material for surfaces of this subtree that have none of their own.
     pub material: Option<u32>,
     /// The `let` name it was bound to, if any.

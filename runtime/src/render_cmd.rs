@@ -64,6 +64,9 @@ pub fn run(args: &RenderArgs) -> i32 {
     }
 }
 
+/// Primitive evaluations per step from which `render` says that the driver is compiling.
+const SLOW_COMPILE: f64 = 512.0;
+
 /// How an internal compiler error's message starts.
 const INTERNAL: &str = "internal compiler error";
 
@@ -86,6 +89,15 @@ fn render(args: &RenderArgs) -> Result<(), String> {
     let (module, _) = emit::module(&scene, Entry::Compute, &options)
         .map_err(|e| format!("{INTERNAL}: {}", e.0))?;
     let gpu = Gpu::new(args.backend)?;
+    let cost = scene.root_node().evaluations;
+    if cost >= SLOW_COMPILE {
+        // The driver compiles the shader at the first dispatch, silently; on a software
+        // driver a large scene takes minutes (a flat union of 2 048 spheres: 21 s on lavapipe).
+        eprintln!(
+            "compiling the shader for {} ({cost:.0} primitive evaluations per step: this can take a while)…",
+            gpu.info.name
+        );
+    }
     let view = View::new(&scene.camera, w * s, h * s);
     let plan = options.passes.then(|| {
         passes::plan(
