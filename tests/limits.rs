@@ -61,7 +61,11 @@ fn chains(nodes: usize) -> String {
     let mut s = String::from("union {\n");
     let mut left = nodes - 1;
     while left > 0 {
-        let len = if left.is_multiple_of(10) { 10 } else { left % 10 };
+        let len = if left.is_multiple_of(10) {
+            10
+        } else {
+            left % 10
+        };
         s += &format!(
             "sphere({}){}\n",
             1 + left % 100,

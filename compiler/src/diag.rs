@@ -113,6 +113,19 @@ impl Diagnostic {
 /// Renders diagnostics as the user sees them: `error: ...`, `--> file:line:col`, the source line
 /// and a caret under the span.
 pub fn render(diagnostics: &[Diagnostic], file_name: &str, source: &str) -> String {
+    // Control characters are shown as `?` (same length, so spans still fit): echoed raw they
+    // would act on the terminal.
+    let shown: String = source
+        .chars()
+        .map(|c| {
+            if c.is_control() && !matches!(c, '\t' | '\n' | '\r') && c.len_utf8() == 1 {
+                '?'
+            } else {
+                c
+            }
+        })
+        .collect();
+    let source = shown.as_str();
     let file = SimpleFile::new(file_name, source);
     let config = term::Config::default();
     let mut out = String::new();
@@ -121,19 +134,35 @@ pub fn render(diagnostics: &[Diagnostic], file_name: &str, source: &str) -> Stri
             let end = s.end.min(source.len());
             s.start.min(end)..end
         };
-        let mut labels = vec![cs::Label::primary((), clamp(d.span)).with_message(&d.label)];
+        if let Some(note) = long_line(file_name, source, clamp(d.span), &d.label) {
+            // A line too long to echo (one error printed megabytes): the place and an excerpt.
+            let diagnostic = match d.severity {
+                Severity::Error => cs::Diagnostic::error(),
+                Severity::Warning => cs::Diagnostic::warning(),
+            }
+            .with_message(shorten(&d.message))
+            .with_notes(
+                std::iter::once(note)
+                    .chain(d.notes.iter().map(|n| shorten(n)))
+                    .collect(),
+            );
+            let _ = term::emit_to_string(&mut out, &config, &file, &diagnostic);
+            continue;
+        }
+        let mut labels =
+            vec![cs::Label::primary((), clamp(d.span)).with_message(shorten(&d.label))];
         labels.extend(
             d.secondary
                 .iter()
-                .map(|(s, m)| cs::Label::secondary((), clamp(*s)).with_message(m)),
+                .map(|(s, m)| cs::Label::secondary((), clamp(*s)).with_message(shorten(m))),
         );
         let diagnostic = match d.severity {
             Severity::Error => cs::Diagnostic::error(),
             Severity::Warning => cs::Diagnostic::warning(),
         }
-        .with_message(&d.message)
+        .with_message(shorten(&d.message))
         .with_labels(labels)
-        .with_notes(d.notes.clone());
+        .with_notes(d.notes.iter().map(|n| shorten(n)).collect());
         // Writing to a String cannot fail; a failure here would only drop a message.
         let _ = term::emit_to_string(&mut out, &config, &file, &diagnostic);
     }
@@ -147,6 +176,61 @@ pub fn render(diagnostics: &[Diagnostic], file_name: &str, source: &str) -> Stri
         );
     }
     out
+}
+
+/// A message, label or note cut to [`MAX_LINE`] characters (a 100 000-character name quoted
+/// in a message is shown by its start and end).
+fn shorten(text: &str) -> String {
+    let n = text.chars().count();
+    if n <= MAX_LINE {
+        return text.to_string();
+    }
+    let head: String = text.chars().take(MAX_LINE * 2 / 3).collect();
+    let tail: String = text.chars().skip(n - MAX_LINE / 4).collect();
+    format!(
+        "{head}… ({} characters) …{tail}",
+        n - MAX_LINE * 2 / 3 - MAX_LINE / 4
+    )
+}
+
+/// The longest line (in characters) a diagnostic echoes; a longer one is shown as an excerpt.
+pub const MAX_LINE: usize = 2_000;
+
+/// For a span on a line longer than [`MAX_LINE`]: a note with its place (`file:line:column`),
+/// the label and an excerpt around it.
+fn long_line(
+    file: &str,
+    source: &str,
+    span: std::ops::Range<usize>,
+    label: &str,
+) -> Option<String> {
+    let start = source[..span.start].rfind('\n').map_or(0, |i| i + 1);
+    let end = source[span.start..]
+        .find('\n')
+        .map_or(source.len(), |i| span.start + i);
+    let length = source[start..end].chars().count();
+    if length <= MAX_LINE {
+        return None;
+    }
+    let line = source[..start].matches('\n').count() + 1;
+    let column = source[start..span.start].chars().count() + 1;
+    let before: String = source[start..span.start]
+        .chars()
+        .rev()
+        .take(40)
+        .collect::<Vec<_>>()
+        .into_iter()
+        .rev()
+        .collect();
+    let after: String = source[span.start..end].chars().take(40).collect();
+    let label = if label.is_empty() {
+        String::new()
+    } else {
+        format!("{label}; ")
+    };
+    Some(format!(
+        "at {file}:{line}:{column} ({label}a line of {length} characters, shown around the place): …{before}⟨here⟩{after}…"
+    ))
 }
 
 /// The most diagnostics one report shows; the rest are counted (a file of 100 000 errors

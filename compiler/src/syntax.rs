@@ -181,6 +181,7 @@ pub fn parse(source: &str) -> Result<File, Diagnostic> {
         return Err(Diagnostic::error(Span::new(0, 0), "the file is too large")
             .note(format!("the limit is {MAX_SOURCE_BYTES} bytes")));
     }
+    check_control(source)?;
     check_nesting(source)?;
     let mut pairs = SdfParser::parse(Rule::file, source).map_err(|e| syntax_error(source, e))?;
     let file = pairs.next().expect("the `file` rule matched");
@@ -217,6 +218,32 @@ fn code_bytes(source: &str) -> impl Iterator<Item = (usize, u8)> + '_ {
 
 /// Refuses input nested deeper than [`MAX_NESTING`] brackets, or with longer runs of prefix
 /// minus signs, before the recursive parser sees it.
+/// A control character other than a tab or a line break (a NUL byte, an escape…) is an error at
+/// its place, named, rather than a syntax error with an invisible caret.
+fn check_control(source: &str) -> Result<(), Diagnostic> {
+    let Some((at, c)) = source
+        .char_indices()
+        .find(|&(_, c)| c.is_control() && !matches!(c, '\t' | '\n' | '\r'))
+    else {
+        return Ok(());
+    };
+    let name = match c {
+        '\0' => " (NUL)".to_string(),
+        '\u{1b}' => " (escape)".to_string(),
+        '\u{7f}' => " (delete)".to_string(),
+        _ => String::new(),
+    };
+    Err(Diagnostic::error(
+        Span::new(at, at + c.len_utf8()),
+        format!(
+            "a control character U+{:04X}{name} is not allowed in a scene",
+            c as u32
+        ),
+    )
+    .label("here")
+    .note("scene files are text: only tabs and line breaks of the control characters may appear"))
+}
+
 fn check_nesting(source: &str) -> Result<(), Diagnostic> {
     let mut depth = 0usize;
     let mut minus_run = 0usize;

@@ -441,7 +441,15 @@ fn hostile_streams_end_cleanly() {
             "a".repeat(99_999)
         ),
     );
-    assert_eq!(sdfc(&["check", long.as_str()]).status.code(), Some(1));
+    let out = sdfc(&["check", long.as_str()]);
+    assert_eq!(out.status.code(), Some(1));
+    // …and the report stays short: the name and the line are shown by excerpts.
+    assert!(
+        out.stderr.len() < 4_000,
+        "{} bytes of diagnostics",
+        out.stderr.len()
+    );
+    assert!(String::from_utf8_lossy(&out.stderr).contains(":2:1"));
     // A UTF-8 byte-order mark, as Windows editors write it, is accepted.
     let bom = write(&d, "bom.sdf", "\u{feff}sphere(1)\n");
     let out = sdfc(&["check", bom.as_str()]);
