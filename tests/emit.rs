@@ -235,3 +235,51 @@ fn let_names_cannot_collide_with_reserved_words() {
         assert!(text.contains("let_main"), "{target:?}: no `let_main`");
     }
 }
+
+/// `--spirv-version`: every example, every entry, SPIR-V 1.0 (Vulkan 1.0; storage buffers by
+/// SPV_KHR_storage_buffer_storage_class), 1.3 (Vulkan 1.1) and 1.6 (Vulkan 1.3), each through
+/// `spirv-val` for the matching environment.
+#[test]
+fn every_spirv_version_validates_for_its_vulkan() {
+    if !have("spirv-val") {
+        eprintln!("spirv-val is not installed: skipped (CI installs it)");
+        return;
+    }
+    let dir = tempdir();
+    let mut checked = 0;
+    for path in sdfc_tests::examples() {
+        let scene = sdfc_tests::example(&path);
+        let stem = path.file_stem().unwrap().to_string_lossy().to_string();
+        for entry in ENTRIES {
+            let (module, info) = emit::module(&scene, entry, &Options::from_scene(&scene)).unwrap();
+            for (version, env) in [
+                ((1, 0), "vulkan1.0"),
+                ((1, 3), "vulkan1.1"),
+                ((1, 6), "vulkan1.3"),
+            ] {
+                let settings = emit::Settings {
+                    spirv_version: version,
+                };
+                let Ok(Output::Binary(words)) =
+                    emit::write_with(&module, &info, Target::Spirv, entry, &settings)
+                else {
+                    panic!("{stem} {entry:?}: no SPIR-V {version:?}");
+                };
+                assert_eq!(
+                    words[1] >> 8 & 0xffff,
+                    (version.0 as u32) << 8 | version.1 as u32
+                );
+                let f = dir.join(format!("{stem}-{entry:?}-{}{}.spv", version.0, version.1));
+                sdfc_tests::write_spirv(&f, &words);
+                run_tool(
+                    "spirv-val",
+                    &["--target-env", env],
+                    &f,
+                    &format!("{stem} {entry:?} {version:?}"),
+                );
+                checked += 1;
+            }
+        }
+    }
+    assert!(checked >= 100, "only {checked}");
+}

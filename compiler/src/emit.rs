@@ -79,6 +79,32 @@ pub fn write(
     target: Target,
     entry: Entry,
 ) -> Result<Output, InternalError> {
+    write_with(module, info, target, entry, &Settings::default())
+}
+
+/// Back-end settings a user may choose.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Settings {
+    /// SPIR-V version (major, minor): 1.0 to 1.6; 1.3 by default (Vulkan 1.1).
+    pub spirv_version: (u8, u8),
+}
+
+impl Default for Settings {
+    fn default() -> Settings {
+        Settings {
+            spirv_version: (1, 3),
+        }
+    }
+}
+
+/// [`write`] with chosen back-end settings.
+pub fn write_with(
+    module: &naga::Module,
+    info: &ModuleInfo,
+    target: Target,
+    entry: Entry,
+    settings: &Settings,
+) -> Result<Output, InternalError> {
     let err =
         |e: &dyn std::fmt::Display| InternalError(format!("the {target:?} back end failed: {e}"));
     let stage = match entry {
@@ -102,14 +128,14 @@ pub fn write(
                 incoming_ray_payload: None,
             });
             let info = validate(&m)?;
-            write(&m, &info, target, Entry::Compute)
+            write_with(&m, &info, target, Entry::Compute, settings)
         }
         Target::Wgsl => back::wgsl::write_string(module, info, back::wgsl::WriterFlags::empty())
             .map(Output::Text)
             .map_err(|e| err(&e)),
         Target::Spirv => {
             let options = back::spv::Options {
-                lang_version: (1, 3),
+                lang_version: settings.spirv_version,
                 ..Default::default()
             };
             let pipeline = (entry != Entry::Library).then(|| back::spv::PipelineOptions {

@@ -46,6 +46,10 @@ enum Command {
         /// Output file (default: standard output; SPIR-V needs a file).
         #[arg(short, long)]
         output: Option<PathBuf>,
+        /// SPIR-V version to write: 1.0 (Vulkan 1.0; the compute entry's storage buffers through
+        /// the SPV_KHR_storage_buffer_storage_class extension) to 1.6.
+        #[arg(long, value_enum, default_value = "1.3")]
+        spirv_version: SpirvVersion,
         #[command(flatten)]
         tracer: TracerArgs,
     },
@@ -112,6 +116,31 @@ enum Command {
     },
 }
 
+/// A SPIR-V version.
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum SpirvVersion {
+    #[value(name = "1.0")]
+    V10,
+    #[value(name = "1.1")]
+    V11,
+    #[value(name = "1.2")]
+    V12,
+    #[value(name = "1.3")]
+    V13,
+    #[value(name = "1.4")]
+    V14,
+    #[value(name = "1.5")]
+    V15,
+    #[value(name = "1.6")]
+    V16,
+}
+
+impl SpirvVersion {
+    fn pair(self) -> (u8, u8) {
+        (1, self as u8)
+    }
+}
+
 #[derive(Clone, Copy, clap::ValueEnum)]
 enum BackendArg {
     Auto,
@@ -170,12 +199,15 @@ pub fn run() -> i32 {
             target,
             entry,
             output,
+            spirv_version,
             tracer,
         } => crate::emit_cmd::run(
             &file,
-            target.into(),
-            entry.into(),
+            (target.into(), entry.into()),
             output.as_deref(),
+            &sdfc_compiler::emit::Settings {
+                spirv_version: spirv_version.pair(),
+            },
             &tracer,
         ),
         Command::Render {

@@ -9,9 +9,9 @@ use std::path::Path;
 /// Runs `sdfc emit`; returns the exit code.
 pub fn run(
     file: &Path,
-    target: Target,
-    entry: Entry,
+    (target, entry): (Target, Entry),
     output: Option<&Path>,
+    settings: &emit::Settings,
     tracer: &crate::cli::TracerArgs,
 ) -> i32 {
     let Some((name, _, mut scene)) = load_scene(file) else {
@@ -31,7 +31,7 @@ pub fn run(
         return 1;
     }
     let result = emit::module(&scene, entry, &options)
-        .and_then(|(m, info)| emit::write(&m, &info, target, entry));
+        .and_then(|(m, info)| emit::write_with(&m, &info, target, entry, settings));
     let out = match result {
         Ok(o) => o,
         Err(e) => {

@@ -589,3 +589,48 @@ fn output_paths_are_written_whole_and_never_replaced() {
         .collect();
     assert!(leftovers.is_empty(), "temporary files left: {leftovers:?}");
 }
+
+/// `emit --spirv-version` writes the version asked for (the word after the magic number), and
+/// refuses one that does not exist.
+#[test]
+fn emit_writes_the_spirv_version_asked_for() {
+    let d = scratch("spirv-version");
+    let scene = write(&d, "s.sdf", "sphere(1)\n");
+    for (flag, word) in [
+        ("1.0", 0x0001_0000u32),
+        ("1.3", 0x0001_0300),
+        ("1.6", 0x0001_0600),
+    ] {
+        let out_path = d.join(format!("s{flag}.spv"));
+        let out = sdfc(&[
+            "emit",
+            scene.as_str(),
+            "--target",
+            "spirv",
+            "--spirv-version",
+            flag,
+            "-o",
+            out_path.to_str().unwrap(),
+        ]);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let bytes = std::fs::read(&out_path).unwrap();
+        assert_eq!(
+            u32::from_le_bytes(bytes[4..8].try_into().unwrap()),
+            word,
+            "{flag}"
+        );
+    }
+    let out = sdfc(&[
+        "emit",
+        scene.as_str(),
+        "--target",
+        "spirv",
+        "--spirv-version",
+        "2.0",
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+}
