@@ -278,4 +278,9 @@ fn random_implicit_bodies_check_quickly() {
     println!(
         "{cases} implicit bodies: {valid} valid, slowest check {slowest:?}; NaN from a possible overflow at {overflowed} points (first: {first:?})"
     );
+    // The generator must keep making valid bodies, or the NaN count above says nothing.
+    assert!(
+        valid * 5 >= cases,
+        "only {valid} of {cases} bodies are valid"
+    );
 }

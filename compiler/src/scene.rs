@@ -87,6 +87,8 @@ pub struct Node {
     /// Whether |∇f| = λ almost everywhere (exact primitives under operators that keep it, no
     /// annotation): then f/λ < ε means the surface is within ε, to first order.
     pub unit_gradient: bool,
+    /// Whether f/λ is the distance to its surface outside it (see `Operator::keeps_exact`).
+    pub exact: bool,
     /// Primitive (and `implicit`) evaluations one evaluation of this node costs, counting every
     /// use of a shared `let` and every copy a `repeat` looks at.
     pub evaluations: f64,

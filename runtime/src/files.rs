@@ -13,8 +13,10 @@ pub fn write_file(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     if let Ok(meta) = std::fs::symlink_metadata(path)
         && !meta.file_type().is_file()
     {
+        // (`create`: a link to a file that does not exist yet makes it.)
         let mut f = std::fs::OpenOptions::new()
             .write(true)
+            .create(true)
             .truncate(true)
             .open(path)?;
         f.write_all(bytes)?;
@@ -24,20 +26,21 @@ pub fn write_file(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
     };
-    let mut tmp = tempfile::Builder::new()
-        .prefix(".sdfc-")
-        .suffix(".partial")
-        .tempfile_in(dir)?;
+    // Created with 0666 less the umask, as any new file; a replaced file keeps its mode.
+    #[cfg(unix)]
+    let mode = {
+        use std::os::unix::fs::PermissionsExt;
+        std::fs::Permissions::from_mode(0o666)
+    };
+    let mut builder = tempfile::Builder::new();
+    builder.prefix(".sdfc-").suffix(".partial");
+    #[cfg(unix)]
+    builder.permissions(mode);
+    let mut tmp = builder.tempfile_in(dir)?;
     tmp.write_all(bytes)?;
     tmp.as_file().sync_all()?;
-    // The temporary file is private (0600); the result gets the usual permissions, or keeps
-    // those of the file it replaces.
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::PermissionsExt;
-        let mode = std::fs::metadata(path).map_or(0o644, |m| m.permissions().mode());
-        tmp.as_file()
-            .set_permissions(std::fs::Permissions::from_mode(mode))?;
+    if let Ok(old) = std::fs::metadata(path) {
+        tmp.as_file().set_permissions(old.permissions())?;
     }
     tmp.persist(path).map_err(|e| e.error)?;
     Ok(())

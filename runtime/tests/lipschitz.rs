@@ -140,36 +140,48 @@ fn repeat_of_an_asymmetric_child_is_the_union_of_its_copies() {
     let spacing = 1.5;
     let mut report = String::new();
     for (name, child) in children {
-        let repeated = compile(&format!(
-            "{camera}repeat(({spacing}, 0, 0), 5) {{ {child} }}\n"
-        ));
         let copies: Vec<String> = (-2..=2)
             .map(|k| format!("{child} |> translate(({}, 0, 0))", k as f64 * spacing))
             .collect();
-        let union = compile(&format!("{camera}union {{\n{}\n}}\n", copies.join("\n")));
-        let (a, b) = (masks(&repeated), masks(&union));
-        // Pixels where the two differ while the f64 truth hits (one of them has a hole); where
-        // the truth misses, the one that hits only passes within ε (an ε-graze, allowed).
-        let differ = (0..a.gpu.len())
-            .filter(|&i| a.gpu[i] != b.gpu[i] && a.truth[i])
-            .count();
-        let grazes = (0..a.gpu.len())
-            .filter(|&i| a.gpu[i] != b.gpu[i] && !a.truth[i])
-            .count();
-        let truth_differ = (0..a.truth.len())
-            .filter(|&i| a.truth[i] != b.truth[i])
-            .count();
-        report += &format!(
-            "{name}: repeat {} px, union {} px, truth {} / {} px; GPU masks differ on {differ} (+ {grazes} ε-grazes), truths on {truth_differ}\n",
-            count(&a.gpu),
-            count(&b.gpu),
-            count(&a.truth),
-            count(&b.truth)
-        );
-        assert_eq!(truth_differ, 0, "the f64 fields differ:\n{report}");
-        assert_eq!(differ, 0, "{report}");
-        assert_eq!(beyond_one_pixel(&a.gpu, &a.truth), 0, "{report}");
-        assert_eq!(beyond_one_pixel(&a.truth, &a.gpu), 0, "{report}");
+        let union = format!("union {{\n{}\n}}", copies.join("\n"));
+        // Five copies, and copies without end clipped to the same five cells (a box of ±3.5:
+        // the copies at ±4.5 reach no nearer than 3.7).
+        for (repeat, other) in [
+            (
+                format!("repeat(({spacing}, 0, 0), 5) {{ {child} }}"),
+                union.clone(),
+            ),
+            (
+                format!("intersect {{ repeat(({spacing}, 0, 0)) {{ {child} }}  box((7, 4, 4)) }}"),
+                format!("intersect {{ {union}  box((7, 4, 4)) }}"),
+            ),
+        ] {
+            let repeated = compile(&format!("{camera}{repeat}\n"));
+            let union = compile(&format!("{camera}{other}\n"));
+            let (a, b) = (masks(&repeated), masks(&union));
+            // Pixels where the two differ while the f64 truth hits (one of them has a hole); where
+            // the truth misses, the one that hits only passes within ε (an ε-graze, allowed).
+            let differ = (0..a.gpu.len())
+                .filter(|&i| a.gpu[i] != b.gpu[i] && a.truth[i])
+                .count();
+            let grazes = (0..a.gpu.len())
+                .filter(|&i| a.gpu[i] != b.gpu[i] && !a.truth[i])
+                .count();
+            let truth_differ = (0..a.truth.len())
+                .filter(|&i| a.truth[i] != b.truth[i])
+                .count();
+            report += &format!(
+                "{name}: repeat {} px, union {} px, truth {} / {} px; GPU masks differ on {differ} (+ {grazes} ε-grazes), truths on {truth_differ}\n",
+                count(&a.gpu),
+                count(&b.gpu),
+                count(&a.truth),
+                count(&b.truth)
+            );
+            assert_eq!(truth_differ, 0, "the f64 fields differ:\n{report}");
+            assert_eq!(differ, 0, "{report}");
+            assert_eq!(beyond_one_pixel(&a.gpu, &a.truth), 0, "{report}");
+            assert_eq!(beyond_one_pixel(&a.truth, &a.gpu), 0, "{report}");
+        }
     }
     println!("{report}");
 }

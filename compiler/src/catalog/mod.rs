@@ -361,6 +361,22 @@ pub struct Ctx {
     pub child_bound: Vec<Bound>,
     /// Each child's reflection symmetry per axis (see [`Primitive::mirror`]).
     pub child_mirror: Vec<[bool; 3]>,
+    /// Whether each child's field, divided by its λ, is the distance to its surface outside it
+    /// (see [`Operator::keeps_exact`]).
+    pub child_exact: Vec<bool>,
+}
+
+impl Ctx {
+    /// The bound of the children's surfaces grown by `by`, where the part that grows is
+    /// {f/λ < by}: that lies within `by` of a child's surface only where the child's f/λ is its
+    /// distance; otherwise it is not known (a loose field is small far from its surface).
+    pub fn grown_if_exact(&self, b: Bound, by: f64) -> Bound {
+        if self.child_exact.iter().all(|&e| e) {
+            b.grown(by)
+        } else {
+            Bound::INFINITE
+        }
+    }
 }
 
 impl Ctx {
@@ -489,6 +505,9 @@ pub struct Operator {
     /// (its own λ then: f/λ is a distance to first order, so the tracer's hit test f/λ < ε
     /// needs no confirmation; see `crate::trace::careful`).
     pub unit_gradient: fn(&Ctx) -> bool,
+    /// Whether the result's f/λ is the distance to its surface outside it when every child's
+    /// is (union, moves, uniform scale, `repeat`, `round`, `onion`).
+    pub keeps_exact: fn(&Ctx) -> bool,
     /// How materials propagate.
     pub materials: MatRule,
     /// The same field in naga IR.

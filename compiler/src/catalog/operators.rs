@@ -167,6 +167,7 @@ pub static OPERATORS: &[Operator] = &[
         name: "union",
         materials: MatRule::Nearest,
         unit_gradient: KEEPS,
+        keeps_exact: KEEPS,
         lower: ir::union,
         doc: "Union of its shapes: min (λ = 1 after dividing each child by its λ); the nearest \
               shape's material.",
@@ -181,6 +182,7 @@ pub static OPERATORS: &[Operator] = &[
         name: "intersect",
         materials: MatRule::Farthest,
         unit_gradient: KEEPS,
+        keeps_exact: SHORTENS,
         lower: ir::intersect,
         doc: "Intersection: max (λ = 1); the material of the shape that bounds the result.",
         params: &[],
@@ -194,6 +196,7 @@ pub static OPERATORS: &[Operator] = &[
         name: "subtract",
         materials: MatRule::Cut,
         unit_gradient: KEEPS,
+        keeps_exact: SHORTENS,
         lower: ir::subtract,
         doc: "The first shape minus the others: max(a, −b) (λ = 1); cut faces take the cutter's \
               material.",
@@ -208,6 +211,7 @@ pub static OPERATORS: &[Operator] = &[
         name: "complement",
         materials: MatRule::Pass,
         unit_gradient: KEEPS,
+        keeps_exact: SHORTENS,
         lower: ir::complement,
         doc: "Inside out: −f (λ unchanged).",
         params: &[],
@@ -221,13 +225,14 @@ pub static OPERATORS: &[Operator] = &[
         name: "smooth_union",
         materials: MatRule::Nearest,
         unit_gradient: SHORTENS,
+        keeps_exact: SHORTENS,
         lower: ir::smooth_union,
         doc: "Union blended over `radius` by IQ's polynomial smooth minimum (λ = 1); the nearer \
               shape's material.",
         params: &[req("radius", Ty::Length)],
         arity: Arity::AtLeast(1),
         lipschitz: ONE,
-        bound: |c| all(c).grown(c.num(0) / 4.0),
+        bound: |c| c.grown_if_exact(all(c), c.num(0) / 4.0),
         mirror: EVERY,
         eval: |c, p, child| fold(c, p, child, |a, b| smin(a, b, c.num(0))),
     },
@@ -235,6 +240,7 @@ pub static OPERATORS: &[Operator] = &[
         name: "smooth_intersect",
         materials: MatRule::Farthest,
         unit_gradient: SHORTENS,
+        keeps_exact: SHORTENS,
         lower: ir::smooth_intersect,
         doc: "Intersection blended over `radius` (λ = 1).",
         params: &[req("radius", Ty::Length)],
@@ -248,6 +254,7 @@ pub static OPERATORS: &[Operator] = &[
         name: "smooth_subtract",
         materials: MatRule::Cut,
         unit_gradient: SHORTENS,
+        keeps_exact: SHORTENS,
         lower: ir::smooth_subtract,
         doc: "The first shape minus the others, blended over `radius` (λ = 1).",
         params: &[req("radius", Ty::Length)],
@@ -261,6 +268,7 @@ pub static OPERATORS: &[Operator] = &[
         name: "mix",
         materials: MatRule::Weighted,
         unit_gradient: SHORTENS,
+        keeps_exact: SHORTENS,
         lower: ir::mix,
         doc: "Metamorphosis (Liktor Fig. 9): (1 − `weight`)·a + `weight`·b of the raw fields, \
               λ = (1 − w)·λa + w·λb; the heavier shape's material (the second at w = 0.5).",
@@ -278,6 +286,7 @@ pub static OPERATORS: &[Operator] = &[
         name: "blob",
         materials: MatRule::Nearest,
         unit_gradient: SHORTENS,
+        keeps_exact: SHORTENS,
         lower: ir::blob,
         doc: "Blob field (Liktor §2): `threshold` − Σ (1 − (dᵢ/`radius`)²)³ over the children's \
               distances dᵢ ≥ 0, divided by its slope bound n·1.7173/`radius`, and the distance to \
@@ -288,7 +297,7 @@ pub static OPERATORS: &[Operator] = &[
         ],
         arity: Arity::AtLeast(1),
         lipschitz: ONE,
-        bound: |c| all(c).grown(c.num(0)),
+        bound: |c| c.grown_if_exact(all(c), c.num(0)),
         mirror: EVERY,
         eval: |c, p, child| {
             let (radius, threshold) = (c.num(0), c.num(1));
@@ -308,6 +317,7 @@ pub static OPERATORS: &[Operator] = &[
         name: "translate",
         materials: MatRule::Pass,
         unit_gradient: KEEPS,
+        keeps_exact: KEEPS,
         lower: ir::translate,
         doc: "Moves its shape by `offset` (λ unchanged). `s at (x, y, z)` is the same.",
         params: &[req("offset", Ty::Vec3)],
@@ -321,6 +331,7 @@ pub static OPERATORS: &[Operator] = &[
         name: "rotate",
         materials: MatRule::Pass,
         unit_gradient: KEEPS,
+        keeps_exact: KEEPS,
         lower: ir::rotate,
         doc: "Rotates its shape by `angle` about `axis` through the origin (λ unchanged).",
         params: &[req("axis", Ty::Axis), req("angle", Ty::Angle)],
@@ -334,6 +345,7 @@ pub static OPERATORS: &[Operator] = &[
         name: "scale",
         materials: MatRule::Pass,
         unit_gradient: |c| c.vec(0).min_element() == c.vec(0).max_element(),
+        keeps_exact: |c| c.vec(0).min_element() == c.vec(0).max_element(),
         lower: ir::scale,
         doc: "Scales its shape by `factor` (a number, or a vector for non-uniform scale): \
               f(p/s)·min(s), λ unchanged (p/s stretches slopes by at most 1/min(s), which the \
@@ -352,6 +364,7 @@ pub static OPERATORS: &[Operator] = &[
         name: "repeat",
         materials: MatRule::Pass,
         unit_gradient: KEEPS,
+        keeps_exact: KEEPS,
         lower: ir::repeat,
         doc: "Repeats its shape every `spacing` along each axis (0: not on that axis), `count` \
               copies per axis (0: without end); the neighbouring cells are evaluated too where \
@@ -386,6 +399,7 @@ pub static OPERATORS: &[Operator] = &[
         name: "mirror",
         materials: MatRule::Pass,
         unit_gradient: KEEPS,
+        keeps_exact: SHORTENS,
         lower: ir::mirror,
         doc: "Mirrors the half-space in front of the plane through the origin with normal `axis` \
               onto the back (λ unchanged).",
@@ -416,6 +430,7 @@ pub static OPERATORS: &[Operator] = &[
         name: "twist",
         materials: MatRule::Pass,
         unit_gradient: SHORTENS,
+        keeps_exact: SHORTENS,
         lower: ir::twist,
         doc: "Twists its shape about the y axis by `rate` radians per unit of y; normalised by \
               the Jacobian bound (a + √(a²+4))/2, a = |rate|·ρ, inside the bounding cylinder of \
@@ -443,6 +458,7 @@ pub static OPERATORS: &[Operator] = &[
         name: "bend",
         materials: MatRule::Pass,
         unit_gradient: SHORTENS,
+        keeps_exact: SHORTENS,
         lower: ir::bend,
         doc: "Bends its shape in the xy plane by `rate` radians per unit of x; normalised by the \
               Jacobian bound 1 + |rate|·ρ inside the bounding cylinder about z (λ = 1).",
@@ -468,12 +484,13 @@ pub static OPERATORS: &[Operator] = &[
         name: "round",
         materials: MatRule::Pass,
         unit_gradient: KEEPS,
+        keeps_exact: KEEPS,
         lower: ir::round,
         doc: "Rounds its shape outward by `radius`: f/λ − r (λ = 1).",
         params: &[req("radius", Ty::Length)],
         arity: Arity::Exactly(1),
         lipschitz: ONE,
-        bound: |c| c.child_bound[0].grown(c.num(0)),
+        bound: |c| c.grown_if_exact(c.child_bound[0], c.num(0)),
         mirror: CHILD,
         eval: |c, p, child| norm(c, child, 0, p) - c.num(0),
     },
@@ -481,19 +498,21 @@ pub static OPERATORS: &[Operator] = &[
         name: "onion",
         materials: MatRule::Pass,
         unit_gradient: KEEPS,
+        keeps_exact: KEEPS,
         lower: ir::onion,
         doc: "Hollows its shape into a shell of `thickness`: |f/λ| − t (λ = 1).",
         params: &[req("thickness", Ty::Length)],
         arity: Arity::Exactly(1),
         lipschitz: ONE,
-        bound: |c| c.child_bound[0].grown(c.num(0)),
+        bound: |c| c.grown_if_exact(c.child_bound[0], c.num(0)),
         mirror: CHILD,
         eval: |c, p, child| norm(c, child, 0, p).abs() - c.num(0),
     },
     Operator {
         name: "elongate",
         materials: MatRule::Pass,
-        unit_gradient: KEEPS,
+        unit_gradient: |c| (0..3).all(|i| c.vec(0)[i] == 0.0 || c.child_mirror[0][i]),
+        keeps_exact: SHORTENS,
         lower: ir::elongate,
         doc: "Stretches its shape by inserting `amount` of straight extent along each axis at the \
               origin: f(p − clamp(p, −h, h)), h = amount/2 (λ unchanged).",

@@ -129,6 +129,7 @@ impl Checker<'_> {
                 // The annotation's λ may exceed the true slope: f/λ is then no longer a
                 // distance to first order.
                 self.nodes[n].unit_gradient = false;
+                self.nodes[n].exact = false;
                 self.nodes[n].span = e.span;
                 Some(Value::Shape(n))
             }
@@ -393,6 +394,7 @@ impl Checker<'_> {
                 child_lambda: Vec::new(),
                 child_bound: Vec::new(),
                 child_mirror: Vec::new(),
+                child_exact: Vec::new(),
             };
             let lambda = (prim.lipschitz)(&ctx);
             let bound = (prim.bound)(&ctx);

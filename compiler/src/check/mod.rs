@@ -305,6 +305,13 @@ impl<'a> Checker<'a> {
             }
             NodeKind::Implicit { .. } => false,
         };
+        let exact = match &kind {
+            NodeKind::Primitive { prim, .. } => prim.exact,
+            NodeKind::Operator { op, ctx, children } => {
+                (op.keeps_exact)(ctx) && children.iter().all(|&c| self.nodes[c].exact)
+            }
+            NodeKind::Implicit { .. } => false,
+        };
         let evaluations = match &kind {
             NodeKind::Operator { op, ctx, children } => {
                 let each: f64 = children.iter().map(|&c| self.nodes[c].evaluations).sum();
@@ -342,6 +349,7 @@ impl<'a> Checker<'a> {
         self.nodes.push(Node {
             mirror,
             unit_gradient,
+            exact,
             evaluations,
             kind,
             span,
@@ -368,6 +376,7 @@ impl<'a> Checker<'a> {
             child_lambda: children.iter().map(|&c| self.nodes[c].lambda).collect(),
             child_bound: children.iter().map(|&c| self.nodes[c].bound).collect(),
             child_mirror: children.iter().map(|&c| self.nodes[c].mirror).collect(),
+            child_exact: children.iter().map(|&c| self.nodes[c].exact).collect(),
         };
         let lambda = (op.lipschitz)(&ctx);
         let bound = (op.bound)(&ctx);

@@ -126,6 +126,15 @@ fn grad_inner(
                         };
                         (va.powi(n), ga.map(|x| d.mul(x)))
                     }
+                    Field::Const(n) if n < 0.0 && va.has_zero() => {
+                        undefined.get_or_insert_with(|| {
+                            format!(
+                                "`^ {n}` may divide by zero (the base ranges over [{}, {}])",
+                                va.lo, va.hi
+                            )
+                        });
+                        (Interval::ALL, [Interval::ALL; 3])
+                    }
                     _ => {
                         // A negative base is defined only for the whole exponents the
                         // lowering multiplies out (|n| ≤ 64); `pow` is NaN or undefined there.

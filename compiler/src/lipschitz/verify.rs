@@ -58,6 +58,10 @@ impl Effort {
 /// rounding stay far below it; the smallest planted error in the tests is ×1.05).
 const MARGIN: f64 = 1.01;
 
+/// Most points recorded per annotated node (a node used through shared `let`s or many `repeat`
+/// copies is evaluated many times per point).
+const MAX_RECORDED: usize = 20_000;
+
 /// Most scene-node evaluations the frustum sampling may spend (large scenes get fewer points).
 const WORK: usize = 20_000_000;
 
@@ -74,7 +78,7 @@ pub fn verify_annotations(scene: &Scene, effort: Effort) -> Vec<Diagnostic> {
     if annotated.is_empty() {
         return Vec::new();
     }
-    let seen = where_rays_evaluate(scene, &annotated, &budget, reachable.len());
+    let seen = where_rays_evaluate(scene, &annotated, &budget);
     let mut out = Vec::new();
     for (k, &id) in annotated.iter().enumerate() {
         let mut rng = Rng(0x9e37_79b9_7f4a_7c15 ^ (k as u64 + 1));
@@ -92,12 +96,13 @@ fn where_rays_evaluate(
     scene: &Scene,
     annotated: &[NodeId],
     budget: &Budget,
-    nodes: usize,
 ) -> HashMap<NodeId, Vec<DVec3>> {
     let mut seen: HashMap<NodeId, Vec<DVec3>> = annotated.iter().map(|&id| (id, vec![])).collect();
     let view = View::new(&scene.camera, 1280, 720);
     let far = scene.trace.max_distance;
-    let world = budget.world.min(WORK / nodes.max(1)).max(64);
+    // Shared `let`s and `repeat` copies multiply what one point costs (and records).
+    let cost = scene.root_node().evaluations.max(1.0) as usize + scene.nodes.len();
+    let world = budget.world.min(WORK / cost).max(64);
     let mut rng = Rng(0x5eed_1a55);
     for i in 0..world {
         let rd = view.ray(rng.unit() * 1280.0, rng.unit() * 720.0);
@@ -110,7 +115,9 @@ fn where_rays_evaluate(
         };
         let p = view.eye + rd * t;
         eval::node_seen(scene, scene.root, p, &mut |id, q| {
-            if let Some(v) = seen.get_mut(&id) {
+            if let Some(v) = seen.get_mut(&id)
+                && v.len() < MAX_RECORDED
+            {
                 v.push(q);
             }
         });
