@@ -179,7 +179,7 @@ pub fn run() -> i32 {
             .err()
             .unwrap_or(0),
         Command::Check { file: None, .. } => {
-            eprintln!("error: give a scene file to check (or `-` for standard input)");
+            say!("error: give a scene file to check (or `-` for standard input)");
             1
         }
         Command::Check {
@@ -387,7 +387,7 @@ pub fn exit_code(result: Result<(), String>) -> i32 {
         Ok(()) => 0,
         Err(e) => {
             if !e.is_empty() {
-                eprintln!("{e}");
+                say!("{e}");
             }
             1
         }
@@ -399,7 +399,7 @@ pub fn load_scene(path: &Path) -> Option<(String, String, sdfc_compiler::scene::
     let (name, source) = match read_source(path) {
         Ok(x) => x,
         Err(e) => {
-            eprintln!("{e}");
+            say!("{e}");
             return None;
         }
     };
@@ -410,7 +410,7 @@ pub fn load_scene(path: &Path) -> Option<(String, String, sdfc_compiler::scene::
     if let Some(scene) = &scene {
         diagnostics.extend(lipschitz::verify_annotations(scene, Effort::Fast));
     }
-    eprint!("{}", diag::render(&diagnostics, &name, &source));
+    say_raw!("{}", diag::render(&diagnostics, &name, &source));
     scene.map(|s| (name, source, s))
 }
 
@@ -466,7 +466,7 @@ pub fn print_out(text: &str) -> Result<(), i32> {
         Ok(()) => Ok(()),
         Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Err(0),
         Err(e) => {
-            eprintln!("error: cannot write to standard output: {e}");
+            say!("error: cannot write to standard output: {e}");
             Err(1)
         }
     }
@@ -476,7 +476,7 @@ fn check_command(path: &Path, effort: Effort) -> i32 {
     let (name, source) = match read_source(path) {
         Ok(x) => x,
         Err(e) => {
-            eprintln!("{e}");
+            say!("{e}");
             return 1;
         }
     };
@@ -487,7 +487,7 @@ fn check_command(path: &Path, effort: Effort) -> i32 {
     if let Some(scene) = &scene {
         diagnostics.extend(lipschitz::verify_annotations(scene, effort));
     }
-    eprint!("{}", diag::render(&diagnostics, &name, &source));
+    say_raw!("{}", diag::render(&diagnostics, &name, &source));
     let Some(scene) = scene else { return 1 };
     let warnings = diagnostics
         .iter()

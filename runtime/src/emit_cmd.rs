@@ -20,12 +20,12 @@ pub fn run(
     let options = match tracer.settle(&mut scene) {
         Ok(o) => o,
         Err(e) => {
-            eprintln!("{e}");
+            say!("{e}");
             return 1;
         }
     };
     if options.passes && entry != Entry::Compute {
-        eprintln!(
+        say!(
             "error: `--passes` is for the compute entry (the runtime's passes hand t from one to the next)"
         );
         return 1;
@@ -35,8 +35,8 @@ pub fn run(
     let out = match result {
         Ok(o) => o,
         Err(e) => {
-            eprintln!("internal compiler error while compiling `{name}`: {}", e.0);
-            eprintln!(
+            say!("internal compiler error while compiling `{name}`: {}", e.0);
+            say!(
                 "note: this is a bug in sdfc, not in the scene; please report it with the scene file"
             );
             return 2;
@@ -50,7 +50,7 @@ pub fn run(
         Some(path) => write_whole(path, &bytes),
         None => {
             if matches!(out, Output::Binary(_)) && std::io::stdout().is_terminal() {
-                eprintln!("error: SPIR-V is binary; write it to a file with `-o FILE`");
+                say!("error: SPIR-V is binary; write it to a file with `-o FILE`");
                 return 1;
             }
             let mut stdout = std::io::stdout().lock();
@@ -58,7 +58,7 @@ pub fn run(
                 Ok(()) => 0,
                 Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => 0,
                 Err(e) => {
-                    eprintln!("error: cannot write to standard output: {e}");
+                    say!("error: cannot write to standard output: {e}");
                     1
                 }
             }
@@ -71,7 +71,7 @@ pub fn write_whole(path: &Path, bytes: &[u8]) -> i32 {
     match sdfc::files::write_file(path, bytes) {
         Ok(()) => 0,
         Err(e) => {
-            eprintln!("error: cannot write `{}`: {e}", path.display());
+            say!("error: cannot write `{}`: {e}", path.display());
             1
         }
     }

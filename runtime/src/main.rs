@@ -1,5 +1,22 @@
 //! The `sdfc` command line: check, emit, render and bench scene files.
 
+/// `eprintln!` that never panics: a full or closed standard error (`2>/dev/full`) drops the
+/// message instead of ending the command with a panic.
+macro_rules! say {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stderr(), $($arg)*);
+    }};
+}
+
+/// `eprint!` that never panics (see `say!`).
+macro_rules! say_raw {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        let _ = write!(std::io::stderr(), $($arg)*);
+    }};
+}
+
 mod bench_cmd;
 mod cli;
 mod emit_cmd;

@@ -54,8 +54,8 @@ pub fn run(args: &RenderArgs) -> i32 {
     match render(args) {
         // An invalid module is a bug in sdfc: exit 2, as `emit` does.
         Err(e) if e.starts_with(INTERNAL) => {
-            eprintln!("{e}");
-            eprintln!(
+            say!("{e}");
+            say!(
                 "note: this is a bug in sdfc, not in the scene; please report it with the scene file"
             );
             2
@@ -93,7 +93,7 @@ fn render(args: &RenderArgs) -> Result<(), String> {
     if cost >= SLOW_COMPILE {
         // The driver compiles the shader at the first dispatch, silently; on a software
         // driver a large scene takes minutes (a flat union of 2 048 spheres: 21 s on lavapipe).
-        eprintln!(
+        say!(
             "compiling the shader for {} ({cost:.0} primitive evaluations per step: this can take a while)…",
             gpu.info.name
         );

@@ -398,6 +398,18 @@ fn hostile_streams_end_cleanly() {
         err.contains("error: cannot write to standard output"),
         "{err}"
     );
+    // A full standard error: the diagnostics are lost, the exit code is still 1 (it panicked).
+    let bad = write(&d, "bad.sdf", "sphere(-1)\n");
+    let full = std::fs::OpenOptions::new()
+        .write(true)
+        .open("/dev/full")
+        .unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_sdfc"))
+        .args(["check", bad.as_str()])
+        .stderr(full)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1));
     // A closed pipe (`sdfc check x.sdf | head -0`): ends quietly, no panic.
     let mut child = Command::new(env!("CARGO_BIN_EXE_sdfc"))
         .args(["check", "--list"])
