@@ -182,6 +182,7 @@ pub fn parse(source: &str) -> Result<File, Diagnostic> {
             .note(format!("the limit is {MAX_SOURCE_BYTES} bytes")));
     }
     check_control(source)?;
+    check_comments(source)?;
     check_nesting(source)?;
     let mut pairs = SdfParser::parse(Rule::file, source).map_err(|e| syntax_error(source, e))?;
     let file = pairs.next().expect("the `file` rule matched");
@@ -242,6 +243,33 @@ fn check_control(source: &str) -> Result<(), Diagnostic> {
     )
     .label("here")
     .note("scene files are text: only tabs and line breaks of the control characters may appear"))
+}
+
+/// A `/*` comment that is never closed is an error at its opening, saying so (it was a syntax
+/// error expecting an expression where the comment began).
+fn check_comments(source: &str) -> Result<(), Diagnostic> {
+    let bytes = source.as_bytes();
+    let mut i = 0;
+    while i + 1 < bytes.len() {
+        match (bytes[i], bytes[i + 1]) {
+            (b'/', b'/') => {
+                i = source[i..].find('\n').map_or(bytes.len(), |n| i + n);
+            }
+            (b'/', b'*') => match source[i + 2..].find("*/") {
+                Some(n) => i += n + 4,
+                None => {
+                    return Err(Diagnostic::error(
+                        Span::new(i, i + 2),
+                        "this comment is never closed",
+                    )
+                    .label("opened here")
+                    .help("close it with `*/`"));
+                }
+            },
+            _ => i += 1,
+        }
+    }
+    Ok(())
 }
 
 fn check_nesting(source: &str) -> Result<(), Diagnostic> {
