@@ -340,7 +340,7 @@ fn mandelbulb(p: DVec3, power: f64, iterations: u32) -> f64 {
     let mut dr = 1.0;
     let mut r = z.length();
     for _ in 0..iterations {
-        r = z.length();
+        // (r is |z|: set before the loop and at the end of each iteration.)
         if r > 2.0 {
             break;
         }

@@ -256,8 +256,8 @@ pub fn mandelbulb(b: &mut FnBuilder, p: Ex, a: &[Ex]) -> Ex {
     let r = b.local("r", f32t, Some(r0));
     b.repeat("i", iterations, |b| {
         let zv = b.load(z);
-        let rv = b.length(zv);
-        b.store(r, rv);
+        // |z|, kept from the end of the last iteration (or |p| at the start), not recomputed.
+        let rv = b.load(r);
         let two = b.f(2.0);
         let out = b.gt(rv, two);
         b.break_if(out);
