@@ -6,6 +6,8 @@
 //! IQ's polynomial smooth minimum is a convex combination of its operands' gradients). Operators
 //! that only move the domain keep the child's λ, or raise it by their Jacobian's norm.
 
+pub use super::warp::twist_stretch;
+use super::warp::{bend_point, twist_point, warp, warp_lambda};
 use super::{Arity, Bound, ChildEval, Ctx, MatRule, Operator, Ty, Val, opt, req};
 use crate::lower::ops as ir;
 use glam::DVec3;
@@ -103,63 +105,6 @@ pub fn falloff(s: f64) -> f64 {
 
 /// The steepest slope of [`falloff`], reached at s = 1/√5.
 pub const FALLOFF_SLOPE: f64 = 1.717_300_316_677_839_6;
-
-/// Largest singular value of the twist's Jacobian at distance ρ from the axis: with a = |k|ρ,
-/// JᵀJ has eigenvalues 1, and the two roots of s² − (2 + a²)s + 1, the larger being
-/// ((a + √(a² + 4)) / 2)².
-pub fn twist_stretch(rate: f64, rho: f64) -> f64 {
-    let a = rate.abs() * rho;
-    (a + (a * a + 4.0).sqrt()) / 2.0
-}
-
-/// A domain bend or twist. The child's surface lies inside the infinite cylinder of radius
-/// `rho_max` about the warp's axis (`radial` are the two coordinates across it), where the
-/// deformation stretches distances by at most `stretch`. A point outside is first projected
-/// radially onto the cylinder (a 1-Lipschitz map that brings it no nearer to anything inside),
-/// and the distance to the cylinder is a second bound: max(f(deform(proj p))/(λ·stretch),
-/// ρ − ρmax) is 1-Lipschitz and never exceeds the distance to the warped surface. With an
-/// unbounded child the raw field is returned (λ is then infinite and must be annotated).
-pub fn warp(
-    c: &Ctx,
-    child: ChildEval,
-    p: DVec3,
-    radial: [usize; 2],
-    rho_max: f64,
-    stretch: f64,
-    deform: impl Fn(DVec3) -> DVec3,
-) -> f64 {
-    if !rho_max.is_finite() {
-        return child(0, deform(p));
-    }
-    let rho = p[radial[0]].hypot(p[radial[1]]);
-    let mut q = p;
-    if rho > rho_max {
-        let s = rho_max / rho;
-        q[radial[0]] *= s;
-        q[radial[1]] *= s;
-    }
-    (child(0, deform(q)) / (c.child_lambda[0] * stretch)).max(rho - rho_max)
-}
-
-/// Twist about y by `rate`·y.
-pub fn twist_point(p: DVec3, rate: f64) -> DVec3 {
-    let (s, co) = (rate * p.y).sin_cos();
-    DVec3::new(co * p.x - s * p.z, p.y, s * p.x + co * p.z)
-}
-
-/// Bend in the xy plane by `rate`·x.
-pub fn bend_point(p: DVec3, rate: f64) -> DVec3 {
-    let (s, co) = (rate * p.x).sin_cos();
-    DVec3::new(co * p.x - s * p.y, s * p.x + co * p.y, p.z)
-}
-
-fn warp_lambda(c: &Ctx) -> f64 {
-    if c.child_bound[0].radius.is_finite() {
-        1.0
-    } else {
-        f64::INFINITY
-    }
-}
 
 /// Every operator of the language.
 pub static OPERATORS: &[Operator] = &[

@@ -312,35 +312,6 @@ impl<'a> Checker<'a> {
             }
             NodeKind::Implicit { .. } => false,
         };
-        let evaluations = match &kind {
-            NodeKind::Operator { op, ctx, children } => {
-                let each: f64 = children.iter().map(|&c| self.nodes[c].evaluations).sum();
-                let copies = if op.name == "repeat" {
-                    crate::catalog::repeat::Plan::new(ctx).copies()
-                } else {
-                    1.0
-                };
-                let total = each * copies;
-                if total > MAX_EVALUATIONS
-                    && children
-                        .iter()
-                        .all(|&c| self.nodes[c].evaluations <= MAX_EVALUATIONS)
-                {
-                    self.diags.push(
-                        Diagnostic::error(span, "this shape costs too many evaluations")
-                            .label(format!(
-                                "one evaluation of it evaluates {total:.0} primitives"
-                            ))
-                            .note(format!(
-                                "counting every use of a shared `let` and every copy a `repeat` looks at; the limit is {MAX_EVALUATIONS:.0} per evaluation of the field"
-                            ))
-                            .help("use a shape fewer times, or fewer copies"),
-                    );
-                }
-                total
-            }
-            _ => 1.0,
-        };
         let mirror = match &kind {
             NodeKind::Primitive { prim, ctx } => (prim.mirror)(ctx),
             NodeKind::Operator { op, ctx, .. } => (op.mirror)(ctx),
@@ -350,7 +321,8 @@ impl<'a> Checker<'a> {
             mirror,
             unit_gradient,
             exact,
-            evaluations,
+            // (An operator's is set by `operator_node`.)
+            evaluations: 1.0,
             kind,
             span,
             lambda,
@@ -380,22 +352,44 @@ impl<'a> Checker<'a> {
         };
         let lambda = (op.lipschitz)(&ctx);
         let bound = (op.bound)(&ctx);
-        if name == "repeat" {
-            self.check_repeat_cell(&ctx, span);
+        let copies = if name == "repeat" {
+            let copies = crate::catalog::repeat::Plan::new(&ctx).copies();
+            self.check_repeat_copies(&ctx, copies, span);
+            copies
+        } else {
+            1.0
+        };
+        let each: f64 = children.iter().map(|&c| self.nodes[c].evaluations).sum();
+        let evaluations = each * copies;
+        if evaluations > MAX_EVALUATIONS
+            && children
+                .iter()
+                .all(|&c| self.nodes[c].evaluations <= MAX_EVALUATIONS)
+        {
+            self.diags.push(
+                Diagnostic::error(span, "this shape costs too many evaluations")
+                    .label(format!(
+                        "one evaluation of it evaluates {evaluations:.0} primitives"
+                    ))
+                    .note(format!(
+                        "counting every use of a shared `let` and every copy a `repeat` looks at; the limit is {MAX_EVALUATIONS:.0} per evaluation of the field"
+                    ))
+                    .help("use a shape fewer times, or fewer copies"),
+            );
         }
-        self.push_node(
+        let id = self.push_node(
             NodeKind::Operator { op, ctx, children },
             lambda,
             bound,
             span,
-        )
+        )?;
+        self.nodes[id].evaluations = evaluations;
+        Some(id)
     }
 
     /// A `repeat` evaluates the copies that can be nearest (see `catalog::repeat`); a shape
     /// spanning many cells would need too many of them per evaluation: an error.
-    fn check_repeat_cell(&mut self, ctx: &Ctx, span: Span) {
-        let plan = crate::catalog::repeat::Plan::new(ctx);
-        let copies = plan.copies();
+    fn check_repeat_copies(&mut self, ctx: &Ctx, copies: f64, span: Span) {
         if copies > crate::catalog::repeat::MAX_COPIES as f64 {
             let b = ctx.child_bound[0];
             let size = b.hi - b.lo;

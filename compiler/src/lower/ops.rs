@@ -304,7 +304,7 @@ pub fn mirror(b: &mut FnBuilder, c: &Ctx, p: Ex, child: ChildLower) -> Ex {
     child(b, 0, q)
 }
 
-/// A warp as `catalog::operators::warp`: project onto the bounding cylinder, deform, normalise
+/// A warp as `catalog::warp::warp`: project onto the bounding cylinder, deform, normalise
 /// by `stretch`, and take the max with the distance to the cylinder.
 /// Where a warp's surface lies: the cylinder across coordinates `radial` of radius `rho_max`,
 /// inside which the deformation stretches distances by at most `stretch`.
@@ -351,7 +351,7 @@ fn warp(
 }
 
 /// Rotates coordinates `plane` of `p` by `rate` times coordinate `by` (twist: xz by y; bend: xy
-/// by x), as `catalog::operators::twist_point` and `bend_point`.
+/// by x), as `catalog::warp::twist_point` and `bend_point`.
 fn plane_rotation(b: &mut FnBuilder, p: Ex, plane: [usize; 2], by: usize, rate: f64) -> Ex {
     let mut c = b.xyz(p);
     let k = b.f(rate);

@@ -50,12 +50,7 @@ pub(super) fn add_rays(mb: &mut ModuleBuilder, tracer: &Tracer) {
         b.f(0.0)
     };
     let v = b.compose(v4, vec![t, s, fl, fourth]);
-    let ptr = b.expr(Expression::Access {
-        base: out,
-        index: i,
-    });
-    b.store(ptr, v);
-    let f = b.finish();
+    let f = List::store(b, (out, i), v);
     compute_main(mb, f, [RAYS_WORKGROUP, 1, 1]);
 }
 
@@ -85,12 +80,7 @@ pub(super) fn add_field(mb: &mut ModuleBuilder, map: Handle<Function>, lambda: f
     };
     let zero = b.f(0.0);
     let v = b.compose(v4, vec![d, raw, zero, zero]);
-    let ptr = b.expr(Expression::Access {
-        base: out,
-        index: i,
-    });
-    b.store(ptr, v);
-    let f = b.finish();
+    let f = List::store(b, (out, i), v);
     compute_main(mb, f, [FIELD_WORKGROUP, 1, 1]);
 }
 
@@ -135,5 +125,15 @@ impl<'m> List<'m> {
             out,
             v4,
         }
+    }
+
+    /// Stores `value` as element `i` of the output; the finished `main`.
+    fn store(mut b: FnBuilder, (out, i): (Ex, Ex), value: Ex) -> Function {
+        let ptr = b.expr(Expression::Access {
+            base: out,
+            index: i,
+        });
+        b.store(ptr, value);
+        b.finish()
     }
 }
