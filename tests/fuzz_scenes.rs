@@ -5,7 +5,7 @@
 
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngSeed};
-use sdfc_compiler::catalog::{Arity, OPERATORS, PRIMITIVES, Param, Ty};
+use sdfc_compiler::catalog::{PRIMITIVES, Param, Ty};
 use sdfc_compiler::emit::{self, Output, Target};
 use sdfc_compiler::lower::{Entry, tracer::Options};
 use sdfc_tests::Rng;
@@ -92,18 +92,7 @@ fn shape(r: &mut Rng, depth: usize) -> String {
             _ => s,
         };
     }
-    let op = r.pick(OPERATORS);
-    let n = match op.arity {
-        Arity::Exactly(k) => k,
-        Arity::AtLeast(k) => k + r.below(3),
-    };
-    let children: Vec<String> = (0..n).map(|_| shape(r, depth - 1)).collect();
-    format!(
-        "{}({}) {{\n{}\n}}",
-        op.name,
-        args(r, op.params),
-        children.join("\n")
-    )
+    sdfc_tests::operator_block(r, |r, op| args(r, op.params), |r| shape(r, depth - 1))
 }
 
 fn scene(seed: u64) -> String {

@@ -107,3 +107,25 @@ impl Rng {
         &items[self.below(items.len())]
     }
 }
+
+/// A random operator of the catalog applied to children, as source text: `name(args) { … }`,
+/// with `args` writing its arguments and `child` each child (shared by the fuzzers).
+pub fn operator_block(
+    r: &mut Rng,
+    args: impl Fn(&mut Rng, &sdfc_compiler::catalog::Operator) -> String,
+    mut child: impl FnMut(&mut Rng) -> String,
+) -> String {
+    use sdfc_compiler::catalog::{Arity, OPERATORS};
+    let op = r.pick(OPERATORS);
+    let n = match op.arity {
+        Arity::Exactly(k) => k,
+        Arity::AtLeast(k) => k + r.below(3),
+    };
+    let children: Vec<String> = (0..n).map(|_| child(r)).collect();
+    format!(
+        "{}({}) {{\n{}\n}}",
+        op.name,
+        args(r, op),
+        children.join("\n")
+    )
+}

@@ -12,7 +12,7 @@
 
 use glam::DVec3;
 use sdfc_compiler::catalog::repeat::{AxisPlan, Plan};
-use sdfc_compiler::catalog::{Arity, OPERATORS, PRIMITIVES, Param, Ty};
+use sdfc_compiler::catalog::{PRIMITIVES, Param, Ty};
 use sdfc_compiler::eval;
 use sdfc_compiler::scene::{NodeId, NodeKind, Scene};
 use sdfc_tests::Rng;
@@ -156,17 +156,10 @@ fn shape(r: &mut Rng, depth: usize) -> String {
             format!("{}({})", p.name, args(r, p.name, p.params))
         }
     } else {
-        let op = r.pick(OPERATORS);
-        let n = match op.arity {
-            Arity::Exactly(k) => k,
-            Arity::AtLeast(k) => k + r.below(3),
-        };
-        let children: Vec<String> = (0..n).map(|_| shape(r, depth - 1)).collect();
-        format!(
-            "{}({}) {{\n{}\n}}",
-            op.name,
-            args(r, op.name, op.params),
-            children.join("\n")
+        sdfc_tests::operator_block(
+            r,
+            |r, op| args(r, op.name, op.params),
+            |r| shape(r, depth - 1),
         )
     };
     // Children placed off-centre and turned, so that `repeat` and `mirror` see asymmetric shapes.
@@ -353,169 +346,4 @@ fn every_rule_is_a_true_bound_where_sampled() {
             "too few valid scenes: {valid} of {scenes}"
         );
     });
-}
-
-/// Each `implicit` case of the Lipschitz audit: an error with a span, or a bound that holds;
-/// never a hang (the periodic interval search past 2⁵³) and never a NaN field.
-#[test]
-fn implicit_domains_branch_cuts_and_huge_arguments() {
-    let refused = [
-        (
-            "implicit { sqrt(x) - 1 } @lipschitz(10)",
-            "not defined everywhere",
-        ),
-        (
-            "implicit { log(-1 - y^2) + length(x, y, z) } @lipschitz(10)",
-            "not defined everywhere",
-        ),
-        (
-            "implicit { log(x) + length(x, y, z) } @lipschitz(10)",
-            "not defined everywhere",
-        ),
-        (
-            "implicit { x ^ 1.5 + length(x, y, z) - 1 } @lipschitz(10)",
-            "not defined everywhere",
-        ),
-        (
-            "implicit { length(x, y, z) - 1 + 0.1 * atan2(y, -1 - x^2) }",
-            "jumps by 2π",
-        ),
-    ];
-    for (source, message) in refused {
-        let checked = sdfc_compiler::check::compile(source);
-        assert!(checked.scene.is_none(), "accepted: {source}");
-        let text = sdfc_compiler::diag::render(&checked.diagnostics, "t.sdf", source);
-        assert!(text.contains(message), "{source}:\n{text}");
-        assert!(text.contains("t.sdf:1:"), "no location:\n{text}");
-    }
-    // Whole powers of negative bases are defined (multiplied out, on the GPU too), and a square
-    // under a root is known to be ≥ 0.
-    for source in [
-        "implicit { length(x, y, z) - 1 + 0.001 * x ^ 17 } @lipschitz(1e9)",
-        "implicit { sqrt(x * x + z * z) - 1 } @lipschitz(1)",
-        "implicit { log(1 + y^2) + length(x, y, z) - 1 } @lipschitz(3)",
-    ] {
-        let scene = sdfc_tests::scene(source, source);
-        let d = eval::distance(&scene, DVec3::new(-1.3, 0.4, 0.2));
-        assert!(d.is_finite(), "{source}: {d}");
-    }
-    // Arguments past f64's integer resolution: the interval of cos is [-1, 1] at once.
-    let (done, wait) = std::sync::mpsc::channel();
-    std::thread::spawn(move || {
-        // (1e300 is beyond f32: an error of its own, but it must not hang either.)
-        for (big, fits) in [("1e17", true), ("3e16", true), ("1e300", false)] {
-            let source =
-                format!("implicit {{ length(x, y, z) - 1 + 0.1 * cos({big} + 0.1 * sin(x)) }}");
-            let checked = sdfc_compiler::check::compile(&source);
-            assert_eq!(checked.scene.is_some(), fits, "{source}");
-        }
-        done.send(()).unwrap();
-    });
-    wait.recv_timeout(std::time::Duration::from_secs(20))
-        .expect("checking cos of a huge argument finishes (it hung before)");
-}
-
-/// A tag on a shape that already has a material does not replace it (the innermost wins, as
-/// the README says), and says so.
-#[test]
-fn the_innermost_material_tag_wins() {
-    let source = "material red { color #c00 }\nmaterial blue { color #00c }\n(sphere(0.7) : red) : blue\nbox(0.3) : blue at (2, 0, 0)";
-    let checked = sdfc_compiler::check::compile(source);
-    let scene = checked.scene.expect("compiles");
-    let red = scene
-        .materials
-        .iter()
-        .position(|m| m.name == "red")
-        .unwrap() as u32;
-    let blue = scene
-        .materials
-        .iter()
-        .position(|m| m.name == "blue")
-        .unwrap() as u32;
-    assert_eq!(
-        eval::sample(&scene, DVec3::new(0.0, 0.0, -0.9)).mat,
-        Some(red)
-    );
-    assert_eq!(
-        eval::sample(&scene, DVec3::new(2.0, 0.0, -0.4)).mat,
-        Some(blue)
-    );
-    assert!(
-        checked
-            .diagnostics
-            .iter()
-            .any(|d| d.message.contains("no effect"))
-    );
-}
-
-/// The annotation corpus (`tests/lipschitz/`, its README says how each constant was derived):
-/// every too-small annotation is caught by the thorough check with a warning located at the
-/// annotated shape, no correct one is flagged, and neither is any example. The quick check that
-/// `render` and `emit` run is reported (and must catch most).
-#[test]
-fn the_annotation_check_finds_planted_errors_and_only_those() {
-    use sdfc_compiler::lipschitz::{Effort, verify_annotations};
-    let dir = sdfc_tests::root().join("tests/lipschitz");
-    let mut tally: BTreeMap<(&str, &str), usize> = BTreeMap::new();
-    let mut missed = Vec::new();
-    for kind in ["wrong", "right"] {
-        let mut files: Vec<_> = std::fs::read_dir(dir.join(kind))
-            .expect("corpus folder")
-            .map(|e| e.expect("entry").path())
-            .filter(|p| p.extension().is_some_and(|e| e == "sdf"))
-            .collect();
-        files.sort();
-        for path in files {
-            let source = std::fs::read_to_string(&path).expect("read");
-            let expect = source.lines().next().unwrap_or_default();
-            assert_eq!(expect, format!("// expect: {kind}"), "{}", path.display());
-            let scene = sdfc_tests::scene(&path.display().to_string(), &source);
-            let annotated_line = source
-                .lines()
-                .position(|l| l.contains("@lipschitz") && !l.trim_start().starts_with("//"))
-                .expect("an annotation");
-            for (effort, name) in [(Effort::Fast, "quick"), (Effort::Thorough, "thorough")] {
-                let found: Vec<_> = verify_annotations(&scene, effort)
-                    .into_iter()
-                    .filter(|d| d.message.contains("too small"))
-                    .collect();
-                for d in &found {
-                    let line = source[..d.span.start].matches('\n').count();
-                    assert!(
-                        line <= annotated_line,
-                        "{}: the warning is on line {} but the annotation on {}",
-                        path.display(),
-                        line + 1,
-                        annotated_line + 1
-                    );
-                }
-                let flagged = !found.is_empty();
-                *tally.entry((kind, name)).or_default() += usize::from(flagged);
-                if kind == "wrong" && name == "thorough" && !flagged {
-                    missed.push(path.display().to_string());
-                }
-                assert!(
-                    kind == "wrong" || !flagged,
-                    "{} ({name}): a correct annotation was flagged: {}",
-                    path.display(),
-                    found[0].label
-                );
-            }
-        }
-    }
-    println!("flagged per (corpus, check): {tally:?}");
-    assert!(missed.is_empty(), "the thorough check missed {missed:?}");
-    assert!(
-        tally[&("wrong", "thorough")] >= 30,
-        "the corpus has at least 30 planted errors"
-    );
-    assert!(
-        tally[&("wrong", "quick")] * 10 >= tally[&("wrong", "thorough")] * 9,
-        "the quick check catches too few"
-    );
-    for path in sdfc_tests::examples() {
-        let scene = sdfc_tests::example(&path);
-        let flags = verify_annotations(&scene, Effort::Thorough);
-        assert!(flags.is_empty(), "{}: {}", path.display(), flags[0].message);
-    }
 }
