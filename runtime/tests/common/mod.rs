@@ -8,6 +8,7 @@ use sdfc_compiler::lower::{Entry, tracer::Options};
 use sdfc_compiler::scene::{Method, Scene, Trace};
 use sdfc_compiler::trace::{self, Traced};
 use std::path::PathBuf;
+use std::process::{Command, Output};
 
 /// The example scene files, sorted.
 pub fn examples() -> Vec<PathBuf> {
@@ -131,4 +132,34 @@ impl Safety {
             }
         }
     }
+}
+
+/// Runs the `sdfc` binary with `args`.
+pub fn sdfc(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_sdfc"))
+        .args(args)
+        .output()
+        .expect("run sdfc")
+}
+
+/// The workspace root.
+pub fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .unwrap()
+        .to_path_buf()
+}
+
+/// A fresh folder under the system's temporary one, by test name.
+pub fn scratch(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("sdfc-cli-{}-{name}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// Writes `text` to `dir/name`; its path.
+pub fn write(dir: &std::path::Path, name: &str, text: &str) -> String {
+    let p = dir.join(name);
+    std::fs::write(&p, text).unwrap();
+    p.display().to_string()
 }
