@@ -1,0 +1,175 @@
+//! Code-generation changes keep the pictures: every example rendered with its own tracer (and
+//! with each of the five tracers) against frames recorded before the change, in
+//! `tests/golden/` — hit masks equal, depth within the hit threshold, normals and materials
+//! the same.
+//!
+//! The recorded frames are re-written with `SDFC_GOLDEN=write cargo test --release --test
+//! golden`, which is only right *before* a change that must not alter pictures.
+
+use sdfc::gpu::Frame;
+use sdfc_compiler::emit;
+use sdfc_compiler::lower::{Entry, tracer::Options};
+use sdfc_compiler::scene::{Epsilon, Method, Scene};
+use sdfc_compiler::view::View;
+mod common;
+use common::{compile, examples, gpu, with_method};
+use std::path::PathBuf;
+
+const W: u32 = 64;
+const H: u32 = 36;
+
+/// What is recorded per pixel: depth (−1 for a miss), the normal's components rounded to
+/// 1/1000, the material id.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Pixel {
+    depth: f32,
+    normal: [i16; 3],
+    material: u16,
+}
+
+const BYTES: usize = 12;
+
+fn pixels(frame: &Frame) -> Vec<Pixel> {
+    (0..frame.depth.len())
+        .map(|i| Pixel {
+            depth: frame.depth[i],
+            normal: [0, 1, 2].map(|k| (frame.normal[i][k] * 1000.0).round() as i16),
+            material: frame.material[i] as u16,
+        })
+        .collect()
+}
+
+fn encode(px: &[Pixel]) -> Vec<u8> {
+    let mut out = Vec::with_capacity(px.len() * BYTES);
+    for p in px {
+        out.extend(p.depth.to_le_bytes());
+        for n in p.normal {
+            out.extend(n.to_le_bytes());
+        }
+        out.extend(p.material.to_le_bytes());
+    }
+    out
+}
+
+fn decode(bytes: &[u8]) -> Vec<Pixel> {
+    bytes
+        .chunks_exact(BYTES)
+        .map(|c| {
+            let i16at = |k: usize| i16::from_le_bytes([c[k], c[k + 1]]);
+            Pixel {
+                depth: f32::from_le_bytes(c[..4].try_into().unwrap()),
+                normal: [i16at(4), i16at(6), i16at(8)],
+                material: u16::from_le_bytes([c[10], c[11]]),
+            }
+        })
+        .collect()
+}
+
+fn golden(name: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/golden")
+        .join(format!("{name}.bin"))
+}
+
+/// Every example with its own tracer, and the five tracers on three of them.
+fn cases() -> Vec<(String, Scene)> {
+    let mut out = Vec::new();
+    for path in examples() {
+        let stem = path.file_stem().unwrap().to_string_lossy().to_string();
+        let scene = compile(&std::fs::read_to_string(&path).unwrap());
+        if ["composition", "mandelbulb", "gem"].contains(&stem.as_str()) {
+            for (m, word) in [
+                (Method::Basic, "basic"),
+                (Method::Relaxed, "relaxed"),
+                (Method::Enhanced, "enhanced"),
+                (Method::Hybrid, "hybrid"),
+                (Method::Auto, "auto"),
+            ] {
+                if m == scene.trace.method {
+                    continue;
+                }
+                let mut s = scene.clone();
+                s.trace = with_method(&scene, m);
+                // The example's own budget and threshold, another method.
+                s.trace.steps = scene.trace.steps;
+                s.trace.epsilon = scene.trace.epsilon;
+                s.trace.max_distance = scene.trace.max_distance;
+                out.push((format!("{stem}.{word}"), s));
+            }
+        }
+        out.push((stem, scene));
+    }
+    out
+}
+
+#[test]
+fn code_generation_keeps_every_picture() {
+    let gpu = gpu();
+    let write = std::env::var("SDFC_GOLDEN").is_ok_and(|v| v == "write");
+    let mut report = String::new();
+    let mut failures = Vec::new();
+    for (name, scene) in cases() {
+        let view = View::new(&scene.camera, W, H);
+        let (module, _) = emit::module(&scene, Entry::Compute, &Options::from_scene(&scene))
+            .unwrap_or_else(|e| panic!("{name}: {}", e.0));
+        let frame = gpu.render(&module, &view, None, |_, _| {}).unwrap();
+        let now = pixels(&frame);
+        let file = golden(&name);
+        if write {
+            std::fs::create_dir_all(file.parent().unwrap()).unwrap();
+            std::fs::write(&file, encode(&now)).unwrap();
+            continue;
+        }
+        let before = decode(&std::fs::read(&file).unwrap_or_else(|e| {
+            panic!(
+                "{}: {e} (record with SDFC_GOLDEN=write before a change)",
+                file.display()
+            )
+        }));
+        assert_eq!(before.len(), now.len(), "{name}: size");
+        let (mut mask, mut depth, mut normal, mut material, mut worst) = (0, 0, 0, 0, 0.0f64);
+        for (a, b) in before.iter().zip(&now) {
+            if (a.depth >= 0.0) != (b.depth >= 0.0) {
+                mask += 1;
+                continue;
+            }
+            if a.depth < 0.0 {
+                continue;
+            }
+            let t = a.depth as f64;
+            // The hit threshold at t (the distance at which the tracer may stop).
+            let eps = match scene.trace.epsilon {
+                Epsilon::Pixel => view.pixel * t,
+                Epsilon::Absolute(e) => e,
+            };
+            let dt = (b.depth as f64 - t).abs();
+            worst = worst.max(dt / eps);
+            if dt > 2.0 * eps + 1e-6 * t {
+                depth += 1;
+            }
+            let dn = (0..3)
+                .map(|k| (a.normal[k] as i32 - b.normal[k] as i32).abs())
+                .max()
+                .unwrap();
+            if dn > 20 {
+                normal += 1;
+            }
+            if a.material != b.material {
+                material += 1;
+            }
+        }
+        let line = format!(
+            "{name}: {mask} mask, {depth} depth, {normal} normal (> 0.02), {material} material differences; worst |Δt| {worst:.2} ε\n"
+        );
+        if mask + depth + normal + material > 0 {
+            failures.push(line.clone());
+        }
+        report += &line;
+    }
+    println!("{report}");
+    assert!(
+        failures.is_empty(),
+        "pictures changed:\n{}",
+        failures.concat()
+    );
+}
