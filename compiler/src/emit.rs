@@ -108,7 +108,7 @@ pub fn write_with(
     let err =
         |e: &dyn std::fmt::Display| InternalError(format!("the {target:?} back end failed: {e}"));
     let stage = match entry {
-        Entry::Compute | Entry::Rays | Entry::Field => naga::ShaderStage::Compute,
+        Entry::Compute | Entry::Rays | Entry::Field | Entry::Trace => naga::ShaderStage::Compute,
         _ => naga::ShaderStage::Fragment,
     };
     match target {

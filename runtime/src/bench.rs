@@ -1,6 +1,8 @@
 //! Measuring the speed/accuracy trade of the tracers (Bálint & Valasek §5): every tracer ×
-//! step budget rendered on the GPU and compared with the f64 ground truth.
+//! step budget traced on the GPU and compared with the f64 ground truth; the trace alone and
+//! the whole frame timed separately, with modules prepared before anything is timed.
 
+use crate::frames::{Layout, Prepared, Ray, Source, Timing};
 use crate::gpu::Gpu;
 use sdfc_compiler::emit;
 use sdfc_compiler::lower::{Entry, tracer::Options};
@@ -9,22 +11,33 @@ use sdfc_compiler::scene::{Scene, Trace};
 use sdfc_compiler::view::View;
 use serde::Serialize;
 
-/// One tracer at one step budget.
+/// One tracer at one step budget (and number of multi-resolution passes).
 #[derive(Clone, Debug, Serialize)]
 pub struct Cell {
     /// Tracer name.
     pub tracer: String,
     /// Step budget per pixel.
     pub steps: u32,
-    /// Median wall time of the dispatches over the timed renders (after one untimed warm-up
-    /// render), seconds.
+    /// Multi-resolution passes (Bálint §4); 1 is the single pass `render` uses.
+    pub passes: u32,
+    /// Median time of a trace-only frame (the module writes t and the step count per pixel,
+    /// as a hand-written tracer does), seconds.
     pub seconds: f64,
-    /// Every repetition's time, seconds.
+    /// Every repetition's trace-only time, seconds.
     pub seconds_each: Vec<f64>,
-    /// Mean evaluations of the field per pixel (the tracer's; normals and shading excluded).
+    /// Median time of a full frame (trace, normals, materials, shading, five outputs),
+    /// seconds.
+    pub frame_seconds: f64,
+    /// Every repetition's full-frame time, seconds.
+    pub frame_seconds_each: Vec<f64>,
+    /// Mean evaluations of the field per pixel by the tracer.
     pub evals_mean: f64,
     /// Most evaluations any pixel's ray made.
     pub evals_max: u32,
+    /// Mean evaluations per pixel that a full frame adds after the trace: the normal's at
+    /// every hit, and the material's where the scene has materials (cone anti-aliasing's
+    /// shading of near misses not counted).
+    pub shading_evals_mean: f64,
     /// Mean squared difference to the ground truth's depth of the t where each ray stopped
     /// (hit, best candidate, budget out, or escaped: at most `max_distance`), over the pixels
     /// the ground truth hits.
@@ -33,6 +46,23 @@ pub struct Cell {
     pub mismatch: f64,
     /// `mse × seconds` (Bálint's error × time).
     pub error_x_time: f64,
+    /// A hand-written reference traced alternately with the trace-only module.
+    pub reference: Option<Reference>,
+}
+
+/// A hand-written reference shader measured next to a cell's trace-only module.
+#[derive(Clone, Debug, Serialize)]
+pub struct Reference {
+    /// Median time of its frame, seconds.
+    pub seconds: f64,
+    /// Every repetition's time, seconds.
+    pub seconds_each: Vec<f64>,
+    /// Mean evaluations per pixel it reports.
+    pub evals_mean: f64,
+    /// Share of pixels whose hit/miss agrees with sdfc's trace.
+    pub mask_agreement: f64,
+    /// sdfc's trace-only time over the reference's.
+    pub ratio: f64,
 }
 
 /// The ground truth of a view.
@@ -52,71 +82,182 @@ pub struct Truth {
     pub seconds: f64,
 }
 
-/// The scene compiled with `trace` for one pass, with the hand-over buffer of multi-resolution
-/// passes so that the t where every ray stopped, hit or not, is read back
-/// ([`crate::gpu::Frame::reached`]); and that single pass.
-fn compile(scene: &Scene, trace: Trace, view: &View) -> Result<(naga::Module, Vec<Pass>), String> {
+/// Normal evaluations of the field per hit in a full frame.
+const NORMAL_EVALUATIONS: f64 = sdfc_compiler::lower::tracer::NORMAL_EVALUATIONS as f64;
+
+/// What one cell measures.
+pub struct Job<'a> {
+    /// The scene.
+    pub scene: &'a Scene,
+    /// Tracer name and settings.
+    pub trace: (&'a str, Trace),
+    /// Multi-resolution passes (1: one).
+    pub passes: u32,
+    /// The view.
+    pub view: &'a View,
+    /// The ground truth's depth per pixel.
+    pub truth: &'a [Option<f64>],
+    /// Timed frames of each kind.
+    pub repeat: u32,
+    /// A hand-written reference (WGSL text, its file name) to time alternately with the
+    /// trace.
+    pub reference: Option<(&'a str, &'a str)>,
+}
+
+/// Compiles the scene with `trace` for `entry`, with passes if more than one is asked; and
+/// the schedule of passes (`None` for one).
+fn compile(
+    scene: &Scene,
+    trace: Trace,
+    passes: u32,
+    view: &View,
+    entry: Entry,
+) -> Result<(naga::Module, Option<Vec<Pass>>), String> {
     let mut s = scene.clone();
     s.trace = trace;
     let mut options = Options::from_scene(&s);
-    options.passes = true;
-    let (module, _) = emit::module(&s, Entry::Compute, &options)
+    options.passes = passes > 1;
+    let (module, _) = emit::module(&s, entry, &options)
         .map_err(|e| format!("internal compiler error: {}", e.0))?;
-    let one = passes::plan(&s, view.width, view.height, trace.steps, 1).unwrap_or_default();
-    Ok((module, one))
+    let plan = match passes {
+        0 | 1 => None,
+        n => Some(
+            passes::plan(&s, view.width, view.height, trace.steps, n as usize)
+                .ok_or_else(|| format!("error: there is no schedule of {n} passes"))?,
+        ),
+    };
+    Ok((module, plan))
 }
 
-/// Measures one cell: `repeat` renders, the median time, and the errors against `truth`.
-pub fn measure(
-    gpu: &Gpu,
-    scene: &Scene,
-    (name, trace): (&str, Trace),
-    view: &View,
-    truth: &[Option<f64>],
-    repeat: u32,
-) -> Result<Cell, String> {
-    // A first, untimed render: the driver compiles the shader at its first dispatch (lavapipe:
-    // LLVM, ~0.2 s, then cached), which is not the tracer's cost.
-    let (module, one) = compile(scene, trace, view)?;
-    let render = || gpu.render(&module, view, Some(&one), |_, _| {});
-    let frame = render()?;
-    let mut times = Vec::new();
-    for _ in 0..repeat.max(1) {
-        times.push(render()?.seconds);
-    }
-    let mut sorted = times.clone();
+/// The median of some times.
+fn median(times: &[f64]) -> f64 {
+    let mut sorted = times.to_vec();
     sorted.sort_by(f64::total_cmp);
-    let seconds = sorted[sorted.len() / 2];
+    sorted[sorted.len() / 2]
+}
+
+/// GPU time where the adapter has timestamps, wall time otherwise.
+fn seconds(t: Timing) -> f64 {
+    t.gpu.unwrap_or(t.wall)
+}
+
+/// Measures one cell: the trace-only module, the full frame and the reference (if any)
+/// prepared first, run once untimed, then `repeat` times each in turn; the median times, and
+/// the errors of the trace against `truth`.
+pub fn measure(gpu: &Gpu, job: &Job) -> Result<Cell, String> {
+    let (name, trace) = job.trace;
+    let with_passes = job.passes > 1;
+    let (trace_module, plan) = compile(job.scene, trace, job.passes, job.view, Entry::Trace)?;
+    let (full_module, _) = compile(job.scene, trace, job.passes, job.view, Entry::Compute)?;
+    let whole = u32::MAX;
+    let tracing = gpu.prepare(
+        Source::Module(&trace_module),
+        Layout::TraceOnly {
+            passes: with_passes,
+        },
+        job.view,
+        plan.as_deref(),
+        whole,
+    )?;
+    let full = gpu.prepare(
+        Source::Module(&full_module),
+        Layout::Full {
+            passes: with_passes,
+        },
+        job.view,
+        plan.as_deref(),
+        whole,
+    )?;
+    let reference = match job.reference {
+        Some((text, path)) => Some(gpu.prepare(
+            Source::Wgsl(text, path),
+            Layout::TraceOnly { passes: false },
+            job.view,
+            None,
+            whole,
+        )?),
+        None => None,
+    };
+    // Untimed first runs: whatever the driver does lazily at a first dispatch is not the
+    // tracer's cost.
+    let all: Vec<&Prepared> = [Some(&tracing), Some(&full), reference.as_ref()]
+        .into_iter()
+        .flatten()
+        .collect();
+    for p in &all {
+        p.run()?;
+    }
+    let mut times = vec![Vec::new(); all.len()];
+    for _ in 0..job.repeat.max(1) {
+        for (k, p) in all.iter().enumerate() {
+            times[k].push(seconds(p.run()?));
+        }
+    }
+    let rays = tracing.rays()?;
     let (mut sum, mut counted, mut mismatch) = (0.0, 0usize, 0usize);
-    for (i, gt) in truth.iter().enumerate() {
-        let hit = frame.depth[i] >= 0.0;
-        if gt.is_some() != hit {
+    for (ray, gt) in rays.iter().zip(job.truth) {
+        if gt.is_some() != ray.hit {
             mismatch += 1;
         }
         if let Some(t) = gt {
             // Where the ray stopped, hit or not (Bálint & Valasek: the depth each algorithm
             // reached), at most the far limit.
-            let reached = (frame.reached[i] as f64).min(trace.max_distance);
+            let reached = (ray.t as f64).min(trace.max_distance);
             sum += (reached - t).powi(2);
             counted += 1;
         }
     }
-    let n = truth.len().max(1) as f64;
-    let evals_mean = frame.steps.iter().map(|&s| s as f64).sum::<f64>() / n;
+    let n = job.truth.len().max(1) as f64;
+    let evals_mean = mean_steps(&rays);
+    let hits = rays.iter().filter(|r| r.hit).count() as f64;
+    let material = if job.scene.materials.is_empty() {
+        0.0
+    } else {
+        1.0
+    };
     let mse = if counted > 0 {
         sum / counted as f64
     } else {
         0.0
     };
+    let seconds = median(&times[0]);
+    let reference = match &reference {
+        Some(r) => {
+            let theirs = r.rays()?;
+            let agree = theirs
+                .iter()
+                .zip(&rays)
+                .filter(|(a, b)| a.hit == b.hit)
+                .count() as f64;
+            let their_seconds = median(&times[2]);
+            Some(Reference {
+                seconds: their_seconds,
+                seconds_each: times[2].clone(),
+                evals_mean: mean_steps(&theirs),
+                mask_agreement: agree / n,
+                ratio: seconds / their_seconds,
+            })
+        }
+        None => None,
+    };
     Ok(Cell {
         tracer: name.to_string(),
         steps: trace.steps,
+        passes: job.passes.max(1),
         seconds,
-        seconds_each: times,
+        seconds_each: times[0].clone(),
+        frame_seconds: median(&times[1]),
+        frame_seconds_each: times[1].clone(),
         evals_mean,
-        evals_max: frame.steps.iter().copied().max().unwrap_or(0),
+        evals_max: rays.iter().map(|r| r.steps).max().unwrap_or(0),
+        shading_evals_mean: hits * (NORMAL_EVALUATIONS + material) / n,
         mse,
         mismatch: mismatch as f64 / n,
         error_x_time: mse * seconds,
+        reference,
     })
+}
+
+fn mean_steps(rays: &[Ray]) -> f64 {
+    rays.iter().map(|r| r.steps as f64).sum::<f64>() / rays.len().max(1) as f64
 }

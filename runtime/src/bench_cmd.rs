@@ -37,6 +37,10 @@ pub struct BenchArgs<'a> {
     pub plot: Option<&'a Path>,
     /// Backend.
     pub backend: BackendChoice,
+    /// Multi-resolution passes: each cell is also measured with this many (1: not).
+    pub passes: u32,
+    /// A hand-written WGSL reference tracer to time alternately with each cell's trace.
+    pub reference: Option<&'a Path>,
 }
 
 /// Everything a run measured.
@@ -47,7 +51,7 @@ struct Report {
     height: u32,
     adapter: String,
     backend: String,
-    timing: &'static str,
+    timing: String,
     repeat: u32,
     truth: Truth,
     cells: Vec<Cell>,
@@ -56,7 +60,17 @@ struct Report {
     fastest: Option<Cell>,
 }
 
-const TIMING: &str = "wall time from the first dispatch's submission to the last one's completion (no timestamp queries), median of the repetitions";
+/// How frames were timed on `gpu`.
+fn timing(gpu: &Gpu) -> String {
+    let how = if gpu.timestamps() {
+        "GPU timestamp queries around each frame's passes"
+    } else {
+        "wall time from the frame's submission to its completion (the adapter has no timestamp queries)"
+    };
+    format!(
+        "{how}; modules compiled and pipelines built before timing, one dispatch per pass, one submission per frame, one untimed frame first; median of the repetitions"
+    )
+}
 
 /// Runs `sdfc bench`; returns the exit code.
 pub fn run(args: &BenchArgs) -> i32 {
@@ -84,6 +98,21 @@ fn bench(args: &BenchArgs) -> Result<(), String> {
             p.display()
         ));
     }
+    let reference = match args.reference {
+        Some(p) => Some((
+            std::fs::read_to_string(p)
+                .map_err(|e| format!("error: cannot read the reference `{}`: {e}", p.display()))?,
+            p.display().to_string(),
+        )),
+        None => None,
+    };
+    if !sdfc_compiler::passes::counts().contains(&(args.passes as usize)) {
+        return Err(format!(
+            "error: `--passes {}`: there are schedules for {:?} passes",
+            args.passes,
+            sdfc_compiler::passes::counts()
+        ));
+    }
     let Some((name, _, scene)) = load_scene(args.file) else {
         return Err(String::new());
     };
@@ -102,7 +131,10 @@ fn bench(args: &BenchArgs) -> Result<(), String> {
             }
             let trace =
                 with_overrides(scene.trace, Some(t), &values).map_err(|e| format!("error: {e}"))?;
-            cells.push((*t, trace));
+            cells.push((*t, trace, 1));
+            if args.passes > 1 {
+                cells.push((*t, trace, args.passes));
+            }
         }
     }
     let gpu = Gpu::new(args.backend)?;
@@ -123,19 +155,21 @@ fn bench(args: &BenchArgs) -> Result<(), String> {
         seconds: clock.elapsed().as_secs_f64(),
     };
     let mut measured = Vec::new();
-    for (i, (t, trace)) in cells.iter().enumerate() {
+    for (i, (t, trace, passes)) in cells.iter().enumerate() {
         if let Some(b) = &bar {
             b.set_position(i as u64 + 1);
             b.set_message(format!("{t}, {} steps", trace.steps));
         }
-        measured.push(bench::measure(
-            &gpu,
-            &scene,
-            (t, *trace),
-            &view,
-            &depth,
-            args.repeat,
-        )?);
+        let job = bench::Job {
+            scene: &scene,
+            trace: (t, *trace),
+            passes: *passes,
+            view: &view,
+            truth: &depth,
+            repeat: args.repeat,
+            reference: reference.as_ref().map(|(t, p)| (t.as_str(), p.as_str())),
+        };
+        measured.push(bench::measure(&gpu, &job)?);
     }
     if let Some(b) = bar {
         b.finish_and_clear();
@@ -153,7 +187,7 @@ fn bench(args: &BenchArgs) -> Result<(), String> {
         height: h,
         adapter: gpu.info.name.clone(),
         backend: gpu.backend(),
-        timing: TIMING,
+        timing: timing(&gpu),
         repeat: args.repeat,
         truth,
         cells: measured,
@@ -188,16 +222,24 @@ fn split(s: &str) -> Vec<&str> {
 }
 
 fn csv(cells: &[Cell]) -> String {
-    let mut out =
-        String::from("tracer,steps,seconds,evals_mean,evals_max,mse,mismatch,error_x_time\n");
+    let mut out = String::from(
+        "tracer,steps,passes,seconds,frame_seconds,evals_mean,evals_max,shading_evals_mean,mse,mismatch,error_x_time,reference_seconds,reference_evals_mean\n",
+    );
     for c in cells {
+        let (rs, re) = match &c.reference {
+            Some(r) => (r.seconds.to_string(), r.evals_mean.to_string()),
+            None => (String::new(), String::new()),
+        };
         out += &format!(
-            "{},{},{},{},{},{},{},{}\n",
+            "{},{},{},{},{},{},{},{},{},{},{},{rs},{re}\n",
             c.tracer,
             c.steps,
+            c.passes,
             c.seconds,
+            c.frame_seconds,
             c.evals_mean,
             c.evals_max,
+            c.shading_evals_mean,
             c.mse,
             c.mismatch,
             c.error_x_time
@@ -223,21 +265,47 @@ fn table(r: &Report) -> String {
         r.timing
     );
     out += &format!(
-        "{:<9} {:>6} {:>9} {:>10} {:>9} {:>11} {:>9} {:>11}\n",
-        "tracer", "steps", "time ms", "evals/px", "max", "depth MSE", "hit/miss", "err×time"
+        "{:<9} {:>6} {:>6} {:>9} {:>9} {:>10} {:>9} {:>9} {:>11} {:>9} {:>11}\n",
+        "tracer",
+        "steps",
+        "passes",
+        "trace ms",
+        "frame ms",
+        "evals/px",
+        "max",
+        "+shading",
+        "depth MSE",
+        "hit/miss",
+        "err×time"
     );
     for c in &r.cells {
         out += &format!(
-            "{:<9} {:>6} {:>9.3} {:>10.2} {:>9} {:>11.3e} {:>8.2}% {:>11.3e}\n",
+            "{:<9} {:>6} {:>6} {:>9.3} {:>9.3} {:>10.2} {:>9} {:>9.2} {:>11.3e} {:>8.2}% {:>11.3e}\n",
             c.tracer,
             c.steps,
+            c.passes,
             c.seconds * 1e3,
+            c.frame_seconds * 1e3,
             c.evals_mean,
             c.evals_max,
+            c.shading_evals_mean,
             c.mse,
             c.mismatch * 100.0,
             c.error_x_time
         );
+        if let Some(x) = &c.reference {
+            out += &format!(
+                "{:<9} {:>6} {:>6} {:>9.3} {:>9} {:>10.2}   hit/miss agree with sdfc's on {:.2}%; sdfc / reference = {:.3}×\n",
+                "  ref",
+                "",
+                "",
+                x.seconds * 1e3,
+                "",
+                x.evals_mean,
+                x.mask_agreement * 100.0,
+                x.ratio
+            );
+        }
     }
     if let Some(e) = r.target_error {
         out += &match &r.fastest {

@@ -113,6 +113,13 @@ enum Command {
         /// Graphics API: Vulkan, then GL, or one of them.
         #[arg(long, value_enum, default_value = "auto")]
         backend: BackendArg,
+        /// Also measure every cell with this many multi-resolution passes (Bálint §4): 2, 4 or 6.
+        #[arg(long, default_value_t = 1)]
+        passes: u32,
+        /// A hand-written WGSL tracer (runtime/benches/reference/README.md gives its interface)
+        /// timed alternately with each cell's trace, same view and size.
+        #[arg(long)]
+        reference: Option<PathBuf>,
     },
 }
 
@@ -240,6 +247,8 @@ pub fn run() -> i32 {
             csv,
             plot,
             backend,
+            passes,
+            reference,
         } => crate::bench_cmd::run(&crate::bench_cmd::BenchArgs {
             file: &file,
             tracers: &tracers,
@@ -253,6 +262,8 @@ pub fn run() -> i32 {
             csv,
             plot: plot.as_deref(),
             backend: backend.into(),
+            passes,
+            reference: reference.as_deref(),
         }),
     }
 }

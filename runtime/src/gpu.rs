@@ -1,5 +1,5 @@
-//! The wgpu runtime: a headless device (Vulkan, then GL), and a tiled dispatch of a compiled
-//! compute module that reads back colour, depth, normal, material and step count.
+//! The wgpu runtime: a headless device (Vulkan, then GL), a render of a compiled compute module
+//! (through `frames`), and the one-dispatch list entries of the tests.
 
 use sdfc_compiler::passes::Pass;
 use sdfc_compiler::view::View;
@@ -17,48 +17,20 @@ pub enum BackendChoice {
     Gl,
 }
 
-/// Largest image side accepted.
-pub const MAX_SIDE: u32 = 16384;
-
-/// Side of the square tiles a render is split into, so that no single dispatch runs long
-/// enough for a driver to kill it.
-pub const TILE: u32 = 256;
+pub use crate::frames::{Frame, MAX_SIDE, TILE};
+use crate::frames::{Layout, Source};
 
 /// A device and its queue.
 pub struct Gpu {
-    device: wgpu::Device,
-    queue: wgpu::Queue,
+    pub(crate) device: wgpu::Device,
+    pub(crate) queue: wgpu::Queue,
     /// What the adapter says it is.
     pub info: wgpu::AdapterInfo,
-    limits: wgpu::Limits,
+    pub(crate) limits: wgpu::Limits,
+    features: wgpu::Features,
     /// What went wrong outside an error scope, checked after every wait so that a render ends
     /// with it instead of a panic or a hang.
     trouble: Arc<Mutex<Trouble>>,
-}
-
-/// The per-pixel outputs of a render, row-major, y down.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Frame {
-    /// Width in pixels.
-    pub width: u32,
-    /// Height in pixels.
-    pub height: u32,
-    /// RGBA8, packed little-endian (r in the low byte).
-    pub color: Vec<u32>,
-    /// Distance t to the hit, −1 for a miss.
-    pub depth: Vec<f32>,
-    /// Unit normal (xyz) at the hit, 0 for a miss.
-    pub normal: Vec<[f32; 4]>,
-    /// Material id (0 default, i + 1 the i-th declared).
-    pub material: Vec<u32>,
-    /// Evaluations of the field.
-    pub steps: Vec<u32>,
-    /// Wall time of the dispatches: from the first tile's submission to the last one's
-    /// completion (pipeline creation, buffer set-up and read-back excluded).
-    pub seconds: f64,
-    /// With passes: the t where each pixel's ray stopped in the last pass, hit or not (the
-    /// hand-over buffer); empty otherwise.
-    pub reached: Vec<f32>,
 }
 
 const NO_ADAPTER: &str = "no GPU adapter was found (tried Vulkan and GL).\n\
@@ -88,9 +60,12 @@ impl Gpu {
                 continue;
             };
             let limits = adapter.limits();
+            // Timestamps where the adapter has them: `bench` times frames on the GPU with them.
+            let features = adapter.features() & wgpu::Features::TIMESTAMP_QUERY;
             let desc = wgpu::DeviceDescriptor {
                 label: Some("sdfc"),
                 required_limits: limits.clone(),
+                required_features: features,
                 ..Default::default()
             };
             let (device, queue) = pollster::block_on(adapter.request_device(&desc))
@@ -118,6 +93,7 @@ impl Gpu {
                 queue,
                 info: adapter.get_info(),
                 limits,
+                features,
                 trouble,
             });
         }
@@ -133,6 +109,11 @@ impl Gpu {
         format!("{:?}", self.info.backend).to_lowercase()
     }
 
+    /// Whether frames are timed with GPU timestamp queries.
+    pub fn timestamps(&self) -> bool {
+        self.features.contains(wgpu::Features::TIMESTAMP_QUERY)
+    }
+
     /// Renders a compiled compute module (`emit` with `Entry::Compute`) for `view`, tile by
     /// tile; with `passes` (a module compiled with `Options::passes`), pass by pass, each
     /// handing its t and step counts to the next (Bálint §4). `progress` is told how many
@@ -142,177 +123,20 @@ impl Gpu {
         module: &naga::Module,
         view: &View,
         passes: Option<&[Pass]>,
-        mut progress: impl FnMut(u32, u32),
+        progress: impl FnMut(u32, u32),
     ) -> Result<Frame, String> {
-        let (w, h) = (view.width, view.height);
-        let pixels = w as u64 * h as u64;
-        let largest = pixels * 16;
-        if w == 0
-            || h == 0
-            || w > MAX_SIDE
-            || h > MAX_SIDE
-            || largest > self.limits.max_storage_buffer_binding_size
-        {
-            return Err(format!(
-                "an image of {w}×{h} is too large for this device (at most {MAX_SIDE} per side and {} pixels)",
-                self.limits.max_storage_buffer_binding_size / 16
-            ));
-        }
-        let device = &self.device;
-        let validation = device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let memory = device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
-        let pipeline = self.pipeline(module);
-        let uniform = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("view"),
-            size: 112,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        let sizes = [4, 4, 16, 4, 4].map(|b| pixels * b);
-        let outputs: Vec<wgpu::Buffer> = sizes
-            .iter()
-            .map(|&size| {
-                device.create_buffer(&wgpu::BufferDescriptor {
-                    label: Some("output"),
-                    size,
-                    usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-                    mapped_at_creation: false,
-                })
-            })
-            .collect();
-        let layout = pipeline.get_bind_group_layout(0);
-        let mut entries = vec![wgpu::BindGroupEntry {
-            binding: 0,
-            resource: uniform.as_entire_binding(),
-        }];
-        for (i, b) in outputs.iter().enumerate() {
-            entries.push(wgpu::BindGroupEntry {
-                binding: i as u32 + 1,
-                resource: b.as_entire_binding(),
-            });
-        }
-        // Two buffers of (t, steps) per pixel, read and written alternately by the passes.
-        let hand_over: Vec<wgpu::Buffer> = (0..if passes.is_some() { 2 } else { 0 })
-            .map(|_| {
-                device.create_buffer(&wgpu::BufferDescriptor {
-                    label: Some("pass"),
-                    size: pixels * 8,
-                    usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-                    mapped_at_creation: false,
-                })
-            })
-            .collect();
-        let binds: Vec<wgpu::BindGroup> = (0..hand_over.len().max(1))
-            .map(|k| {
-                let mut entries = entries.clone();
-                if !hand_over.is_empty() {
-                    for (binding, b) in [(6, k), (7, 1 - k)] {
-                        entries.push(wgpu::BindGroupEntry {
-                            binding,
-                            resource: hand_over[b].as_entire_binding(),
-                        });
-                    }
-                }
-                device.create_bind_group(&wgpu::BindGroupDescriptor {
-                    label: Some("scene"),
-                    layout: &layout,
-                    entries: &entries,
-                })
-            })
-            .collect();
-        let one = [Pass {
-            view: *view,
-            budget: 0,
-            cone: 0.0,
-        }];
-        let schedule = passes.unwrap_or(&one);
-        let tiles = |v: &View| (v.width.div_ceil(TILE), v.height.div_ceil(TILE));
-        let total: u32 = schedule
-            .iter()
-            .map(|p| tiles(&p.view).0 * tiles(&p.view).1)
-            .sum();
-        let groups = TILE / sdfc_compiler::lower::tracer::WORKGROUP;
-        let mut done = 0;
-        let clock = std::time::Instant::now();
-        for (k, pass) in schedule.iter().enumerate() {
-            let field = match (passes, k.checked_sub(1)) {
-                (None, _) => [0.0; 4],
-                (Some(_), before) => {
-                    let (pw, ph) = before.map_or((0, 0), |b| {
-                        (schedule[b].view.width, schedule[b].view.height)
-                    });
-                    [pass.cone as f32, pass.budget as f32, pw as f32, ph as f32]
-                }
-            };
-            let (tx, ty) = tiles(&pass.view);
-            for j in 0..ty {
-                for i in 0..tx {
-                    let bytes = pass.view.uniform(i * TILE, j * TILE, field);
-                    self.queue.write_buffer(&uniform, 0, &bytes);
-                    let mut enc = device.create_command_encoder(&Default::default());
-                    {
-                        let mut cp = enc.begin_compute_pass(&Default::default());
-                        cp.set_pipeline(&pipeline);
-                        cp.set_bind_group(0, &binds[k % binds.len()], &[]);
-                        cp.dispatch_workgroups(groups, groups, 1);
-                    }
-                    self.queue.submit([enc.finish()]);
-                    self.wait()?;
-                    done += 1;
-                    progress(done, total);
-                }
-            }
-        }
-        let seconds = clock.elapsed().as_secs_f64();
-        if let Some(e) = pollster::block_on(memory.pop()) {
-            return Err(format!("the GPU ran out of memory: {e}"));
-        }
+        let layout = Layout::Full {
+            passes: passes.is_some(),
+        };
+        let prepared = self.prepare(Source::Module(module), layout, view, passes, TILE)?;
+        let validation = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let seconds = prepared.run_tiles(progress)?;
         if let Some(e) = pollster::block_on(validation.pop()) {
             return Err(format!(
                 "internal error: the GPU rejected the compiled shader: {e}"
             ));
         }
-        let reached = match hand_over.len() {
-            0 => Vec::new(),
-            _ => {
-                // The last pass wrote binding 7 of its bind group: buffer 1 − (its index % 2).
-                let last = (schedule.len() - 1) % 2;
-                let b = self.read(&hand_over[1 - last], pixels * 8)?;
-                b.chunks_exact(8)
-                    .map(|c| f32::from_le_bytes(c[..4].try_into().unwrap()))
-                    .collect()
-            }
-        };
-        let bytes: Vec<Vec<u8>> = outputs
-            .iter()
-            .zip(sizes)
-            .map(|(b, s)| self.read(b, s))
-            .collect::<Result<_, _>>()?;
-        let words = |b: &[u8]| -> Vec<u32> {
-            b.chunks_exact(4)
-                .map(|c| u32::from_le_bytes(c.try_into().unwrap()))
-                .collect()
-        };
-        let floats = |b: &[u8]| -> Vec<f32> {
-            b.chunks_exact(4)
-                .map(|c| f32::from_le_bytes(c.try_into().unwrap()))
-                .collect()
-        };
-        let n = floats(&bytes[2]);
-        Ok(Frame {
-            width: w,
-            height: h,
-            color: words(&bytes[0]),
-            depth: floats(&bytes[1]),
-            normal: n
-                .chunks_exact(4)
-                .map(|c| [c[0], c[1], c[2], c[3]])
-                .collect(),
-            material: words(&bytes[3]),
-            steps: words(&bytes[4]),
-            seconds,
-            reached,
-        })
+        prepared.frame(seconds)
     }
 
     /// Traces a list of rays with a module compiled for `Entry::Rays`: each ray is an origin,
@@ -427,7 +251,7 @@ impl Gpu {
             .collect())
     }
 
-    fn pipeline(&self, module: &naga::Module) -> wgpu::ComputePipeline {
+    pub(crate) fn pipeline(&self, module: &naga::Module) -> wgpu::ComputePipeline {
         let shader = self
             .device
             .create_shader_module(wgpu::ShaderModuleDescriptor {
@@ -445,8 +269,18 @@ impl Gpu {
             })
     }
 
+    /// A storage buffer the shader writes and the host reads back.
+    pub(crate) fn storage(&self, label: &str, size: u64) -> wgpu::Buffer {
+        self.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some(label),
+            size,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
+        })
+    }
+
     /// Waits for the queue, then reports any error or loss the device had meanwhile.
-    fn wait(&self) -> Result<(), String> {
+    pub(crate) fn wait(&self) -> Result<(), String> {
         self.device
             .poll(wgpu::PollType::wait_indefinitely())
             .map_err(|e| format!("the GPU device was lost or timed out: {e}"))?;
@@ -465,7 +299,7 @@ impl Gpu {
         self.device.destroy();
     }
 
-    fn read(&self, buffer: &wgpu::Buffer, size: u64) -> Result<Vec<u8>, String> {
+    pub(crate) fn read(&self, buffer: &wgpu::Buffer, size: u64) -> Result<Vec<u8>, String> {
         let staging = self.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("readback"),
             size,

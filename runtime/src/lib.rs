@@ -2,6 +2,7 @@
 
 pub mod bench;
 pub mod files;
+pub mod frames;
 pub mod gpu;
 pub mod images;
 pub mod plot;

@@ -14,6 +14,10 @@ fn example(name: &str) -> String {
     format!("{}/../examples/{name}", env!("CARGO_MANIFEST_DIR"))
 }
 
+fn reference(name: &str) -> String {
+    format!("{}/benches/reference/{name}", env!("CARGO_MANIFEST_DIR"))
+}
+
 #[test]
 fn bench_json_has_every_field() {
     let scene = example("composition.sdf");
@@ -31,6 +35,10 @@ fn bench_json_has_every_field() {
         "1",
         "--target-error",
         "1",
+        "--passes",
+        "2",
+        "--reference",
+        &reference("bare.wgsl"),
         "--json",
         "--plot",
         plot.to_str().unwrap(),
@@ -66,26 +74,41 @@ fn bench_json_has_every_field() {
     }
     assert_eq!(v["truth"]["pixels"], 640);
     let cells = v["cells"].as_array().unwrap();
-    assert_eq!(cells.len(), 4);
+    // Two tracers × two budgets, each in one pass and in two.
+    assert_eq!(cells.len(), 8);
     for c in cells {
         for key in [
             "tracer",
             "steps",
+            "passes",
             "seconds",
             "seconds_each",
+            "frame_seconds",
+            "frame_seconds_each",
             "evals_mean",
             "evals_max",
+            "shading_evals_mean",
             "mse",
             "mismatch",
             "error_x_time",
+            "reference",
         ] {
             assert!(c.get(key).is_some(), "no `{key}` in {c}");
         }
         let evals = c["evals_mean"].as_f64().unwrap();
         let steps = c["steps"].as_f64().unwrap();
-        assert!(evals > 0.0 && evals <= steps, "{c}");
+        // With passes, a pixel counts the coarse passes' steps at its ancestors too.
+        assert!(evals > 0.0 && evals <= 2.0 * steps, "{c}");
         assert!(c["mse"].as_f64().unwrap().is_finite());
+        assert!(c["shading_evals_mean"].as_f64().unwrap() > 0.0, "{c}");
+        // The bare reference traces nothing: no evaluations, no hits (the composition's floor
+        // fills most of the picture, so its hit masks cannot agree everywhere).
+        let r = &c["reference"];
+        assert_eq!(r["evals_mean"].as_f64(), Some(0.0), "{c}");
+        assert!(r["mask_agreement"].as_f64().unwrap() < 0.9, "{c}");
+        assert_eq!(r["seconds_each"].as_array().unwrap().len(), 1);
     }
+    assert_eq!(cells.iter().filter(|c| c["passes"] == 2).count(), 4);
     let svg = std::fs::read_to_string(&plot).expect("plot written");
     assert!(svg.contains("<svg") && svg.contains("enhanced"));
     let _ = std::fs::remove_file(plot);
@@ -110,9 +133,11 @@ fn bench_csv_and_table() {
     let mut lines = text.lines();
     assert_eq!(
         lines.next(),
-        Some("tracer,steps,seconds,evals_mean,evals_max,mse,mismatch,error_x_time")
+        Some(
+            "tracer,steps,passes,seconds,frame_seconds,evals_mean,evals_max,shading_evals_mean,mse,mismatch,error_x_time,reference_seconds,reference_evals_mean"
+        )
     );
-    assert!(lines.next().unwrap().starts_with("auto,16,"));
+    assert!(lines.next().unwrap().starts_with("auto,16,1,"));
     let o = sdfc(&[&["bench", &scene][..], &common].concat());
     let text = String::from_utf8_lossy(&o.stdout);
     assert!(
@@ -137,6 +162,14 @@ fn bench_refuses_bad_input() {
         ),
         (vec!["--plot", "x.pdf"], "give a `.svg` or `.png` file"),
         (vec!["--size", "0x3"], "empty"),
+        (
+            vec!["--passes", "3"],
+            "`--passes 3`: there are schedules for",
+        ),
+        (
+            vec!["--reference", "/nonexistent.wgsl"],
+            "cannot read the reference",
+        ),
     ] {
         let size: &[&str] = if args[0] == "--size" {
             &[]
@@ -148,4 +181,31 @@ fn bench_refuses_bad_input() {
         assert_eq!(o.status.code(), Some(1), "{args:?}: {err}");
         assert!(err.contains(message), "{args:?}: {err}");
     }
+}
+
+#[test]
+fn a_reference_that_does_not_compile_is_a_user_error() {
+    let dir = std::env::temp_dir().join(format!("sdfc-bench-ref-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let bad = dir.join("bad.wgsl");
+    std::fs::write(&bad, "fn main( {").unwrap();
+    let o = sdfc(&[
+        "bench",
+        &example("squircle.sdf"),
+        "--size",
+        "8x8",
+        "--tracers",
+        "basic",
+        "--steps",
+        "8",
+        "--reference",
+        bad.to_str().unwrap(),
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains("error: expected identifier") && err.contains("bad.wgsl:1:10"),
+        "{err}"
+    );
+    let _ = std::fs::remove_dir_all(dir);
 }

@@ -210,6 +210,123 @@ fn hit_bit(b: &mut FnBuilder, result: Ex) -> Ex {
     is_hit(b, flags)
 }
 
+/// The pixel of a compute invocation (`gid` plus the tile origin in `view.offset.xy`), or a
+/// return when it lies outside the image (`view.offset.zw`): (index in the image, pixel
+/// centre).
+fn compute_pixel(b: &mut FnBuilder, fns: &Fns) -> (Ex, Ex) {
+    let gid = b.arg(0);
+    let offset = view_field(b, fns.view, 5);
+    let gxy = b.swizzle(gid, &[0, 1]);
+    let oxy = b.swizzle(offset, &[0, 1]);
+    let pxy = b.add(gxy, oxy);
+    let (x, y) = (b.at(pxy, 0), b.at(pxy, 1));
+    let (w, h) = (b.at(offset, 2), b.at(offset, 3));
+    let ox = b.ge(x, w);
+    let oy = b.ge(y, h);
+    let outside = b.bin(naga::BinaryOperator::LogicalOr, ox, oy);
+    b.if_(outside, |b| b.ret(None), |_| {});
+    let row = b.mul(y, w);
+    let index = b.add(row, x);
+    b.name(index, "index");
+    let pf = b.cast(pxy, ScalarKind::Float);
+    let half = b.f(0.5);
+    let half2 = b.splat(half, VectorSize::Bi);
+    (index, b.add(pf, half2))
+}
+
+/// With passes: the hand-over buffers (`pass_in` at binding 6, read; `pass_out` at 7).
+fn hand_over(
+    mb: &mut ModuleBuilder,
+    fns: &Fns,
+) -> Option<(Handle<naga::GlobalVariable>, Handle<naga::GlobalVariable>)> {
+    fns.passes.then(|| {
+        let v2 = mb.vec(VectorSize::Bi);
+        let ty = mb.ty(TypeInner::Array {
+            base: v2,
+            size: naga::ArraySize::Dynamic,
+            stride: 8,
+        });
+        let read = StorageAccess::LOAD;
+        let write = StorageAccess::LOAD | StorageAccess::STORE;
+        (
+            global(mb, "pass_in", ty, AddressSpace::Storage { access: read }, 6),
+            global(
+                mb,
+                "pass_out",
+                ty,
+                AddressSpace::Storage { access: write },
+                7,
+            ),
+        )
+    })
+}
+
+/// The pixel's ray traced — with passes, from where the previous pass stopped, handing t and
+/// the steps so far to the next pass and returning early from a coarse (cone) pass: the
+/// traced ray and its steps over all passes.
+fn trace_in_pass(
+    b: &mut FnBuilder,
+    fns: &Fns,
+    hand_over: Option<(Handle<naga::GlobalVariable>, Handle<naga::GlobalVariable>)>,
+    (index, pixel): (Ex, Ex),
+) -> ((Ex, Ex, Ex, Ex), Ex) {
+    let pass = hand_over.map(|(pass_in, _)| previous_pass(b, fns, pixel, pass_in));
+    let traced = trace_pixel(b, fns, pixel, pass.map(|p| p.0));
+    let result = traced.2;
+    let mut steps = b.at(result, 1);
+    if let (Some((p, before)), Some((_, pass_out))) = (pass, hand_over) {
+        steps = b.add(before, steps);
+        let t = b.at(result, 0);
+        let sf = b.cast(steps, ScalarKind::Float);
+        let v2 = b.m.vec(VectorSize::Bi);
+        let v = b.compose(v2, vec![t, sf]);
+        let base = b.expr(Expression::GlobalVariable(pass_out));
+        let ptr = b.expr(Expression::Access { base, index });
+        b.store(ptr, v);
+        let zero = b.f(0.0);
+        let coarse = b.gt(p.cone, zero);
+        b.if_(coarse, |b| b.ret(None), |_| {});
+    }
+    (traced, steps)
+}
+
+/// The trace-only compute entry ([`super::Entry::Trace`]): each pixel's ray traced (in passes
+/// if the module has them), and `vec2<u32>(bitcast(t), steps | hit << 31)` stored at binding 1.
+pub(super) fn add_trace_only(mb: &mut ModuleBuilder, fns: &Fns) {
+    let u3 = mb.uvec(VectorSize::Tri);
+    let u2 = mb.uvec(VectorSize::Bi);
+    let ty = mb.ty(TypeInner::Array {
+        base: u2,
+        size: naga::ArraySize::Dynamic,
+        stride: 8,
+    });
+    let access = StorageAccess::LOAD | StorageAccess::STORE;
+    let out = global(mb, "out", ty, AddressSpace::Storage { access }, 1);
+    let hand_over = hand_over(mb, fns);
+    let mut b = FnBuilder::new(mb, "main", &[("gid", u3)], None);
+    b.func.arguments[0].binding = Some(Binding::BuiltIn(BuiltIn::GlobalInvocationId));
+    let (index, pixel) = compute_pixel(&mut b, fns);
+    let ((_, _, result, _), steps) = trace_in_pass(&mut b, fns, hand_over, (index, pixel));
+    let t = b.at(result, 0);
+    let bits = b.expr(Expression::As {
+        expr: t,
+        kind: ScalarKind::Uint,
+        convert: None,
+    });
+    let flags = b.at(result, 2);
+    let one = b.u(1);
+    let hit = b.bin(naga::BinaryOperator::And, flags, one);
+    let shift = b.u(31);
+    let hit = b.bin(naga::BinaryOperator::ShiftLeft, hit, shift);
+    let word = b.bin(naga::BinaryOperator::InclusiveOr, steps, hit);
+    let v = b.compose(u2, vec![bits, word]);
+    let base = b.expr(Expression::GlobalVariable(out));
+    let ptr = b.expr(Expression::Access { base, index });
+    b.store(ptr, v);
+    let f = b.finish();
+    compute_main(mb, f, [WORKGROUP, WORKGROUP, 1]);
+}
+
 /// `@compute @workgroup_size(8, 8)` `main`: one pixel per invocation, offset by the tile origin
 /// in `view.offset.xy`, the full image size in `view.offset.zw`; writes the outputs at
 /// bindings 1 (colour, rgba8 packed), 2 (depth t, −1 for a miss), 3 (normal), 4 (material id),
@@ -250,64 +367,12 @@ pub(super) fn add_compute(
         )
     })
     .collect();
-    let hand_over = fns.passes.then(|| {
-        let v2 = mb.vec(VectorSize::Bi);
-        let ty = mb.ty(TypeInner::Array {
-            base: v2,
-            size: naga::ArraySize::Dynamic,
-            stride: 8,
-        });
-        let read = StorageAccess::LOAD;
-        let write = StorageAccess::LOAD | StorageAccess::STORE;
-        (
-            global(mb, "pass_in", ty, AddressSpace::Storage { access: read }, 6),
-            global(
-                mb,
-                "pass_out",
-                ty,
-                AddressSpace::Storage { access: write },
-                7,
-            ),
-        )
-    });
+    let hand_over = hand_over(mb, fns);
     let mut b = FnBuilder::new(mb, "main", &[("gid", u3)], None);
     b.func.arguments[0].binding = Some(Binding::BuiltIn(BuiltIn::GlobalInvocationId));
-    let gid = b.arg(0);
-    let offset = view_field(&mut b, fns.view, 5);
-    let gxy = b.swizzle(gid, &[0, 1]);
-    let oxy = b.swizzle(offset, &[0, 1]);
-    let pxy = b.add(gxy, oxy);
-    let (x, y) = (b.at(pxy, 0), b.at(pxy, 1));
-    let (w, h) = (b.at(offset, 2), b.at(offset, 3));
-    let ox = b.ge(x, w);
-    let oy = b.ge(y, h);
-    let outside = b.bin(naga::BinaryOperator::LogicalOr, ox, oy);
-    b.if_(outside, |b| b.ret(None), |_| {});
-    let row = b.mul(y, w);
-    let index = b.add(row, x);
-    b.name(index, "index");
-    let pf = b.cast(pxy, ScalarKind::Float);
-    let half = b.f(0.5);
-    let half2 = b.splat(half, VectorSize::Bi);
-    let pixel = b.add(pf, half2);
-    let pass = hand_over.map(|(pass_in, _)| previous_pass(&mut b, fns, pixel, pass_in));
-    let traced = trace_pixel(&mut b, fns, pixel, pass.map(|p| p.0));
+    let (index, pixel) = compute_pixel(&mut b, fns);
+    let (traced, steps) = trace_in_pass(&mut b, fns, hand_over, (index, pixel));
     let result = traced.2;
-    let mut steps = b.at(result, 1);
-    if let (Some((p, before)), Some((_, pass_out))) = (pass, hand_over) {
-        // Hand t and the steps so far to the next pass; a cone pass shades nothing.
-        steps = b.add(before, steps);
-        let t = b.at(result, 0);
-        let sf = b.cast(steps, ScalarKind::Float);
-        let v2 = b.m.vec(VectorSize::Bi);
-        let v = b.compose(v2, vec![t, sf]);
-        let base = b.expr(Expression::GlobalVariable(pass_out));
-        let ptr = b.expr(Expression::Access { base, index });
-        b.store(ptr, v);
-        let zero = b.f(0.0);
-        let coarse = b.gt(p.cone, zero);
-        b.if_(coarse, |b| b.ret(None), |_| {});
-    }
     let s = shade_hit(&mut b, scene, fns, options, floor, traced);
     let zero = b.f(0.0);
     let one = b.f(1.0);

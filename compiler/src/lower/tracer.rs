@@ -31,6 +31,12 @@ pub enum Entry {
     /// its λ (`map(p)·λ`); 64 points per workgroup. The module has no tracer, `normal` or
     /// `shade`. Not offered on the command line.
     Field,
+    /// `main` compute entry point that only traces (what `sdfc bench` times as "trace only",
+    /// as a hand-written tracer would): binding 0 the `View` uniform, binding 1 receives
+    /// `vec2<u32>(bitcast<u32>(t), steps | hit << 31)` per pixel, t where the ray stopped.
+    /// No normal, material or shading. With `Options::passes`, the hand-over buffers of the
+    /// compute entry at bindings 6 and 7.
+    Trace,
 }
 
 /// Tracer settings after command-line overrides.
@@ -120,6 +126,9 @@ impl Tracer {
     }
 }
 
+/// Evaluations of `map` by `normal` at a hit.
+pub const NORMAL_EVALUATIONS: u32 = 6;
+
 /// Workgroup size of the ray-list entry.
 pub const RAYS_WORKGROUP: u32 = 64;
 
@@ -184,12 +193,13 @@ pub fn add(
         }
         Entry::Rays => rays::add_rays(mb, &tracer),
         Entry::Field => unreachable!("the field entry returned above"),
-        Entry::Compute | Entry::Fragment => {
-            let fns = entry::Fns::new(mb, tracer, normal, shade, material, options.passes);
-            if entry == Entry::Compute {
-                entry::add_compute(mb, scene, &fns, options, floor);
-            } else {
-                entry::add_fragment(mb, scene, &fns, options, floor);
+        Entry::Compute | Entry::Fragment | Entry::Trace => {
+            let passes = options.passes && entry != Entry::Fragment;
+            let fns = entry::Fns::new(mb, tracer, normal, shade, material, passes);
+            match entry {
+                Entry::Compute => entry::add_compute(mb, scene, &fns, options, floor),
+                Entry::Fragment => entry::add_fragment(mb, scene, &fns, options, floor),
+                _ => entry::add_trace_only(mb, &fns),
             }
         }
     }
