@@ -102,14 +102,23 @@ fn node_with<F: FnMut(NodeId, DVec3)>(
     }
 }
 
-/// Central-difference gradient of the scene's field (Munini §2.3), normalised; a zero gradient
-/// (at a cusp or the centre of a sphere) gives the zero vector rather than NaN.
+/// The corners of the tetrahedron whose samples give the normal: they sum to zero, and
+/// Σ kᵢkᵢᵀ = 4I, so Σ kᵢ·f(p + e·kᵢ) = 4e·∇f(p) + O(e³).
+pub const TETRAHEDRON: [DVec3; 4] = [
+    DVec3::new(1.0, -1.0, -1.0),
+    DVec3::new(-1.0, -1.0, 1.0),
+    DVec3::new(-1.0, 1.0, -1.0),
+    DVec3::new(1.0, 1.0, 1.0),
+];
+
+/// The scene field's gradient from four samples at distance `h` around `p` (the corners of
+/// [`TETRAHEDRON`] scaled by h/√3), normalised; a zero gradient (at a cusp or the centre of
+/// a sphere) gives the zero vector rather than NaN. The shader's `normal` does the same.
 pub fn normal(scene: &Scene, p: DVec3, h: f64) -> DVec3 {
-    let d = |q: DVec3| distance(scene, q);
-    let g = DVec3::new(
-        d(p + DVec3::X * h) - d(p - DVec3::X * h),
-        d(p + DVec3::Y * h) - d(p - DVec3::Y * h),
-        d(p + DVec3::Z * h) - d(p - DVec3::Z * h),
-    );
+    let e = h / 3f64.sqrt();
+    let g: DVec3 = TETRAHEDRON
+        .iter()
+        .map(|&k| k * distance(scene, p + k * e))
+        .sum();
     g.try_normalize().unwrap_or(DVec3::ZERO)
 }

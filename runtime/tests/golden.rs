@@ -1,16 +1,21 @@
 //! Code-generation changes keep the pictures: every example rendered with its own tracer (and
 //! with each of the five tracers) against frames recorded before the change, in
-//! `tests/golden/` — hit masks equal, depth within the hit threshold, normals and materials
-//! the same.
+//! `tests/golden/` — hit masks equal, depth within the hit threshold, materials the same —
+//! and the normals the CPU's [`eval::normal`] gives at the same point with the same step.
+//!
+//! The normals are not compared with the recorded ones: the normal changed on purpose from six
+//! central differences to four tetrahedral samples (issue 14), which differ by O(h²) and, within
+//! h of an edge, by more (h is the pixel footprint at t, large in a 64×36 image: 0.1 of 1.0 on
+//! a quarter of the village's hits).
 //!
 //! The recorded frames are re-written with `SDFC_GOLDEN=write cargo test --release --test
 //! golden`, which is only right *before* a change that must not alter pictures.
 
 use sdfc::gpu::Frame;
-use sdfc_compiler::emit;
 use sdfc_compiler::lower::{Entry, tracer::Options};
 use sdfc_compiler::scene::{Epsilon, Method, Scene};
 use sdfc_compiler::view::View;
+use sdfc_compiler::{emit, eval};
 mod common;
 use common::{compile, examples, gpu, with_method};
 use std::path::PathBuf;
@@ -128,7 +133,8 @@ fn code_generation_keeps_every_picture() {
         }));
         assert_eq!(before.len(), now.len(), "{name}: size");
         let (mut mask, mut depth, mut normal, mut material, mut worst) = (0, 0, 0, 0, 0.0f64);
-        for (a, b) in before.iter().zip(&now) {
+        let hits = before.iter().filter(|p| p.depth >= 0.0).count();
+        for (i, (a, b)) in before.iter().zip(&now).enumerate() {
             if (a.depth >= 0.0) != (b.depth >= 0.0) {
                 mask += 1;
                 continue;
@@ -147,21 +153,35 @@ fn code_generation_keeps_every_picture() {
             if dt > 2.0 * eps + 1e-6 * t {
                 depth += 1;
             }
-            let dn = (0..3)
-                .map(|k| (a.normal[k] as i32 - b.normal[k] as i32).abs())
-                .max()
-                .unwrap();
-            if dn > 20 {
-                normal += 1;
-            }
+
             if a.material != b.material {
                 material += 1;
             }
+            // The shader's normal against the CPU's same formula at the same point and step.
+            let (x, y) = ((i as u32 % W) as f64 + 0.5, (i as u32 / W) as f64 + 0.5);
+            let tb = b.depth as f64;
+            let p = view.eye + view.ray(x, y) * tb;
+            let floor = scene.camera.epsilon_floor();
+            let h = match scene.trace.epsilon {
+                Epsilon::Pixel => (view.pixel * tb).max(floor),
+                Epsilon::Absolute(e) => e.max(floor),
+            };
+            let cpu = eval::normal(&scene, p, h);
+            let gpu = frame.normal[i];
+            let dn = (0..3)
+                .map(|k| (cpu[k] - gpu[k] as f64).abs())
+                .fold(0.0, f64::max);
+            if dn > 0.05 {
+                normal += 1;
+            }
         }
         let line = format!(
-            "{name}: {mask} mask, {depth} depth, {normal} normal (> 0.02), {material} material differences; worst |Δt| {worst:.2} ε\n"
+            "{name}: {mask} mask, {depth} depth, {material} material differences; normal ≠ CPU's (> 0.05) at {normal} of {hits} hits; worst |Δt| {worst:.2} ε\n"
         );
-        if mask + depth + normal + material > 0 {
+        // f32 against f64 at points that differ by rounding (and the Mandelbulb's f32 field is
+        // rough at the scale of h): at most 1% of hits may be near
+        // enough an edge that the four samples straddle it differently.
+        if mask + depth + material > 0 || normal * 100 > hits {
             failures.push(line.clone());
         }
         report += &line;

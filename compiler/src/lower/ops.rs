@@ -36,10 +36,17 @@ fn fold(
     child: ChildLower,
     f: &dyn Fn(&mut FnBuilder, Ex, Ex) -> Ex,
 ) -> Ex {
+    let n = c.child_lambda.len();
     let mut acc = norm(b, c, child, 0, p);
-    for i in 1..c.child_lambda.len() {
+    for i in 1..n {
         let d = norm(b, c, child, i, p);
         acc = f(b, acc, d);
+        // Text targets inline a value used once at its use: name the running result so that
+        // a long chain reads `let d_1 = min(d, next)` part after part, as written by hand,
+        // not one nested expression after every part (the IR's order is the same either way).
+        if n > 2 && i + 1 < n {
+            b.name(acc, "d");
+        }
     }
     acc
 }

@@ -268,15 +268,15 @@ pub fn mandelbulb(b: &mut FnBuilder, p: Ex, a: &[Ex]) -> Ex {
         let theta = b.mul(theta, power);
         let phi = b.math(M::Atan2, &[zy, zx]);
         let phi = b.mul(phi, power);
+        // r^(n−1) once: dr' = n·r^(n−1)·dr + 1 and r^n = r^(n−1)·r (one pow per iteration).
         let one = b.f(1.0);
-        let pm1 = b.sub(power, one);
         let rp1 = b.math(M::Pow, &[rv, pm1]);
         let drv = b.load(dr);
         let t = b.mul(rp1, power);
         let t = b.mul(t, drv);
         let t = b.add(t, one);
         b.store(dr, t);
-        let zr = b.math(M::Pow, &[rv, power]);
+        let zr = b.mul(rp1, rv);
         let (st, ct) = (b.math(M::Sin, &[theta]), b.math(M::Cos, &[theta]));
         let (sp, cp) = (b.math(M::Sin, &[phi]), b.math(M::Cos, &[phi]));
         let nx = b.mul(st, cp);
@@ -297,7 +297,7 @@ pub fn mandelbulb(b: &mut FnBuilder, p: Ex, a: &[Ex]) -> Ex {
     let de = b.mul(de, rv);
     let drv = b.load(dr);
     let de = b.div(de, drv);
-    let pl = b.length(p);
+    let pl = r0;
     let two = b.f(2.0);
     let far_r = b.mul(two, escape);
     let far = b.gt(pl, far_r);

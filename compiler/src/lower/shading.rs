@@ -1,4 +1,4 @@
-//! Shading in IR: `normal` by central differences and `shade` with only the lights and
+//! Shading in IR: `normal` from a tetrahedron of samples and `shade` with only the lights and
 //! material terms the scene has.
 
 use super::builder::{FnBuilder, ModuleBuilder};
@@ -6,25 +6,31 @@ use super::tracer::{AMBIENT, DEFAULT_COLOR, SHININESS};
 use crate::scene::{LightKind, Scene};
 use naga::{Function, Handle, MathFunction as M};
 
-/// `normal(p, h)`: central differences of `map` (Munini §2.3); a zero gradient gives zero, not NaN.
+/// `normal(p, h)`: the field's gradient from four samples at the corners of a tetrahedron
+/// around `p`, each at distance `h` (see [`crate::eval::TETRAHEDRON`]), normalised: one
+/// evaluation per axis fewer than central differences (Munini §2.3) with the same O(h²)
+/// error; a zero gradient gives zero, not NaN.
 pub(super) fn add_normal(mb: &mut ModuleBuilder, map: Handle<Function>) -> Handle<Function> {
     let v3 = mb.vec3();
     let f32t = mb.f32();
     let mut b = FnBuilder::new(mb, "normal", &[("p", v3), ("h", f32t)], Some(v3));
     let (p, h) = (b.arg(0), b.arg(1));
     let zero = b.f(0.0);
-    let mut comps = Vec::new();
-    for axis in 0..3 {
-        let mut e = [zero; 3];
-        e[axis] = h;
-        let off = b.compose_vec3(e);
-        let hi = b.add(p, off);
-        let lo = b.sub(p, off);
-        let a = b.call(map, vec![hi]);
-        let c = b.call(map, vec![lo]);
-        comps.push(b.sub(a, c));
+    let third = b.f(1.0 / 3f64.sqrt());
+    let e = b.mul(h, third);
+    let mut g = None;
+    for k in crate::eval::TETRAHEDRON {
+        let corner = b.vec3_lit(k);
+        let off = b.mul(corner, e);
+        let q = b.add(p, off);
+        let d = b.call(map, vec![q]);
+        let term = b.mul(corner, d);
+        g = Some(match g {
+            None => term,
+            Some(sum) => b.add(sum, term),
+        });
     }
-    let g = b.compose_vec3([comps[0], comps[1], comps[2]]);
+    let g = g.expect("four corners");
     let l = b.length(g);
     let one = b.f(1.0);
     let inv = b.div(one, l);
