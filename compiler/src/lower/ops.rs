@@ -193,15 +193,63 @@ pub fn translate(b: &mut FnBuilder, c: &Ctx, p: Ex, child: ChildLower) -> Ex {
 pub fn rotate(b: &mut FnBuilder, c: &Ctx, p: Ex, child: ChildLower) -> Ex {
     let (axis, angle) = (c.vec(0), c.num(1));
     let cols = [DVec3::X, DVec3::Y, DVec3::Z].map(|e| rotate_point(e, axis, -angle));
-    let cols: Vec<Ex> = cols.iter().map(|v| b.vec3_lit(*v)).collect();
-    let ty = b.m.ty(naga::TypeInner::Matrix {
-        columns: VectorSize::Tri,
-        rows: VectorSize::Tri,
-        scalar: naga::Scalar::F32,
-    });
-    let m = b.compose(ty, cols);
-    let q = b.mul(m, p);
+    let q = linear(b, cols, p);
     child(b, 0, q)
+}
+
+/// M·p for a constant matrix given by its columns, written as a person would: entries within
+/// 1e-12 of 0 or ±1 (the cosines of right angles) dropped or taken as ±p, so a turn about a
+/// coordinate axis costs four products and two sums and a right-angle turn only a swizzle; a
+/// dense matrix (a turn about another axis) is one matrix product.
+pub fn linear(b: &mut FnBuilder, cols: [DVec3; 3], p: Ex) -> Ex {
+    let snap = |v: f64| {
+        if v.abs() < 1e-12 {
+            0.0
+        } else if (v.abs() - 1.0).abs() < 1e-12 {
+            v.signum()
+        } else {
+            v
+        }
+    };
+    let m = cols.map(|c| c.to_array().map(snap));
+    let nonzero = m.iter().flatten().filter(|v| **v != 0.0).count();
+    if nonzero > 6 {
+        let cols: Vec<Ex> = cols.iter().map(|v| b.vec3_lit(*v)).collect();
+        let ty = b.m.ty(naga::TypeInner::Matrix {
+            columns: VectorSize::Tri,
+            rows: VectorSize::Tri,
+            scalar: naga::Scalar::F32,
+        });
+        let mat = b.compose(ty, cols);
+        return b.mul(mat, p);
+    }
+    let coords = b.xyz(p);
+    let rows = [0, 1, 2].map(|i| {
+        let mut sum: Option<Ex> = None;
+        // Positive terms first, so that a negative one is a subtraction, not a negation.
+        let mut order = [0, 1, 2];
+        order.sort_by_key(|&j| m[j][i] < 0.0);
+        for j in order {
+            let (v, pj) = (m[j][i], coords[j]);
+            if v == 0.0 {
+                continue;
+            }
+            let term = if v.abs() == 1.0 {
+                pj
+            } else {
+                let k = b.f(v.abs());
+                b.mul(k, pj)
+            };
+            sum = Some(match (sum, v < 0.0) {
+                (None, false) => term,
+                (None, true) => b.neg(term),
+                (Some(s), false) => b.add(s, term),
+                (Some(s), true) => b.sub(s, term),
+            });
+        }
+        sum.unwrap_or_else(|| b.f(0.0))
+    });
+    b.compose_vec3(rows)
 }
 
 /// f(p / s)·min(s)
@@ -300,7 +348,18 @@ fn center(b: &mut FnBuilder, plan: &Plan, i: usize, k: Ex) -> Ex {
 
 /// p − 2·min(p·n, 0)·n
 pub fn mirror(b: &mut FnBuilder, c: &Ctx, p: Ex, child: ChildLower) -> Ex {
-    let n = b.vec3_lit(c.vec(0));
+    let normal = c.vec(0);
+    // Across a coordinate plane: that coordinate's absolute value (or its negation).
+    if let Some(k) = (0..3)
+        .find(|&k| normal[k].abs() == 1.0 && (0..3).all(|j| j == k || normal[j].abs() < 1e-12))
+    {
+        let mut coords = b.xyz(p);
+        let a = b.abs(coords[k]);
+        coords[k] = if normal[k] > 0.0 { a } else { b.neg(a) };
+        let q = b.compose_vec3(coords);
+        return child(b, 0, q);
+    }
+    let n = b.vec3_lit(normal);
     let d = b.dot(p, n);
     let zero = b.f(0.0);
     let d = b.min(d, zero);
