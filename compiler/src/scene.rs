@@ -355,4 +355,9 @@ pub struct Trace {
     /// Hart's cone anti-aliasing (Munini §2.4), `basic` only: near misses in front of the hit
     /// blend into the pixel with their coverage.
     pub antialias: bool,
+    /// What `relaxed` does when two unbounding spheres stop overlapping: `false` (`fallback
+    /// reset`, the default, Keinert Listing 2) takes the step back by ω·step and sets ω = 1 for
+    /// the rest of the ray; `true` (`fallback keep`, Bálint & Valasek Alg. 2) goes back to the
+    /// last safe point plus its radius and keeps ω.
+    pub keep_relaxation: bool,
 }

@@ -311,6 +311,10 @@ pub struct TracerArgs {
     /// Hart's cone anti-aliasing (`cone`, basic tracer) or `none`.
     #[arg(long, allow_hyphen_values = true)]
     pub antialias: Option<String>,
+    /// After a failed relaxed step: `keep` ω (Bálint & Valasek Alg. 2) or `reset` it to 1
+    /// (Keinert Listing 2); relaxed tracer.
+    #[arg(long, allow_hyphen_values = true)]
+    pub fallback: Option<String>,
     /// Multi-resolution passes (Bálint §4): 2 (1/2 then full resolution), 4 or 6; 1 is a
     /// single pass. Compute entry only.
     #[arg(long, default_value_t = 1)]
@@ -336,6 +340,7 @@ impl TracerArgs {
             ("refine", &self.refine),
             ("discontinuity", &self.discontinuity),
             ("antialias", &self.antialias),
+            ("fallback", &self.fallback),
         ]
         .iter()
         .filter_map(|(k, v)| v.as_deref().map(|v| (*k, v)))

@@ -45,18 +45,23 @@ def reference_relaxed_or_enhanced(f, kind, omega):
             return i
 
 
-def ours_relaxed(f, omega=1.2):
-    t, step, prev, i = 0.0, 0.0, 0.0, 0
+def ours_relaxed(f, omega=1.2, keep=False):
+    # keep: `fallback keep`, Bálint & Valasek's Algorithm 2 — back to the last safe point
+    # t₋ + r₋ with ω kept (prev_r is r₋, signed); otherwise Keinert's listing.
+    t, step, prev, prev_r, i = 0.0, 0.0, 0.0, 0.0, 0
     while True:
         r = f(t)
         i += 1
         fail = omega > 1 and (abs(r) + prev) * (1 + TOUCH) < step
-        if fail:
+        if fail and keep:
+            step = prev_r - step
+        elif fail:
             step -= omega * step
             omega = 1.0
+            prev = abs(r)
         else:
             step = r * omega
-        prev = abs(r)
+            prev, prev_r = abs(r), r
         if not fail and r < EPS:
             return i
         t += step
@@ -122,6 +127,7 @@ ROWS = [
     ("reference enhanced ω=0.9", lambda f: reference_relaxed_or_enhanced(f, "enhanced", 0.9)),
     ("reference auto β=0.3", lambda f: auto(f)),
     ("ours relaxed ω=1.2", ours_relaxed),
+    ("ours relaxed ω=1.2 fallback keep", lambda f: ours_relaxed(f, keep=True)),
     ("ours enhanced ω=0.9", ours_enhanced),
     ("ours hybrid", hybrid),
     ("ours auto β=0.3", lambda f: auto(f, touch=TOUCH, by_positions=False)),

@@ -40,6 +40,7 @@ pub const TRACE_METHODS: &[(&str, Method, &[Param])] = &[
             MAX_DISTANCE,
             DISCONTINUITY,
             opt("omega", Ty::Range(1.0, 2.0), Val::Num(1.2)),
+            opt("fallback", Ty::Word(&["reset", "keep"]), Val::Word(0)),
         ],
     ),
     (
@@ -110,6 +111,7 @@ pub fn build(method: Method, get: impl Fn(&str) -> Option<Val>) -> Trace {
         refine: num("refine", 0.0) as u32,
         discontinuity: num("discontinuity", 0.0) as u32,
         antialias: matches!(val("antialias"), Some(Val::Word(1))),
+        keep_relaxation: matches!(val("fallback"), Some(Val::Word(1))),
     }
 }
 
@@ -179,6 +181,7 @@ pub fn with_overrides(
             "max_distance" => Some(Val::Num(scene.max_distance)),
             "discontinuity" => Some(Val::Num(scene.discontinuity as f64)),
             "antialias" => Some(Val::Word(scene.antialias as usize)),
+            "fallback" if method == scene.method => Some(Val::Word(scene.keep_relaxation as usize)),
             _ if method == scene.method => Some(Val::Num(match name {
                 "omega" => scene.omega,
                 "beta" => scene.beta,

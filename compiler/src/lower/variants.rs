@@ -136,6 +136,9 @@ fn relaxed(b: &mut FnBuilder, cx: &Cx) {
     let omega = var(b, "omega", cx.trace.omega);
     let step = var(b, "step", 0.0);
     let prev_radius = var(b, "prev_radius", 0.0);
+    // `fallback keep`: the field where the last step stood (the safe point is t₋ + r₋).
+    let keep = cx.trace.keep_relaxation;
+    let prev_r = keep.then(|| var(b, "prev_r", 0.0));
     let candidate_t = var(b, "candidate_t", 0.0);
     // −1: no candidate yet (the first evaluation always makes one, so a ray whose budget runs
     // out has a candidate).
@@ -156,14 +159,35 @@ fn relaxed(b: &mut FnBuilder, cx: &Cx) {
         let apart = cx.apart(b, st, (radius, pr), e);
         let fail = b.bin(B::LogicalAnd, relaxing, apart);
         b.name(fail, "fail");
-        let back = b.mul(om, st);
-        let back = b.sub(st, back);
+        let back = match prev_r {
+            // Back to t₋ + r₋ with ω kept (Bálint & Valasek Alg. 2).
+            Some(prev_r) => {
+                let pr = b.load(prev_r);
+                b.sub(pr, st)
+            }
+            // Keinert's listing: step −= ω·step, ω = 1 from now on.
+            None => {
+                let back = b.mul(om, st);
+                b.sub(st, back)
+            }
+        };
         let ahead = b.mul(r, om);
         let new_step = b.select(fail, back, ahead);
         b.store(step, new_step);
-        let new_omega = b.select(fail, one, om);
-        b.store(omega, new_omega);
-        b.store(prev_radius, radius);
+        match prev_r {
+            Some(prev_r) => {
+                let kept = b.select(fail, pr, radius);
+                b.store(prev_radius, kept);
+                let old = b.load(prev_r);
+                let kept = b.select(fail, old, r);
+                b.store(prev_r, kept);
+            }
+            None => {
+                let new_omega = b.select(fail, one, om);
+                b.store(omega, new_omega);
+                b.store(prev_radius, radius);
+            }
+        }
         let ok = b.expr(naga::Expression::Unary {
             op: naga::UnaryOperator::LogicalNot,
             expr: fail,

@@ -93,13 +93,18 @@ pub(super) fn basic(trace: &Trace, eps: &Threshold, f: &mut impl FnMut(f64) -> f
     cone.into(result)
 }
 
-/// Over-relaxed sphere tracing as in Keinert §3.1–3.2, Listing 2: steps of ω·f; when two
-/// consecutive unbounding spheres stop overlapping the step is taken back by the listing's
-/// `step −= ω·step` and ω drops to 1 for the rest of the ray. The candidate with the smallest
-/// f/ε(t) (f/t in pixel mode: radius in screen space) is the hit if the budget runs out.
+/// Over-relaxed sphere tracing as in Keinert §3.1–3.2, Listing 2: steps of ω·f. When two
+/// consecutive unbounding spheres stop overlapping, with `fallback reset` (the default) the
+/// step is taken back by the listing's `step −= ω·step` and ω drops to 1 for the rest of the
+/// ray; with `fallback keep` the ray goes back to the last safe point t₋ + r₋ and keeps ω, as
+/// Bálint & Valasek's Algorithm 2 does (its re-evaluation there is the next iteration's). The
+/// candidate with the smallest f/ε(t) (f/t in pixel mode: radius in screen space) is the hit
+/// if the budget runs out.
 pub(super) fn relaxed(trace: &Trace, eps: &Threshold, f: &mut impl FnMut(f64) -> f64) -> Traced {
     let mut omega = trace.omega;
     let (mut t, mut step, mut prev_radius) = (0.0, 0.0, 0.0);
+    // The field at the last point whose step stood (signed: the safe point is t₋ + r₋).
+    let mut prev_r = 0.0;
     let (mut candidate_t, mut candidate_error) = (0.0, f64::INFINITY);
     let mut steps = 0;
     loop {
@@ -111,13 +116,18 @@ pub(super) fn relaxed(trace: &Trace, eps: &Threshold, f: &mut impl FnMut(f64) ->
         steps += 1;
         let radius = r.abs();
         let fail = omega > 1.0 && apart(step, radius, prev_radius, eps.at(t));
-        if fail {
+        if fail && trace.keep_relaxation {
+            // Back to t₋ + r₋: inside the last sphere, so the next point needs no test.
+            step = prev_r - step;
+        } else if fail {
             step -= omega * step;
             omega = 1.0;
+            prev_radius = radius;
         } else {
             step = r * omega;
+            prev_radius = radius;
+            prev_r = r;
         }
-        prev_radius = radius;
         if !fail {
             let e = eps.at(t);
             if radius / e < candidate_error {
