@@ -283,3 +283,24 @@ fn every_spirv_version_validates_for_its_vulkan() {
     }
     assert!(checked >= 100, "only {checked}");
 }
+
+/// `map` with bounding volumes (`--bvh`) and the trace-only entry `sdfc bench` times, on the
+/// composition: each group of parts behind `if (|max(|p − c| − h, 0)|² <= max(d, 0)²)`, the
+/// ground plane first; the entry writes `vec2<u32>(bitcast(t), steps | hit << 31)`.
+#[test]
+fn bounding_volumes_and_trace_only_snapshot() {
+    let scene = sdfc_tests::example(
+        &sdfc_tests::examples()
+            .into_iter()
+            .find(|p| p.ends_with("composition.sdf"))
+            .unwrap(),
+    );
+    let mut options = Options::from_scene(&scene);
+    options.bounding_volumes = true;
+    let (m, info) =
+        emit::module(&scene, Entry::Trace, &options).unwrap_or_else(|e| panic!("{}", e.0));
+    match emit::write(&m, &info, Target::Wgsl, Entry::Trace).unwrap_or_else(|e| panic!("{}", e.0)) {
+        Output::Text(s) => insta::assert_snapshot!("composition_bvh_trace_wgsl", s),
+        Output::Binary(_) => unreachable!(),
+    }
+}

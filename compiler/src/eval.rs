@@ -8,7 +8,9 @@ use glam::DVec3;
 /// The scene's distance bound at `p`: the root's field divided by its λ, so that stepping by it
 /// never passes a surface (Liktor §2.2, f/λ).
 pub fn distance(scene: &Scene, p: DVec3) -> f64 {
-    sample(scene, p).d
+    // No materials: a union's bounding-volume tree may leave children unevaluated.
+    let no_tag = |_: NodeId, _: Option<u32>| None;
+    node_with(scene, scene.root, p, &mut |_, _| {}, &no_tag, false).d / scene.root_node().lambda
 }
 
 /// Distance bound and material at `p`.
@@ -33,9 +35,14 @@ pub fn node_seen<F: FnMut(NodeId, DVec3)>(
     p: DVec3,
     seen: &mut F,
 ) -> Sample {
-    node_with(scene, id, p, seen, &|n, inner| {
-        inner.or(scene.nodes[n].material)
-    })
+    node_with(
+        scene,
+        id,
+        p,
+        seen,
+        &|n, inner| inner.or(scene.nodes[n].material),
+        true,
+    )
 }
 
 /// Whether the surface nearest `p` (as the materials pick it: the nearest part of a union, the
@@ -49,19 +56,22 @@ pub fn loose(scene: &Scene, p: DVec3) -> bool {
             inner
         }
     };
-    node_with(scene, scene.root, p, &mut |_, _| {}, &tag)
+    node_with(scene, scene.root, p, &mut |_, _| {}, &tag, true)
         .mat
         .is_some()
 }
 
 /// The walk of [`node_seen`] with the tag a node gives its result (`tag(node, the tag its
-/// operator picked from the children)`): the material, or whether the part is loose.
+/// operator picked from the children)`): the material, or whether the part is loose. With
+/// `tags`, the children a union's bounding-volume tree skipped are evaluated after all, so
+/// that the tag is picked from every child as without the tree.
 fn node_with<F: FnMut(NodeId, DVec3)>(
     scene: &Scene,
     id: NodeId,
     p: DVec3,
     seen: &mut F,
     tag: &impl Fn(NodeId, Option<u32>) -> Option<u32>,
+    tags: bool,
 ) -> Sample {
     seen(id, p);
     let n = &scene.nodes[id];
@@ -79,13 +89,21 @@ fn node_with<F: FnMut(NodeId, DVec3)>(
             // A child evaluated more than once (the copies of a `repeat`) gives the material
             // of its nearest evaluation.
             let mut child = |i: usize, q: DVec3| {
-                let s = node_with(scene, children[i], q, seen, tag);
+                let s = node_with(scene, children[i], q, seen, tag, tags);
                 if nearest[i].is_none_or(|old: Sample| s.d < old.d) {
                     nearest[i] = Some(s);
                 }
                 s.d
             };
             let d = (op.eval)(ctx, p, &mut child);
+            if tags && ctx.prune.is_some() {
+                // A union evaluates its children at its own point.
+                for (i, s) in nearest.iter_mut().enumerate() {
+                    if s.is_none() {
+                        *s = Some(node_with(scene, children[i], p, seen, tag, tags));
+                    }
+                }
+            }
             let nearest: Vec<Sample> = nearest
                 .into_iter()
                 .map(|s| s.unwrap_or(Sample { d, mat: None }))

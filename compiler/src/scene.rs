@@ -31,6 +31,18 @@ pub struct Scene {
 }
 
 impl Scene {
+    /// The same scene with every union's bounding-volume tree dropped (each child evaluated
+    /// every time): what `map` is lowered from unless `Options::bounding_volumes`.
+    pub fn without_bounding_volumes(&self) -> Scene {
+        let mut s = self.clone();
+        for n in &mut s.nodes {
+            if let NodeKind::Operator { ctx, .. } = &mut n.kind {
+                ctx.prune = None;
+            }
+        }
+        s
+    }
+
     /// The root node.
     pub fn root_node(&self) -> &Node {
         &self.nodes[self.root]

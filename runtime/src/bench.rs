@@ -102,21 +102,23 @@ pub struct Job<'a> {
     /// A hand-written reference (WGSL text, its file name) to time alternately with the
     /// trace.
     pub reference: Option<(&'a str, &'a str)>,
+    /// Compile `map` with bounding-volume tests.
+    pub bvh: bool,
 }
 
 /// Compiles the scene with `trace` for `entry`, with passes if more than one is asked; and
 /// the schedule of passes (`None` for one).
 fn compile(
-    scene: &Scene,
+    job: &Job,
     trace: Trace,
-    passes: u32,
-    view: &View,
     entry: Entry,
 ) -> Result<(naga::Module, Option<Vec<Pass>>), String> {
-    let mut s = scene.clone();
+    let (passes, view) = (job.passes, job.view);
+    let mut s = job.scene.clone();
     s.trace = trace;
     let mut options = Options::from_scene(&s);
     options.passes = passes > 1;
+    options.bounding_volumes = job.bvh;
     let (module, _) = emit::module(&s, entry, &options)
         .map_err(|e| format!("internal compiler error: {}", e.0))?;
     let plan = match passes {
@@ -147,8 +149,8 @@ fn seconds(t: Timing) -> f64 {
 pub fn measure(gpu: &Gpu, job: &Job) -> Result<Cell, String> {
     let (name, trace) = job.trace;
     let with_passes = job.passes > 1;
-    let (trace_module, plan) = compile(job.scene, trace, job.passes, job.view, Entry::Trace)?;
-    let (full_module, _) = compile(job.scene, trace, job.passes, job.view, Entry::Compute)?;
+    let (trace_module, plan) = compile(job, trace, Entry::Trace)?;
+    let (full_module, _) = compile(job, trace, Entry::Compute)?;
     let whole = u32::MAX;
     let tracing = gpu.prepare(
         Source::Module(&trace_module),

@@ -41,6 +41,8 @@ pub struct BenchArgs<'a> {
     pub passes: u32,
     /// A hand-written WGSL reference tracer to time alternately with each cell's trace.
     pub reference: Option<&'a Path>,
+    /// Compile `map` with bounding-volume tests.
+    pub bvh: bool,
 }
 
 /// Everything a run measured.
@@ -168,6 +170,7 @@ fn bench(args: &BenchArgs) -> Result<(), String> {
             truth: &depth,
             repeat: args.repeat,
             reference: reference.as_ref().map(|(t, p)| (t.as_str(), p.as_str())),
+            bvh: args.bvh,
         };
         measured.push(bench::measure(&gpu, &job)?);
     }

@@ -120,6 +120,9 @@ enum Command {
         /// timed alternately with each cell's trace, same view and size.
         #[arg(long)]
         reference: Option<PathBuf>,
+        /// Compile `map` with bounding-volume tests (as `render --bvh`).
+        #[arg(long)]
+        bvh: bool,
     },
 }
 
@@ -169,6 +172,8 @@ enum EntryArg {
     Compute,
     Fragment,
     Library,
+    /// The trace-only compute entry `sdfc bench` times (t and steps per pixel).
+    Trace,
 }
 
 /// Runs the command line; returns the exit code (0 ok, 1 user error).
@@ -249,6 +254,7 @@ pub fn run() -> i32 {
             backend,
             passes,
             reference,
+            bvh,
         } => crate::bench_cmd::run(&crate::bench_cmd::BenchArgs {
             file: &file,
             tracers: &tracers,
@@ -264,6 +270,7 @@ pub fn run() -> i32 {
             backend: backend.into(),
             passes,
             reference: reference.as_deref(),
+            bvh,
         }),
     }
 }
@@ -322,6 +329,10 @@ pub struct TracerArgs {
     /// Ignore the scene's `bound` block (trace every ray from the camera).
     #[arg(long)]
     pub no_bound: bool,
+    /// Test bounding boxes in `map` to skip far groups of a union's parts (the same field;
+    /// pays on GPUs that branch per SIMD group, not on lavapipe: docs/benchmarks.md).
+    #[arg(long)]
+    pub bvh: bool,
 }
 
 impl TracerArgs {
@@ -370,6 +381,7 @@ impl TracerArgs {
         }
         let mut options = sdfc_compiler::lower::tracer::Options::from_scene(scene);
         options.passes = self.passes > 1;
+        options.bounding_volumes = self.bvh;
         Ok(options)
     }
 }
@@ -392,6 +404,7 @@ impl From<EntryArg> for Entry {
             EntryArg::Compute => Entry::Compute,
             EntryArg::Fragment => Entry::Fragment,
             EntryArg::Library => Entry::Library,
+            EntryArg::Trace => Entry::Trace,
         }
     }
 }

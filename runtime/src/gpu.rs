@@ -61,7 +61,8 @@ impl Gpu {
             };
             let limits = adapter.limits();
             // Timestamps where the adapter has them: `bench` times frames on the GPU with them.
-            let features = adapter.features() & wgpu::Features::TIMESTAMP_QUERY;
+            let features =
+                adapter.features() & (wgpu::Features::TIMESTAMP_QUERY | wgpu::Features::SUBGROUP);
             let desc = wgpu::DeviceDescriptor {
                 label: Some("sdfc"),
                 required_limits: limits.clone(),

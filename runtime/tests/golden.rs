@@ -76,7 +76,8 @@ fn golden(name: &str) -> PathBuf {
         .join(format!("{name}.bin"))
 }
 
-/// Every example with its own tracer, and the five tracers on three of them.
+/// Every example with its own tracer, and the five tracers on three of them: (the recorded
+/// frame's name, the scene).
 fn cases() -> Vec<(String, Scene)> {
     let mut out = Vec::new();
     for path in examples() {
@@ -113,16 +114,26 @@ fn code_generation_keeps_every_picture() {
     let write = std::env::var("SDFC_GOLDEN").is_ok_and(|v| v == "write");
     let mut report = String::new();
     let mut failures = Vec::new();
-    for (name, scene) in cases() {
+    // Each example again with bounding volumes in `map` (`--bvh`): the same field, so the
+    // same frame as recorded without them.
+    let examples = cases().into_iter().filter(|(n, _)| !n.contains('.'));
+    let bvh = examples.map(|(n, s)| (n, s, true));
+    for (name, scene, bvh) in cases().into_iter().map(|(n, s)| (n, s, false)).chain(bvh) {
         let view = View::new(&scene.camera, W, H);
-        let (module, _) = emit::module(&scene, Entry::Compute, &Options::from_scene(&scene))
+        let mut options = Options::from_scene(&scene);
+        options.bounding_volumes = bvh;
+        let (module, _) = emit::module(&scene, Entry::Compute, &options)
             .unwrap_or_else(|e| panic!("{name}: {}", e.0));
+        let name = if bvh { format!("{name} (bvh)") } else { name };
         let frame = gpu.render(&module, &view, None, |_, _| {}).unwrap();
         let now = pixels(&frame);
-        let file = golden(&name);
-        if write {
+        let file = golden(name.trim_end_matches(" (bvh)"));
+        if write && !bvh {
             std::fs::create_dir_all(file.parent().unwrap()).unwrap();
             std::fs::write(&file, encode(&now)).unwrap();
+            continue;
+        }
+        if write {
             continue;
         }
         let before = decode(&std::fs::read(&file).unwrap_or_else(|e| {

@@ -121,7 +121,10 @@ pub static OPERATORS: &[Operator] = &[
         lipschitz: ONE,
         bound: all,
         mirror: EVERY,
-        eval: |c, p, child| fold(c, p, child, f64::min),
+        eval: |c, p, child| match &c.prune {
+            Some(tree) => tree.min(p, &mut |i| norm(c, child, i, p)),
+            None => fold(c, p, child, f64::min),
+        },
     },
     Operator {
         name: "intersect",

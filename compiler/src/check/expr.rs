@@ -395,6 +395,8 @@ impl Checker<'_> {
                 child_bound: Vec::new(),
                 child_mirror: Vec::new(),
                 child_exact: Vec::new(),
+                child_cost: Vec::new(),
+                prune: None,
             };
             let lambda = (prim.lipschitz)(&ctx);
             let bound = (prim.bound)(&ctx);

@@ -349,7 +349,16 @@ impl<'a> Checker<'a> {
             child_bound: children.iter().map(|&c| self.nodes[c].bound).collect(),
             child_mirror: children.iter().map(|&c| self.nodes[c].mirror).collect(),
             child_exact: children.iter().map(|&c| self.nodes[c].exact).collect(),
+            child_cost: children
+                .iter()
+                .map(|&c| self.nodes[c].evaluations)
+                .collect(),
+            prune: None,
         };
+        let mut ctx = ctx;
+        if name == "union" {
+            ctx.prune = crate::catalog::prune::Tree::build(&ctx).map(std::sync::Arc::new);
+        }
         let lambda = (op.lipschitz)(&ctx);
         let bound = (op.bound)(&ctx);
         let copies = if name == "repeat" {

@@ -10,6 +10,7 @@ mod entry;
 pub mod march;
 pub mod ops;
 pub mod prims;
+mod prune;
 mod rays;
 mod shading;
 pub mod tracer;
@@ -264,6 +265,18 @@ impl Walk<'_> {
         let node = &self.scene.nodes[id];
         let (d, m) = match &node.kind {
             NodeKind::Operator { op, ctx, children } => {
+                // Every child's field and tag: without a union's bounding-volume tree.
+                let plain;
+                let ctx = match ctx.prune {
+                    Some(_) => {
+                        plain = crate::catalog::Ctx {
+                            prune: None,
+                            ..ctx.clone()
+                        };
+                        &plain
+                    }
+                    None => ctx,
+                };
                 let mut seen: Vec<Option<(Ex, Option<Ex>)>> = vec![None; children.len()];
                 // A child lowered more than once (the copies of a `repeat`) gives the material
                 // of its nearest evaluation, as in `eval::node`.

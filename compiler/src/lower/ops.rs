@@ -15,7 +15,7 @@ pub type ChildLower<'a> = &'a mut dyn FnMut(&mut FnBuilder, usize, Ex) -> Ex;
 pub type OpLower = fn(&mut FnBuilder, &Ctx, Ex, ChildLower) -> Ex;
 
 /// Child `i` at `p` divided by its λ (no division when λ = 1).
-fn norm(b: &mut FnBuilder, c: &Ctx, child: ChildLower, i: usize, p: Ex) -> Ex {
+pub(super) fn norm(b: &mut FnBuilder, c: &Ctx, child: ChildLower, i: usize, p: Ex) -> Ex {
     let d = child(b, i, p);
     scale_by(b, d, 1.0 / c.child_lambda[i])
 }
@@ -51,9 +51,12 @@ fn fold(
     acc
 }
 
-/// min of the normalised children.
+/// min of the normalised children; with a bounding-volume tree, see [`super::prune`].
 pub fn union(b: &mut FnBuilder, c: &Ctx, p: Ex, child: ChildLower) -> Ex {
-    fold(b, c, p, child, &|b, x, y| b.min(x, y))
+    match &c.prune {
+        Some(tree) => super::prune::union(b, c, p, child, tree),
+        None => fold(b, c, p, child, &|b, x, y| b.min(x, y)),
+    }
 }
 
 /// max of the normalised children.

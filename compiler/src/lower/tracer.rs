@@ -47,6 +47,10 @@ pub struct Options {
     /// Compile the compute entry for multi-resolution passes (Bálint §4): a `pass` field in
     /// the view and two buffers handing each pixel's t and step count to the next pass.
     pub passes: bool,
+    /// Test a union's bounding-volume tree in `map` (`catalog::prune`): the same field with
+    /// groups of far parts skipped. Off by default: on lavapipe a branch does not skip work
+    /// (every lane runs both sides), so the tests only cost (docs/benchmarks.md).
+    pub bounding_volumes: bool,
 }
 
 impl Options {
@@ -55,6 +59,7 @@ impl Options {
         Options {
             trace: scene.trace,
             passes: false,
+            bounding_volumes: false,
         }
     }
 }
