@@ -229,7 +229,9 @@ impl Checker<'_> {
 
     /// The value of an argument as its parameter's type, or an error.
     fn convert_value(&mut self, e: &Expr, ty: Ty, param: &str, value: Value) -> Option<Val> {
-        let found = value.describe();
+        // Described only for an error (a string per argument was 2% of checking 10 000 nodes).
+        let shown = value.clone();
+        let found = || shown.describe();
         let bad = |this: &mut Self, why: String| {
             this.diags.push(
                 Diagnostic::error(e.span, format!("`{param}` must be {}", ty.describe()))
@@ -269,19 +271,19 @@ impl Checker<'_> {
             }
             (Ty::Scale, Value::Num(..) | Value::Vec3(_)) => {
                 let d = Diagnostic::error(e.span, format!("`{param}` must be {}", ty.describe()))
-                    .label(format!("found {found}"))
+                    .label(format!("found {}", found()))
                     .note("a zero or negative scale has no distance field; mirror with `mirror(axis)`");
                 self.diags.push(d);
                 None
             }
             (Ty::Axis, Value::Vec3(_)) => bad(self, "a zero vector has no direction".into()),
             (_, Value::Num(..)) if !matches!(ty, Ty::Vec3 | Ty::Axis | Ty::Color) => {
-                bad(self, format!("found {found}"))
+                bad(self, format!("found {}", found()))
             }
             (Ty::Size | Ty::Counts | Ty::Color, Value::Vec3(_)) => {
-                bad(self, format!("found {found}"))
+                bad(self, format!("found {}", found()))
             }
-            _ => bad(self, format!("found {found}")),
+            _ => bad(self, format!("found {}", found())),
         }
     }
 }
