@@ -1,7 +1,13 @@
 #!/usr/bin/env bash
-# Regenerates docs/benchmarks.md and its plots: `sdfc bench` on the seeds' three scenes (the
-# Mandelbulb, the composition of tori/spheres/boxes/cylinders, the planar village), every
-# tracer at 8…256 steps against the f64 ground truth.
+# Regenerates docs/benchmarks.md and its plots and JSON (docs/benchmarks/):
+# - `sdfc bench` on the seeds' three scenes (the Mandelbulb, the composition of
+#   tori/spheres/boxes/cylinders, the planar village), every tracer at 8…256 steps against the
+#   f64 ground truth, trace-only and full-frame times;
+# - sdfc's trace-only shader next to hand-written references (runtime/benches/reference/),
+#   alternating frames in one process;
+# - bounding volumes in map() on a flat 39-part village, on the GPU (--bvh) and the CPU;
+# - the cost of a trivial frame against a bare dispatch and a hand-written one-step tracer;
+# - compile time: criterion in the library, and `sdfc emit` as a whole process.
 # Usage: bash scripts/bench.sh [WIDTHxHEIGHT] [REPEAT]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -9,13 +15,40 @@ size="${1:-320x180}"
 repeat="${2:-5}"
 eps=0.0001
 cargo build --release -q -p sdfc
-mkdir -p docs/benchmarks
+sdfc=./target/release/sdfc
+out=docs/benchmarks
+mkdir -p "$out"
 for scene in mandelbulb composition village; do
-  ./target/release/sdfc bench "examples/$scene.sdf" --size "$size" --repeat "$repeat" \
-    --epsilon "$eps" --json --plot "docs/benchmarks/$scene.png" > "docs/benchmarks/$scene.json"
+  $sdfc bench "examples/$scene.sdf" --size "$size" --repeat "$repeat" \
+    --epsilon "$eps" --json --plot "$out/$scene.png" > "$out/$scene.json"
   echo "measured $scene" >&2
 done
-# Compile time (criterion): parse → check → lower → validate → WGSL for generated scenes.
+# Hand-written references: basic tracing with each example's own budget, ε and distance.
+for spec in composition:160:composition mandelbulb:256:mandelbulb village:200:village \
+  village:200:village_cells; do
+  IFS=: read -r scene steps ref <<< "$spec"
+  $sdfc bench "examples/$scene.sdf" --tracers basic --steps "$steps" --size "$size" \
+    --repeat 21 --reference "runtime/benches/reference/$ref.wgsl" --json > "$out/reference-$ref.json"
+  echo "measured $scene against $ref.wgsl" >&2
+done
+# Bounding volumes: the flat village, without and with them in map().
+for bvh in "" --bvh; do
+  $sdfc bench examples/bench/village_flat.sdf --tracers basic,enhanced --steps 200 \
+    --size "$size" --repeat 9 $bvh --json > "$out/bvh${bvh:+-on}.json"
+done
+$sdfc bench examples/village.sdf --tracers basic,enhanced --steps 200 --size "$size" \
+  --repeat 9 --json > "$out/bvh-village.json"
+echo "measured bounding volumes" >&2
+# A trivial frame at 512²: against a dispatch that traces nothing and a one-step tracer.
+for ref in bare trivial; do
+  $sdfc bench examples/bench/trivial.sdf --tracers basic --steps 1 --size 512x512 --repeat 21 \
+    --reference "runtime/benches/reference/$ref.wgsl" --json > "$out/trivial-$ref.json"
+done
+echo "measured the trivial frame" >&2
+# Compile time (criterion): parse → check → lower → validate → WGSL for generated scenes; and
+# the CPU field with and without bounding-volume trees.
 cargo bench -q -p sdfc-compiler > /dev/null
+# `sdfc emit` of the 10 001-node scene of compiler/benches/compile.rs as a whole process.
+python3 scripts/emit_time.py "$sdfc" > "$out/emit-process.json"
 python3 scripts/bench_report.py "$size" "$repeat" "$eps" > docs/benchmarks.md
 echo "wrote docs/benchmarks.md" >&2
