@@ -4,7 +4,9 @@
 //! `runtime/tests/cli.rs`, device loss in `runtime/tests/device.rs`.
 
 use sdfc_compiler::check::tracer::MAX_STEPS;
-use sdfc_compiler::check::{self, MAX_DEPTH, MAX_EVALUATIONS, MAX_NODES};
+use sdfc_compiler::check::{
+    self, MAX_DEPTH, MAX_EVALUATIONS, MAX_LIGHTS, MAX_MATERIALS, MAX_NODES,
+};
 use sdfc_compiler::syntax::{MAX_NESTING, MAX_SOURCE_BYTES};
 use sdfc_compiler::{diag, emit, lower};
 
@@ -196,4 +198,46 @@ fn evaluations() {
         "too many evaluations",
         "16384 primitives".to_string(),
     );
+}
+
+#[test]
+fn materials() {
+    // n materials, each on its own sphere.
+    let scene = |n: usize| {
+        let mut s = String::new();
+        for i in 0..n {
+            s += &format!("material m{i} {{ color #{:03x} }}\n", i % 4096);
+        }
+        s += "union {\n";
+        for i in 0..n {
+            s += &format!("  sphere(0.1) at ({i}, 0, 0) : m{i}\n");
+        }
+        s + "}\n"
+    };
+    refused(
+        scene(MAX_MATERIALS + 1),
+        "too many materials",
+        format!("{MAX_MATERIALS} materials"),
+    );
+    assert_eq!(
+        accepted(scene(MAX_MATERIALS)).materials.len(),
+        MAX_MATERIALS
+    );
+}
+
+#[test]
+fn lights() {
+    let scene = |n: usize| {
+        let mut s = String::new();
+        for i in 0..n {
+            s += &format!("light point {{ position ({i}, 5, 0)  intensity 0.01 }}\n");
+        }
+        s + "sphere(1)\n"
+    };
+    refused(
+        scene(MAX_LIGHTS + 1),
+        "too many lights",
+        format!("{MAX_LIGHTS} lights"),
+    );
+    assert_eq!(accepted(scene(MAX_LIGHTS)).lights.len(), MAX_LIGHTS);
 }

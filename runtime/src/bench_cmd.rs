@@ -43,6 +43,8 @@ pub struct BenchArgs<'a> {
     pub reference: Option<&'a Path>,
     /// Compile `map` with bounding-volume tests.
     pub bvh: bool,
+    /// Go on with a shader above `render_cmd::MAX_DRIVER_CALLS`.
+    pub allow_slow_compile: bool,
 }
 
 /// Everything a run measured.
@@ -115,9 +117,20 @@ fn bench(args: &BenchArgs) -> Result<(), String> {
             sdfc_compiler::passes::counts()
         ));
     }
-    let Some((name, _, scene)) = load_scene(args.file) else {
+    let Some((name, source, scene)) = load_scene(args.file) else {
         return Err(String::new());
     };
+    let mut options = sdfc_compiler::lower::tracer::Options::from_scene(&scene);
+    options.bounding_volumes = args.bvh;
+    let (module, _) =
+        sdfc_compiler::emit::module(&scene, sdfc_compiler::lower::Entry::Compute, &options)
+            .map_err(|e| format!("internal compiler error: {}", e.0))?;
+    crate::render_cmd::check_driver_size(
+        &module,
+        (&name, &source, &scene),
+        args.allow_slow_compile,
+        None,
+    )?;
     let tracers: Vec<&str> = split(args.tracers);
     let budgets: Vec<&str> = split(args.steps);
     if tracers.is_empty() || budgets.is_empty() {

@@ -74,6 +74,10 @@ enum Command {
         /// Samples per pixel for anti-aliasing: a square number (a stratified grid).
         #[arg(long, default_value_t = 1)]
         samples: u32,
+        /// Render a shader larger than the driver compiles in reasonable time (more than
+        /// 4 096 calls of distance functions; docs/stability.md).
+        #[arg(long)]
+        allow_slow_compile: bool,
     },
     /// Measure every tracer × step budget on the GPU against an f64 ground truth: time,
     /// evaluations per pixel, depth error, hit/miss agreement.
@@ -123,6 +127,9 @@ enum Command {
         /// Compile `map` with bounding-volume tests (as `render --bvh`).
         #[arg(long)]
         bvh: bool,
+        /// Measure a shader larger than the driver compiles in reasonable time (as `render`).
+        #[arg(long)]
+        allow_slow_compile: bool,
     },
 }
 
@@ -230,6 +237,7 @@ pub fn run() -> i32 {
             backend,
             kind,
             samples,
+            allow_slow_compile,
         } => crate::render_cmd::run(&crate::render_cmd::RenderArgs {
             file: &file,
             output: &output,
@@ -238,6 +246,7 @@ pub fn run() -> i32 {
             backend: backend.into(),
             channel: kind,
             samples,
+            allow_slow_compile,
         }),
         Command::Bench {
             file,
@@ -255,6 +264,7 @@ pub fn run() -> i32 {
             passes,
             reference,
             bvh,
+            allow_slow_compile,
         } => crate::bench_cmd::run(&crate::bench_cmd::BenchArgs {
             file: &file,
             tracers: &tracers,
@@ -271,6 +281,7 @@ pub fn run() -> i32 {
             passes,
             reference: reference.as_deref(),
             bvh,
+            allow_slow_compile,
         }),
     }
 }

@@ -27,6 +27,8 @@ pub struct RenderArgs<'a> {
     pub channel: Channel,
     /// Samples per pixel (a square number).
     pub samples: u32,
+    /// Go on with a shader above [`MAX_DRIVER_CALLS`].
+    pub allow_slow_compile: bool,
 }
 
 /// Parses `WxH`.
@@ -64,8 +66,49 @@ pub fn run(args: &RenderArgs) -> i32 {
     }
 }
 
-/// Primitive evaluations per step from which `render` says that the driver is compiling.
-const SLOW_COMPILE: f64 = 512.0;
+/// Calls of distance functions in the shader from which `render` says that the driver is
+/// compiling (lavapipe: 256 took 0.7 s, 1 024 took 5.9 s).
+const SLOW_COMPILE: usize = 512;
+
+/// Most calls of distance functions in a shader `render` and `bench` hand to the driver
+/// without `--allow-slow-compile`. Measured on lavapipe (a flat union of spheres at 32×18, the
+/// driver's compile dominating): 256 calls 0.7 s, 1 024 5.9 s, 2 048 21.5 s, 4 096 113 s —
+/// quadratic; 8 192 would take about 8 minutes. Shared `let`s are one function each and cost
+/// little (4 096 evaluations through them: 2.4 s); `sdfc emit` has no such limit.
+pub const MAX_DRIVER_CALLS: usize = 4096;
+
+/// Refuses, with the scene's span, a module too large for the driver to compile in
+/// reasonable time (see [`MAX_DRIVER_CALLS`]); says when compiling will take a while.
+pub fn check_driver_size(
+    module: &naga::Module,
+    (name, source, scene): (&str, &str, &sdfc_compiler::scene::Scene),
+    allow: bool,
+    gpu_name: Option<&str>,
+) -> Result<(), String> {
+    let calls = emit::distance_calls(module);
+    if calls > MAX_DRIVER_CALLS && !allow {
+        let d = sdfc_compiler::diag::Diagnostic::error(
+            scene.root_node().span,
+            "this scene's shader is too large for the GPU driver to compile in reasonable time",
+        )
+        .label(format!("its code calls distance functions {calls} times"))
+        .note(format!(
+            "sdfc renders at most {MAX_DRIVER_CALLS} calls: on lavapipe a flat union of 2 048 shapes took 21 s to compile and 4 096 took 113 s, growing quadratically"
+        ))
+        .help("share repeated shapes with `let` or `repeat`, or pass `--allow-slow-compile` to wait; `sdfc emit` writes the shader for other engines");
+        say_raw!("{}", sdfc_compiler::diag::render(&[d], name, source));
+        return Err(String::new());
+    }
+    if calls >= SLOW_COMPILE
+        && let Some(gpu) = gpu_name
+    {
+        // The driver compiles the shader at pipeline creation, silently.
+        say!(
+            "compiling the shader for {gpu} ({calls} calls of distance functions: this can take a while)…"
+        );
+    }
+    Ok(())
+}
 
 /// How an internal compiler error's message starts.
 const INTERNAL: &str = "internal compiler error";
@@ -82,22 +125,25 @@ fn render(args: &RenderArgs) -> Result<(), String> {
     if (w * s) > sdfc::gpu::MAX_SIDE || (h * s) > sdfc::gpu::MAX_SIDE {
         return Err("error: the image is too large with this many samples".into());
     }
-    let Some((_, _, mut scene)) = load_scene(args.file) else {
+    let Some((name, source, mut scene)) = load_scene(args.file) else {
         return Err(String::new());
     };
     let options = args.tracer.settle(&mut scene)?;
     let (module, _) = emit::module(&scene, Entry::Compute, &options)
         .map_err(|e| format!("{INTERNAL}: {}", e.0))?;
+    check_driver_size(
+        &module,
+        (&name, &source, &scene),
+        args.allow_slow_compile,
+        None,
+    )?;
     let gpu = Gpu::new(args.backend)?;
-    let cost = scene.root_node().evaluations;
-    if cost >= SLOW_COMPILE {
-        // The driver compiles the shader at the first dispatch, silently; on a software
-        // driver a large scene takes minutes (a flat union of 2 048 spheres: 21 s on lavapipe).
-        say!(
-            "compiling the shader for {} ({cost:.0} primitive evaluations per step: this can take a while)…",
-            gpu.info.name
-        );
-    }
+    check_driver_size(
+        &module,
+        (&name, &source, &scene),
+        true,
+        Some(&gpu.info.name),
+    )?;
     let view = View::new(&scene.camera, w * s, h * s);
     let plan = options.passes.then(|| {
         passes::plan(

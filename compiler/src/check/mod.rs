@@ -20,6 +20,13 @@ use std::collections::HashMap;
 
 /// Most shape nodes a scene may have.
 pub const MAX_NODES: usize = 100_000;
+/// Most materials a scene may declare: each is a branch of the shading's material table.
+/// On lavapipe, 1 000 shapes each with its own material rendered (the driver's compile
+/// dominating) in 8.3 s at 32×18, 2 000 in 31 s.
+pub const MAX_MATERIALS: usize = 1024;
+/// Most lights a scene may have: each is a term of the shading. On lavapipe 1 000 lights
+/// rendered in 0.8 s, 4 000 in 8.6 s, 10 000 in 39 s.
+pub const MAX_LIGHTS: usize = 4096;
 /// Most primitive evaluations one evaluation of the scene's field may cost (`Node::evaluations`):
 /// shared `let`s and `repeat` copies multiply work without adding nodes (16 levels of a `let`
 /// used twice are 65 536 evaluations: the render grew to 7 GB and died). On lavapipe, 4 096

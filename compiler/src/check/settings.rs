@@ -207,6 +207,13 @@ impl Checker<'_> {
                     return;
                 };
                 let place = a[0].vec();
+                if self.settings.lights.len() == super::MAX_LIGHTS {
+                    self.diags.push(
+                        Diagnostic::error(span, "the scene has too many lights")
+                            .label("one light more than the limit")
+                            .note(format!("the limit is {} lights: each is a term of the shading the GPU driver compiles", super::MAX_LIGHTS)),
+                    );
+                }
                 self.settings.lights.push(Light {
                     kind: if name == "point" {
                         LightKind::Point(place)
@@ -385,6 +392,13 @@ impl Checker<'_> {
             self.failed.insert(name.name.clone());
             return;
         };
+        if self.materials.len() == super::MAX_MATERIALS {
+            self.diags.push(
+                Diagnostic::error(name.span, "the scene has too many materials")
+                    .label("one material more than the limit")
+                    .note(format!("the limit is {} materials: each is a branch of the shading the GPU driver compiles", super::MAX_MATERIALS)),
+            );
+        }
         self.materials.push(Material {
             name: name.name.clone(),
             color: a[0].vec(),
