@@ -21,6 +21,7 @@ mod bench_cmd;
 mod cli;
 mod emit_cmd;
 mod render_cmd;
+mod tracer_args;
 
 fn main() {
     // Mesa's drivers complain on every start when this is unset; nothing else reads it here.

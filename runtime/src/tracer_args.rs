@@ -1,0 +1,106 @@
+//! The tracer flags `emit` and `render` share (`--tracer`, `--steps`, …, `--passes`, `--bvh`),
+//! and how they settle a scene's settings.
+
+use clap::Args;
+use sdfc_compiler::check;
+
+/// Tracer settings that override the scene's `trace` block (emit and render).
+#[derive(Args, Debug, Default)]
+pub struct TracerArgs {
+    /// Tracer to use instead of the scene's: basic, relaxed, enhanced, hybrid, auto.
+    #[arg(long)]
+    pub tracer: Option<String>,
+    /// Step budget (evaluations of the field per ray).
+    #[arg(long, allow_hyphen_values = true)]
+    pub steps: Option<String>,
+    /// Hit threshold: a distance, or `pixel` for the pixel footprint.
+    #[arg(long, allow_hyphen_values = true)]
+    pub epsilon: Option<String>,
+    /// Rays stop beyond this distance.
+    #[arg(long, allow_hyphen_values = true)]
+    pub max_distance: Option<String>,
+    /// Relaxation ω (relaxed: [1, 2); enhanced: [0.5, 2)).
+    #[arg(long, allow_hyphen_values = true)]
+    pub omega: Option<String>,
+    /// Weight of the slope average (auto).
+    #[arg(long, allow_hyphen_values = true)]
+    pub beta: Option<String>,
+    /// Linear-search step in units of ε (hybrid).
+    #[arg(long, allow_hyphen_values = true)]
+    pub linear: Option<String>,
+    /// Regula falsi iterations (hybrid).
+    #[arg(long, allow_hyphen_values = true)]
+    pub refine: Option<String>,
+    /// Discontinuity-reduction iterations after a hit (Keinert §3.4).
+    #[arg(long, allow_hyphen_values = true)]
+    pub discontinuity: Option<String>,
+    /// Hart's cone anti-aliasing (`cone`, basic tracer) or `none`.
+    #[arg(long, allow_hyphen_values = true)]
+    pub antialias: Option<String>,
+    /// After a failed relaxed step: `keep` ω (Bálint & Valasek Alg. 2) or `reset` it to 1
+    /// (Keinert Listing 2); relaxed tracer.
+    #[arg(long, allow_hyphen_values = true)]
+    pub fallback: Option<String>,
+    /// Multi-resolution passes (Bálint §4): 2 (1/2 then full resolution), 4 or 6; 1 is a
+    /// single pass. Compute entry only.
+    #[arg(long, default_value_t = 1)]
+    pub passes: u32,
+    /// Ignore the scene's `bound` block (trace every ray from the camera).
+    #[arg(long)]
+    pub no_bound: bool,
+    /// Test bounding boxes in `map` to skip far groups of a union's parts (the same field;
+    /// pays on GPUs that branch per SIMD group, not on lavapipe: docs/benchmarks.md).
+    #[arg(long)]
+    pub bvh: bool,
+}
+
+impl TracerArgs {
+    /// The scene's tracer settings with these overrides, or an error for the user.
+    pub fn apply(
+        &self,
+        scene: sdfc_compiler::scene::Trace,
+    ) -> Result<sdfc_compiler::scene::Trace, String> {
+        let values: Vec<(&str, &str)> = [
+            ("steps", &self.steps),
+            ("epsilon", &self.epsilon),
+            ("max_distance", &self.max_distance),
+            ("omega", &self.omega),
+            ("beta", &self.beta),
+            ("linear", &self.linear),
+            ("refine", &self.refine),
+            ("discontinuity", &self.discontinuity),
+            ("antialias", &self.antialias),
+            ("fallback", &self.fallback),
+        ]
+        .iter()
+        .filter_map(|(k, v)| v.as_deref().map(|v| (*k, v)))
+        .collect();
+        check::tracer::with_overrides(scene, self.tracer.as_deref(), &values)
+            .map_err(|e| format!("error: {e}"))
+    }
+
+    /// Applies the overrides to a scene and returns the lowering options, or an error for the
+    /// user.
+    pub fn settle(
+        &self,
+        scene: &mut sdfc_compiler::scene::Scene,
+    ) -> Result<sdfc_compiler::lower::tracer::Options, String> {
+        scene.trace = self.apply(scene.trace)?;
+        if self.no_bound {
+            scene.bound = None;
+        }
+        let counts = sdfc_compiler::passes::counts();
+        if !counts.contains(&(self.passes as usize)) {
+            let list: Vec<String> = counts.iter().map(|c| c.to_string()).collect();
+            return Err(format!(
+                "error: `--passes {}`: there are schedules for {} passes",
+                self.passes,
+                list.join(", ")
+            ));
+        }
+        let mut options = sdfc_compiler::lower::tracer::Options::from_scene(scene);
+        options.passes = self.passes > 1;
+        options.bounding_volumes = self.bvh;
+        Ok(options)
+    }
+}
