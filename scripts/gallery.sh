@@ -9,6 +9,6 @@ mkdir -p docs/gallery
 for scene in examples/*.sdf; do
   name=$(basename "$scene" .sdf)
   ./target/release/sdfc render "$scene" -o "docs/gallery/$name.png" --size "$size" --samples 4
-  ./target/release/sdfc render "$scene" -o "docs/gallery/$name-steps.png" --size "$size" --output steps
+  ./target/release/sdfc render "$scene" -o "docs/gallery/$name-steps.png" --size "$size" --channel steps
   echo "rendered $name"
 done

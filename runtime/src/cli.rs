@@ -59,7 +59,7 @@ enum Command {
         /// The scene file (`-` for standard input).
         file: PathBuf,
         /// Output file: `.png`, or `.npy` for raw f32 depth.
-        #[arg(short = 'o', long = "out")]
+        #[arg(short = 'o', long = "output", visible_alias = "out")]
         output: PathBuf,
         /// Image size.
         #[arg(long, default_value = "1280x720")]
@@ -70,7 +70,7 @@ enum Command {
         #[arg(long, value_enum, default_value = "auto")]
         backend: BackendArg,
         /// What to write.
-        #[arg(long = "output", value_enum, default_value = "color")]
+        #[arg(long = "channel", value_enum, default_value = "color")]
         kind: sdfc::images::Channel,
         /// Samples per pixel for anti-aliasing: a square number (a stratified grid).
         #[arg(long, default_value_t = 1)]

@@ -114,6 +114,13 @@ pub fn check_driver_size(
 const INTERNAL: &str = "internal compiler error";
 
 fn render(args: &RenderArgs) -> Result<(), String> {
+    // `--output` names the file (as for every command); the channel was `--output` before.
+    let word = args.output.to_str().unwrap_or("");
+    if ["color", "depth", "normal", "steps", "material"].contains(&word) {
+        return Err(format!(
+            "error: `--output {word}` names the file to write; the channel is `--channel {word}`\nhelp: sdfc render FILE -o OUT.png --channel {word}"
+        ));
+    }
     let (w, h) = parse_size(args.size)?;
     let s = (args.samples as f64).sqrt().round() as u32;
     if args.samples == 0 || s * s != args.samples || s > 8 {
@@ -169,7 +176,7 @@ fn render(args: &RenderArgs) -> Result<(), String> {
     let bytes = if wants_npy {
         if args.channel != Channel::Depth || s != 1 {
             return Err(
-                "error: `.npy` output is for `--output depth` with one sample per pixel".into(),
+                "error: `.npy` output is for `--channel depth` with one sample per pixel".into(),
             );
         }
         images::npy(&frame.depth, w, h)

@@ -155,7 +155,7 @@ fn render_writes_a_png_for_every_output_kind() {
             out_path.to_str().unwrap(),
             "--size",
             "64x40",
-            "--output",
+            "--channel",
             kind,
         ]);
         assert_eq!(
@@ -175,7 +175,7 @@ fn render_writes_a_png_for_every_output_kind() {
         npy.to_str().unwrap(),
         "--size",
         "64x40",
-        "--output",
+        "--channel",
         "depth",
     ]);
     assert_eq!(
@@ -411,5 +411,40 @@ fn render_refuses_a_shader_the_driver_cannot_compile_in_time() {
         String::from_utf8_lossy(&o.stderr)
     );
     assert_eq!(sdfc(&["check", &file]).status.code(), Some(0));
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+/// `-o/--output` names the file for every command (`--out` is kept as an alias); the channel
+/// is `--channel`. The old spelling `--output depth` is answered with the new one.
+#[test]
+fn render_output_is_the_file_and_channel_the_kind() {
+    let dir = scratch("output-flag");
+    let scene = root().join("examples/gem.sdf");
+    let scene = scene.to_str().unwrap();
+    for flag in ["-o", "--output", "--out"] {
+        let out = dir.join(format!("gem{flag}.png"));
+        let o = sdfc(&[
+            "render",
+            scene,
+            flag,
+            out.to_str().unwrap(),
+            "--size",
+            "16x9",
+            "--channel",
+            "normal",
+        ]);
+        assert_eq!(
+            o.status.code(),
+            Some(0),
+            "{flag}: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+        assert!(out.exists(), "{flag}: nothing written");
+    }
+    let o = sdfc(&["render", scene, "--output", "depth"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(err.contains("the channel is `--channel depth`"), "{err}");
+    assert!(!std::path::Path::new("depth").exists());
     let _ = std::fs::remove_dir_all(dir);
 }
