@@ -241,3 +241,26 @@ fn lights() {
     );
     assert_eq!(accepted(scene(MAX_LIGHTS)).lights.len(), MAX_LIGHTS);
 }
+
+/// What `render` limits (`MAX_DRIVER_CALLS` in the runtime) is counted exactly: a union of n
+/// spheres calls `sd_sphere` n times; a `let` shape used many times is one function in `map`,
+/// but the material function writes its body inline at every use.
+#[test]
+fn distance_calls_are_the_call_sites() {
+    let calls = |source: String| {
+        let scene = accepted(source);
+        let options = lower::tracer::Options::from_scene(&scene);
+        let (m, _) = emit::module(&scene, lower::Entry::Compute, &options).unwrap();
+        emit::distance_calls(&m)
+    };
+    assert_eq!(calls(spheres(4096)), 4096);
+    let shared = "let a = union { sphere(1)  box(1) at (2, 0, 0) }\nunion { a  a at (5, 0, 0)  a at (10, 0, 0) }\n";
+    assert_eq!(calls(shared.to_string()), 2);
+    let with_material = format!(
+        "material m {{ color #f00 }}\n{}",
+        shared.replace("union { a ", "union { a : m ")
+    );
+    // `a : m` is a copy of `a` with a material: a second function (2 more calls), and the
+    // material function inlines the three uses.
+    assert_eq!(calls(with_material), 2 + 2 + 3 * 2);
+}

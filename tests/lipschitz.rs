@@ -371,8 +371,9 @@ fn crowd_source(seed: u64) -> String {
 }
 
 /// The bounding-volume tree of a union (`catalog::prune`) changes the work, not the field: at
-/// random points near and far, every node's field with the trees equals (bit for bit: a
-/// skipped part can only be ≥ the minimum) the field with every child evaluated. A wrong
+/// random points near and far, the scene's field and material and each union's own field with
+/// the trees equal (bit for bit: a skipped part can only be ≥ the minimum) those with every
+/// child evaluated. A wrong
 /// `exact` flag or a box that misses part of its surface fails here.
 #[test]
 fn bounding_volumes_leave_the_field_unchanged() {
@@ -411,6 +412,14 @@ fn bounding_volumes_leave_the_field_unchanged() {
                     a.to_bits() == b.to_bits() && sa == sb,
                     "at {p}: with the trees {a} ({sa:?}), without {b} ({sb:?})\n{source}"
                 );
+                // Each union with a tree on its own (an outer minimum could hide a wrong one).
+                for &id in &with {
+                    let (x, y) = (eval::node(&scene, id, p).d, eval::node(&plain, id, p).d);
+                    assert!(
+                        x.to_bits() == y.to_bits(),
+                        "node {id} at {p}: with its tree {x}, without {y}\n{source}"
+                    );
+                }
             }
         }
         println!("{trees} unions with a tree; {points} points, the same field at each");

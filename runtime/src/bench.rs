@@ -212,11 +212,12 @@ pub fn measure(gpu: &Gpu, job: &Job) -> Result<Cell, String> {
     let n = job.truth.len().max(1) as f64;
     let evals_mean = mean_steps(&rays);
     let hits = rays.iter().filter(|r| r.hit).count() as f64;
-    let material = if job.scene.materials.is_empty() {
-        0.0
-    } else {
-        1.0
-    };
+    // The material's evaluation, where the module has a material function.
+    let has_material = full_module
+        .functions
+        .iter()
+        .any(|(_, f)| f.name.as_deref() == Some("map_material"));
+    let material = if has_material { 1.0 } else { 0.0 };
     let mse = if counted > 0 {
         sum / counted as f64
     } else {

@@ -110,13 +110,7 @@ fn bench(args: &BenchArgs) -> Result<(), String> {
         )),
         None => None,
     };
-    if !sdfc_compiler::passes::counts().contains(&(args.passes as usize)) {
-        return Err(format!(
-            "error: `--passes {}`: there are schedules for {:?} passes",
-            args.passes,
-            sdfc_compiler::passes::counts()
-        ));
-    }
+    crate::tracer_args::check_passes(args.passes)?;
     let Some((name, source, scene)) = load_scene(args.file) else {
         return Err(String::new());
     };

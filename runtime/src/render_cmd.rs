@@ -73,8 +73,9 @@ const SLOW_COMPILE: usize = 512;
 /// Most calls of distance functions in a shader `render` and `bench` hand to the driver
 /// without `--allow-slow-compile`. Measured on lavapipe (a flat union of spheres at 32×18, the
 /// driver's compile dominating): 256 calls 0.7 s, 1 024 5.9 s, 2 048 21.5 s, 4 096 113 s —
-/// quadratic; 8 192 would take about 8 minutes. Shared `let`s are one function each and cost
-/// little (4 096 evaluations through them: 2.4 s); `sdfc emit` has no such limit.
+/// quadratic; 8 192 would take about 8 minutes. In `map` a shared `let` is one function and
+/// costs little (4 096 evaluations through them: 2.4 s), but the material function writes its
+/// body at each use; `sdfc emit` has no such limit.
 pub const MAX_DRIVER_CALLS: usize = 4096;
 
 /// Refuses, with the scene's span, a module too large for the driver to compile in

@@ -89,18 +89,23 @@ impl TracerArgs {
         if self.no_bound {
             scene.bound = None;
         }
-        let counts = sdfc_compiler::passes::counts();
-        if !counts.contains(&(self.passes as usize)) {
-            let list: Vec<String> = counts.iter().map(|c| c.to_string()).collect();
-            return Err(format!(
-                "error: `--passes {}`: there are schedules for {} passes",
-                self.passes,
-                list.join(", ")
-            ));
-        }
+        check_passes(self.passes)?;
         let mut options = sdfc_compiler::lower::tracer::Options::from_scene(scene);
         options.passes = self.passes > 1;
         options.bounding_volumes = self.bvh;
         Ok(options)
     }
+}
+
+/// `--passes N` of `render`, `emit` and `bench`: a number of passes there is a schedule for.
+pub fn check_passes(passes: u32) -> Result<(), String> {
+    let counts = sdfc_compiler::passes::counts();
+    if counts.contains(&(passes as usize)) {
+        return Ok(());
+    }
+    let list: Vec<String> = counts.iter().map(|c| c.to_string()).collect();
+    Err(format!(
+        "error: `--passes {passes}`: there are schedules for {} passes",
+        list.join(", ")
+    ))
 }

@@ -3,14 +3,16 @@
 //! `tests/golden/` — hit masks equal, depth within the hit threshold, materials the same —
 //! and the normals the CPU's [`eval::normal`] gives at the same point with the same step.
 //!
-//! The normals are not compared with the recorded ones: the normal changed on purpose from six
-//! central differences to four tetrahedral samples (issue 14), which differ by O(h²) and, within
-//! h of an edge, by more (h is the pixel footprint at t, large in a 64×36 image: 0.1 of 1.0 on
-//! a quarter of the village's hits).
+//! The normals are not compared exactly with the recorded ones: the normal changed on purpose
+//! from six central differences to four tetrahedral samples (issue 14), which differ by O(h)
+//! where the field curves across axes and, within h of an edge, by more (h is the pixel
+//! footprint at t, large in a 64×36 image: 0.1 of 1.0 on a quarter of the village's hits).
+//! They are checked against the CPU's same formula, and loosely against the recorded ones.
 //!
 //! The recorded frames are re-written with `SDFC_GOLDEN=write cargo test --release --test
 //! golden`, which is only right *before* a change that must not alter pictures.
 
+use sdfc::frames::{Layout, Source, TILE};
 use sdfc::gpu::Frame;
 use sdfc_compiler::lower::{Entry, tracer::Options};
 use sdfc_compiler::scene::{Epsilon, Method, Scene};
@@ -126,6 +128,29 @@ fn code_generation_keeps_every_picture() {
             .unwrap_or_else(|e| panic!("{name}: {}", e.0));
         let name = if bvh { format!("{name} (bvh)") } else { name };
         let frame = gpu.render(&module, &view, None, |_, _| {}).unwrap();
+        // The trace-only entry `sdfc bench` times traces the same rays: the same hits, t and
+        // steps as the full frame, pixel for pixel.
+        let (trace_module, _) = emit::module(&scene, Entry::Trace, &options)
+            .unwrap_or_else(|e| panic!("{name}: {}", e.0));
+        let traced = gpu
+            .prepare(
+                Source::Module(&trace_module),
+                Layout::TraceOnly { passes: false },
+                &view,
+                None,
+                TILE,
+            )
+            .unwrap();
+        traced.run_tiles(|_, _| {}).unwrap();
+        for (i, ray) in traced.rays().unwrap().iter().enumerate() {
+            let depth = if ray.hit { ray.t } else { -1.0 };
+            assert!(
+                depth.to_bits() == frame.depth[i].to_bits() && ray.steps == frame.steps[i],
+                "{name}, pixel {i}: trace-only {ray:?}, full frame depth {} steps {}",
+                frame.depth[i],
+                frame.steps[i]
+            );
+        }
         let now = pixels(&frame);
         let file = golden(name.trim_end_matches(" (bvh)"));
         if write && !bvh {
@@ -145,6 +170,7 @@ fn code_generation_keeps_every_picture() {
         assert_eq!(before.len(), now.len(), "{name}: size");
         let (mut mask, mut depth, mut normal, mut material, mut worst) = (0, 0, 0, 0, 0.0f64);
         let hits = before.iter().filter(|p| p.depth >= 0.0).count();
+        let mut turned = 0;
         for (i, (a, b)) in before.iter().zip(&now).enumerate() {
             if (a.depth >= 0.0) != (b.depth >= 0.0) {
                 mask += 1;
@@ -185,14 +211,29 @@ fn code_generation_keeps_every_picture() {
             if dn > 0.05 {
                 normal += 1;
             }
+            // Loosely, the recorded (central-difference) normal: within 18°.
+            let dot: f64 = (0..3)
+                .map(|k| a.normal[k] as f64 * b.normal[k] as f64 * 1e-6)
+                .sum();
+            if dot < 0.95 {
+                turned += 1;
+            }
         }
         let line = format!(
-            "{name}: {mask} mask, {depth} depth, {material} material differences; normal ≠ CPU's (> 0.05) at {normal} of {hits} hits; worst |Δt| {worst:.2} ε\n"
+            "{name}: {mask} mask, {depth} depth, {material} material differences; normal ≠ CPU's (> 0.05) at {normal}, turned > 18° from the recorded one at {turned} of {hits} hits; worst |Δt| {worst:.2} ε\n"
         );
         // f32 against f64 at points that differ by rounding (and the Mandelbulb's f32 field is
         // rough at the scale of h): at most 1% of hits may be near
         // enough an edge that the four samples straddle it differently.
-        if mask + depth + material > 0 || normal * 100 > hits {
+        // Tetrahedral against central differences, h a pixel's footprint: within 18° on all but
+        // the hits near edges (at most 6.5% of them measured; 10% allowed), and on the
+        // Mandelbulb, whose field curves at every scale, all but 20% (25% allowed).
+        let turned_allowed = if name.starts_with("mandelbulb") {
+            4
+        } else {
+            10
+        };
+        if mask + depth + material > 0 || normal * 100 > hits || turned * turned_allowed > hits {
             failures.push(line.clone());
         }
         report += &line;

@@ -203,8 +203,6 @@ pub struct Ctx {
     /// Whether each child's field, divided by its λ, is the distance to its surface outside it
     /// (see [`Operator::keeps_exact`]).
     pub child_exact: Vec<bool>,
-    /// Primitive evaluations one evaluation of each child costs (`Node::evaluations`).
-    pub child_cost: Vec<f64>,
     /// A union's bounding-volume tree (see [`prune`]), built once at check time; `None`
     /// evaluates every child.
     pub prune: Option<std::sync::Arc<prune::Tree>>,

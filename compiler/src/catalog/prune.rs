@@ -15,14 +15,12 @@ use glam::DVec3;
 /// Fewest groupable children for a tree to be built.
 pub const MIN_CHILDREN: usize = 3;
 
-/// Most children in a leaf group.
+/// Most children in a leaf group. Measured by hand on the CPU evaluator (the f64 ground truth
+/// of `sdfc bench` at 256×144; the village written as a flat union of 39 parts, and the
+/// composition): with no tree 21.8 s and 3.4 s; leaves of 2, every group tested, 3.7 s and
+/// 2.0 s; leaves of 4 or 8, or tests only on groups costing 4 or 8 primitive evaluations, no
+/// better (3.6–4.5 s, 2.0–4.3 s). `cargo bench --bench eval` keeps the first comparison.
 pub const LEAF: usize = 2;
-
-/// Least cost (primitive evaluations) of a group for its box to be tested. With these three,
-/// measured on the CPU evaluator (the f64 ground truth of `sdfc bench`, 256×144): the village
-/// written as a flat union of 39 parts 21.8 s → 3.7 s, the composition 3.4 s → 2.0 s; larger
-/// leaves or a higher least cost did no better (docs/benchmarks.md, "bounding volumes").
-pub const MIN_COST: f64 = 1.0;
 
 /// A union's evaluation plan.
 #[derive(Clone, Debug, PartialEq)]
@@ -36,8 +34,6 @@ pub struct Tree {
 /// A box and what it holds.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Group {
-    /// Whether the box is tested (a group cheaper than [`MIN_COST`] is evaluated without).
-    pub test: bool,
     /// The box's lowest corner.
     pub lo: DVec3,
     /// The box's highest corner.
@@ -93,7 +89,7 @@ impl Tree {
 impl Group {
     /// The running minimum `d` after this group at `p`.
     fn min(&self, p: DVec3, mut d: f64, child: &mut dyn FnMut(usize) -> f64) -> f64 {
-        if self.test && !self.near(p, d) {
+        if !self.near(p, d) {
             return d;
         }
         match &self.inside {
@@ -139,11 +135,8 @@ fn split(ctx: &Ctx, mut children: Vec<usize>) -> Group {
         .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), &i| {
             (lo.min(ctx.child_bound[i].lo), hi.max(ctx.child_bound[i].hi))
         });
-    let cost: f64 = children.iter().map(|&i| ctx.child_cost[i]).sum();
-    let test = cost >= MIN_COST;
     if children.len() <= LEAF {
         return Group {
-            test,
             lo,
             hi,
             inside: Inside::Children(children),
@@ -168,7 +161,6 @@ fn split(ctx: &Ctx, mut children: Vec<usize>) -> Group {
     children.sort_by(|&a, &b| centre(a)[axis].total_cmp(&centre(b)[axis]));
     let right = children.split_off(children.len() / 2);
     Group {
-        test,
         lo,
         hi,
         inside: Inside::Groups(vec![split(ctx, children), split(ctx, right)]),

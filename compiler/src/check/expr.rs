@@ -395,7 +395,6 @@ impl Checker<'_> {
                 child_bound: Vec::new(),
                 child_mirror: Vec::new(),
                 child_exact: Vec::new(),
-                child_cost: Vec::new(),
                 prune: None,
             };
             let lambda = (prim.lipschitz)(&ctx);

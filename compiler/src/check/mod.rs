@@ -356,10 +356,6 @@ impl<'a> Checker<'a> {
             child_bound: children.iter().map(|&c| self.nodes[c].bound).collect(),
             child_mirror: children.iter().map(|&c| self.nodes[c].mirror).collect(),
             child_exact: children.iter().map(|&c| self.nodes[c].exact).collect(),
-            child_cost: children
-                .iter()
-                .map(|&c| self.nodes[c].evaluations)
-                .collect(),
             prune: None,
         };
         let mut ctx = ctx;

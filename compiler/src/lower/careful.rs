@@ -5,8 +5,8 @@
 //! by regula falsi, or rises above ε).
 
 use super::builder::{Ex, FnBuilder};
+use super::hybrid::regula_falsi;
 use super::march::{Cx, EXHAUSTED, HIT};
-use super::variants::regula_falsi;
 use crate::trace::{CROSSING_REFINE, ZONE_STEP};
 use naga::BinaryOperator as B;
 use naga::{Function, Handle};

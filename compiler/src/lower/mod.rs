@@ -7,6 +7,8 @@ mod bound;
 pub mod builder;
 mod careful;
 mod entry;
+mod handoff;
+mod hybrid;
 pub mod march;
 pub mod ops;
 pub mod prims;

@@ -29,10 +29,9 @@ fn lower_into(b: &mut FnBuilder, c: &Ctx, p: Ex, child: ChildLower, d: Ex, i: us
     b.store(d, m);
 }
 
-/// `if` the group's box is nearer than `d` (or always, for a group too cheap to test): its
-/// children or groups, each lowering `d`.
+/// `if` the group's box is nearer than `d`: its children or groups, each lowering `d`.
 fn group(b: &mut FnBuilder, c: &Ctx, p: Ex, child: ChildLower, d: Ex, g: &Group) {
-    let mut body = |b: &mut FnBuilder| match &g.inside {
+    let body = |b: &mut FnBuilder| match &g.inside {
         Inside::Children(list) => {
             for &i in list {
                 lower_into(b, c, p, child, d, i);
@@ -44,12 +43,12 @@ fn group(b: &mut FnBuilder, c: &Ctx, p: Ex, child: ChildLower, d: Ex, g: &Group)
             }
         }
     };
-    if !g.test {
-        return body(b);
-    }
-    // |max(|p − c| − h, 0)|² ≤ max(d, 0)², as `Group::near`.
-    let centre = b.vec3_lit(g.center());
-    let half = b.vec3_lit(g.half());
+    // |max(|p − c| − h, 0)|² ≤ max(d, 0)², as `Group::near`, with the box grown by a few f32
+    // ulps of its size so that rounding its corners cannot cut into a part.
+    let (c, h) = (g.center(), g.half());
+    let margin = 1e-6 * (c.abs().max_element() + h.max_element());
+    let centre = b.vec3_lit(c);
+    let half = b.vec3_lit(h + glam::DVec3::splat(margin));
     let q = b.sub(p, centre);
     let q = b.abs(q);
     let q = b.sub(q, half);
