@@ -3,6 +3,7 @@
 
 pub mod catalog;
 pub mod check;
+pub mod color;
 pub mod diag;
 pub mod docs;
 pub mod emit;

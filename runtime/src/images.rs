@@ -83,8 +83,10 @@ fn palette(id: u32) -> [u8; 4] {
     [(r * 255.0) as u8, (g * 255.0) as u8, (b * 255.0) as u8, 255]
 }
 
-/// Averages `s`×`s` blocks of an RGBA8 image (supersampling's resolve).
-pub fn downsample(pixels: &[u8], width: u32, height: u32, s: u32) -> Vec<u8> {
+/// Averages `s`×`s` blocks of an RGBA8 image (supersampling's resolve); with `srgb`, in linear
+/// light (each sample decoded, the mean encoded again), as colour must be averaged.
+pub fn downsample(pixels: &[u8], width: u32, height: u32, s: u32, srgb: bool) -> Vec<u8> {
+    use sdfc_compiler::color::{to_linear, to_srgb};
     if s == 1 {
         return pixels.to_vec();
     }
@@ -93,14 +95,18 @@ pub fn downsample(pixels: &[u8], width: u32, height: u32, s: u32) -> Vec<u8> {
     for y in 0..h {
         for x in 0..w {
             for c in 0..4 {
-                let mut sum = 0u32;
+                let decode = srgb && c < 3;
+                let mut sum = 0.0;
                 for dy in 0..s {
                     for dx in 0..s {
-                        sum +=
-                            pixels[(((y * s + dy) * width + x * s + dx) * 4 + c) as usize] as u32;
+                        let v = pixels[(((y * s + dy) * width + x * s + dx) * 4 + c) as usize];
+                        let v = v as f64 / 255.0;
+                        sum += if decode { to_linear(v) } else { v };
                     }
                 }
-                out.push(((sum as f32) / (s * s) as f32).round() as u8);
+                let mean = sum / (s * s) as f64;
+                let mean = if decode { to_srgb(mean) } else { mean };
+                out.push((mean * 255.0).round() as u8);
             }
         }
     }

@@ -183,7 +183,11 @@ fn render(args: &RenderArgs) -> Result<(), String> {
         images::npy(&frame.depth, w, h)
     } else {
         let px = images::rgba(&frame, args.channel, scene.trace.steps);
-        images::png(images::downsample(&px, w * s, h * s, s), w, h)?
+        images::png(
+            images::downsample(&px, w * s, h * s, s, args.channel == Channel::Color),
+            w,
+            h,
+        )?
     };
     match write_whole(args.output, &bytes) {
         0 => Ok(()),

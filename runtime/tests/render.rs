@@ -169,3 +169,54 @@ fn a_render_splits_into_tiles_without_seams() {
         .count();
     assert!(same as f64 / cpu.len() as f64 >= 0.995);
 }
+
+/// Colour is sRGB in, linear in between, sRGB out: a pixel that shows the background has the
+/// background's bytes as written (`#202030` → 32, 32, 48), and a face lit head-on by a white
+/// light is its colour decoded, lit (ambient + 1) and encoded again — 135 for `#808080`, where
+/// lighting the encoded value as if it were linear gave 143.
+#[test]
+fn the_background_comes_out_as_written() {
+    let gpu = gpu(BackendChoice::Vulkan);
+    let scene = scene(
+        &examples()
+            .into_iter()
+            .find(|p| p.ends_with("composition.sdf"))
+            .unwrap(),
+    );
+    let view = View::new(&scene.camera, W, H);
+    let frame = render(&gpu, &scene, &view);
+    // The top row looks at the sky above the colonnade.
+    let misses: Vec<[u8; 4]> = (0..W as usize)
+        .filter(|&i| frame.depth[i] < 0.0)
+        .map(|i| frame.color[i].to_le_bytes())
+        .collect();
+    assert!(!misses.is_empty());
+    for px in misses {
+        assert_eq!(px, [0x20, 0x20, 0x30, 255]);
+    }
+}
+
+#[test]
+fn a_lit_colour_is_lit_in_linear_light() {
+    let gpu = gpu(BackendChoice::Vulkan);
+    let scene = sdfc_compiler::check::compile(
+        "camera { eye (0, 0, -5)  target (0, 0, 0) }\n\
+         light { direction (0, 0, -1)  color #fff }\n\
+         material grey { color #808080 }\n\
+         box(4) : grey\n",
+    )
+    .scene
+    .unwrap();
+    let view = View::new(&scene.camera, W, H);
+    let frame = render(&gpu, &scene, &view);
+    let centre = (H / 2 * W + W / 2) as usize;
+    assert!(frame.depth[centre] > 0.0, "the face is hit");
+    use sdfc_compiler::color::{to_linear, to_srgb};
+    let lit = to_linear(128.0 / 255.0) * (sdfc_compiler::lower::tracer::AMBIENT + 1.0);
+    let want = (to_srgb(lit) * 255.0).round() as i32;
+    assert_eq!(want, 135);
+    let px = frame.color[centre].to_le_bytes();
+    for c in &px[..3] {
+        assert!((*c as i32 - want).abs() <= 1, "{px:?}, want {want}");
+    }
+}

@@ -153,7 +153,7 @@ fn shade_hit(
     let v3 = b.m.vec3();
     let u32t = b.m.u32();
     let pixel_mode = matches!(options.trace.epsilon, Epsilon::Pixel);
-    let bg = b.vec3_lit(scene.background);
+    let bg = b.vec3_lit(crate::color::linear(scene.background));
     let color = b.local("color", v3, Some(bg));
     let zero3 = b.splat3(0.0);
     let normal = b.local("n", v3, Some(zero3));
@@ -329,6 +329,8 @@ pub(super) fn add_compute(
     let z3 = b.splat(zero, VectorSize::Tri);
     let o3 = b.splat(one, VectorSize::Tri);
     let c = b.clamp(s.color, z3, o3);
+    // Linear light encoded to sRGB once, here, as the PNG stores it.
+    let c = encode_srgb(&mut b, c);
     let [r, g, bl] = b.xyz(c);
     let v4t = b.m.vec(VectorSize::Quad);
     let rgba = b.compose(v4t, vec![r, g, bl, one]);
@@ -401,4 +403,25 @@ pub(super) fn add_fragment(
         task_payload: None,
         incoming_ray_payload: None,
     });
+}
+
+/// `c` (linear, in 0…1) encoded as sRGB, per component: 12.92·c up to 0.0031308, else
+/// 1.055·c^(1/2.4) − 0.055 (as `crate::color::to_srgb`).
+fn encode_srgb(b: &mut FnBuilder, c: Ex) -> Ex {
+    let k = b.f(12.92);
+    let k3 = b.splat(k, VectorSize::Tri);
+    let low = b.mul(c, k3);
+    let e = b.f(1.0 / 2.4);
+    let e3 = b.splat(e, VectorSize::Tri);
+    let p = b.math(M::Pow, &[c, e3]);
+    let a = b.f(1.055);
+    let a3 = b.splat(a, VectorSize::Tri);
+    let p = b.mul(p, a3);
+    let o = b.f(0.055);
+    let o3 = b.splat(o, VectorSize::Tri);
+    let high = b.sub(p, o3);
+    let t = b.f(0.003_130_8);
+    let t3 = b.splat(t, VectorSize::Tri);
+    let dark = b.bin(naga::BinaryOperator::LessEqual, c, t3);
+    b.select(dark, low, high)
 }

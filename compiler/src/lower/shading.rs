@@ -56,12 +56,13 @@ pub(super) fn add_shade(mb: &mut ModuleBuilder, scene: &Scene) -> Handle<Functio
         Some(v3),
     );
     let (p, n, rd, mat) = (b.arg(0), b.arg(1), b.arg(2), b.arg(3));
-    let mut base = b.vec3_lit(DEFAULT_COLOR);
+    // Scene colours are sRGB; lighting is linear (the conversion folds at compile time).
+    let mut base = b.vec3_lit(crate::color::linear(DEFAULT_COLOR));
     let mut spec = None;
     for (i, m) in scene.materials.iter().enumerate() {
         let id = b.u(i as u32 + 1);
         let is = b.bin(naga::BinaryOperator::Equal, mat, id);
-        let c = b.vec3_lit(m.color);
+        let c = b.vec3_lit(crate::color::linear(m.color));
         base = b.select(is, c, base);
         if m.specular > 0.0 || spec.is_some() {
             let prev = match spec {
@@ -86,7 +87,7 @@ pub(super) fn add_shade(mb: &mut ModuleBuilder, scene: &Scene) -> Handle<Functio
         let ndl = b.dot(n, l);
         let zero = b.f(0.0);
         let diff = b.max(ndl, zero);
-        let lc = b.vec3_lit(light.color * light.intensity);
+        let lc = b.vec3_lit(crate::color::linear(light.color) * light.intensity);
         let lit = b.mul(lc, diff);
         let lit = b.mul(base, lit);
         color = b.add(color, lit);
