@@ -306,6 +306,19 @@ pub struct Light {
     pub color: DVec3,
     /// Intensity multiplier.
     pub intensity: f64,
+    /// Whether surfaces shade each other from it.
+    pub shadow: Shadow,
+}
+
+/// A light's shadow.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Shadow {
+    /// None: every surface facing the light is lit.
+    None,
+    /// A shadow ray towards the light: lit or not.
+    Hard,
+    /// The penumbra estimate min(k·f/t) along the shadow ray, k the softness.
+    Soft(f64),
 }
 
 /// Where light comes from.

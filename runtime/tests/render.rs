@@ -220,3 +220,69 @@ fn a_lit_colour_is_lit_in_linear_light() {
         assert!((*c as i32 - want).abs() <= 1, "{px:?}, want {want}");
     }
 }
+
+/// Shadows (Munini §2.3; Keinert §3.3 for the ray's start): the floor in a sphere's shadow
+/// is darker with `shadow hard` than without, the floor far from it and the sphere's own
+/// lit side are the same (no self-shadowing: the ray starts 2·max(h, |f(p)|) off the surface),
+/// and `shadow soft` lies in between under the sphere's rim.
+#[test]
+fn shadows_darken_what_is_hidden_and_nothing_else() {
+    let gpu = gpu(BackendChoice::Vulkan);
+    let frame = |shadow: &str| {
+        let scene = sdfc_compiler::check::compile(&format!(
+            "camera {{ eye (0, 4, -6)  target (0, 0.5, 0) }}\n\
+             light {{ direction (0.3, 1, 0.8)  {shadow} }}\n\
+             union {{ sphere(0.8) at (0, 1.5, 0)  plane(y, 0) }}\n"
+        ))
+        .scene
+        .unwrap();
+        let view = View::new(&scene.camera, 96, 64);
+        (render(&gpu, &scene, &view), view, scene)
+    };
+    let (none, view, scene) = frame("");
+    let (hard, _, _) = frame("shadow hard");
+    let (soft, _, _) = frame("shadow soft  softness 4");
+    let luma = |f: &Frame, i: usize| {
+        f.color[i].to_le_bytes()[..3]
+            .iter()
+            .map(|&c| c as u32)
+            .sum::<u32>()
+    };
+    // Classify each hit pixel by where its point is: on the floor under the sphere, on the
+    // floor far from it, or on the sphere's upper half.
+    let (mut under, mut far, mut top) = (0, 0, 0);
+    for y in 0..view.height {
+        for x in 0..view.width {
+            let i = (y * view.width + x) as usize;
+            if none.depth[i] < 0.0 {
+                continue;
+            }
+            let p = view.eye + view.ray(x as f64 + 0.5, y as f64 + 0.5) * none.depth[i] as f64;
+            let on_floor = p.y < 0.3;
+            // The shadow's centre: the sphere's centre moved down along the light to the floor.
+            let r = ((p.x + 0.45).powi(2) + (p.z + 1.2).powi(2)).sqrt();
+            if on_floor && r < 0.4 {
+                under += 1;
+                assert!(
+                    luma(&hard, i) + 30 < luma(&none, i),
+                    "({x}, {y}) under the sphere is lit"
+                );
+                assert!(luma(&soft, i) <= luma(&none, i));
+            } else if on_floor && r > 2.0 {
+                far += 1;
+                assert!(
+                    luma(&hard, i).abs_diff(luma(&none, i)) <= 3,
+                    "({x}, {y}) far away"
+                );
+            } else if !on_floor && p.y > 1.6 {
+                top += 1;
+                assert!(
+                    luma(&hard, i).abs_diff(luma(&none, i)) <= 3,
+                    "({x}, {y}) shadows itself"
+                );
+            }
+        }
+    }
+    assert!(under > 20 && far > 100 && top > 20, "{under} {far} {top}");
+    let _ = scene;
+}

@@ -5,7 +5,8 @@ use super::Checker;
 use crate::catalog::{Param, Ty, Val, opt, req};
 use crate::diag::{Diagnostic, Span, did_you_mean};
 use crate::scene::{
-    BoundShape, Camera, Convex, Light, LightKind, Material, Method, Node, NodeId, Scene, Trace,
+    BoundShape, Camera, Convex, Light, LightKind, Material, Method, Node, NodeId, Scene, Shadow,
+    Trace,
 };
 use crate::syntax::{Arg, Expr, Ident, Setting};
 use glam::DVec3;
@@ -26,6 +27,11 @@ const MATERIAL: &[Param] = &[
     opt("specular", Ty::Fraction, Val::Num(0.0)),
 ];
 
+/// A light's shadow: none, hard (Munini §2.3, Liktor: a shadow ray towards the light), or soft
+/// (the penumbra from the shadow ray's closest approach, sharper with a larger `softness`).
+const SHADOW: Param = opt("shadow", Ty::Word(&["none", "hard", "soft"]), Val::Word(0));
+const SOFTNESS: Param = opt("softness", Ty::Positive, Val::Num(8.0));
+
 /// Light kinds (`light point { .. }`); the first is the default.
 pub const LIGHT_KINDS: &[(&str, &[Param])] = &[
     (
@@ -34,6 +40,8 @@ pub const LIGHT_KINDS: &[(&str, &[Param])] = &[
             opt("direction", Ty::Axis, v(-0.4, 1.0, -0.3)),
             opt("color", Ty::Color, v(1.0, 1.0, 1.0)),
             opt("intensity", Ty::Length, Val::Num(1.0)),
+            SHADOW,
+            SOFTNESS,
         ],
     ),
     (
@@ -42,6 +50,8 @@ pub const LIGHT_KINDS: &[(&str, &[Param])] = &[
             req("position", Ty::Vec3),
             opt("color", Ty::Color, v(1.0, 1.0, 1.0)),
             opt("intensity", Ty::Length, Val::Num(1.0)),
+            SHADOW,
+            SOFTNESS,
         ],
     ),
 ];
@@ -116,6 +126,7 @@ impl Settings {
                 kind: LightKind::Directional(DVec3::new(-0.4, 1.0, -0.3).normalize()),
                 color: DVec3::ONE,
                 intensity: 1.0,
+                shadow: Shadow::None,
             }]
         } else {
             self.lights
@@ -222,6 +233,11 @@ impl Checker<'_> {
                     },
                     color: a[1].vec(),
                     intensity: a[2].num(),
+                    shadow: match a[3] {
+                        Val::Word(1) => Shadow::Hard,
+                        Val::Word(2) => Shadow::Soft(a[4].num()),
+                        _ => Shadow::None,
+                    },
                 });
             }
             "trace" => {

@@ -171,7 +171,13 @@ fn shade_hit(
             Some(f) => b.call(f, vec![p]),
             None => b.u(0),
         };
-        (b.call(fns.shade, vec![p, n, rd, m]), n, m)
+        {
+            let mut args = vec![p, n, rd, m];
+            if super::shading::has_shadows(scene) {
+                args.push(h);
+            }
+            (b.call(fns.shade, args), n, m)
+        }
     };
     b.if_(
         is_hit,

@@ -178,7 +178,7 @@ pub fn add(
         antialias: options.trace.antialias,
     };
     let normal = shading::add_normal(mb, map);
-    let shade = shading::add_shade(mb, scene);
+    let shade = shading::add_shade(mb, scene, map);
     match entry {
         Entry::Library => {
             // A stable name whatever the variant.
