@@ -39,14 +39,6 @@ pub fn module(
     entry: Entry,
     options: &Options,
 ) -> Result<(naga::Module, ModuleInfo), InternalError> {
-    let plain;
-    let scene = match options.bounding_volumes {
-        true => scene,
-        false => {
-            plain = scene.without_bounding_volumes();
-            &plain
-        }
-    };
     let mut module = lower::lower(scene, entry, options);
     let keep = if entry == Entry::Library {
         naga::compact::KeepUnused::Yes

@@ -32,7 +32,8 @@ pub struct Scene {
 
 impl Scene {
     /// The same scene with every union's bounding-volume tree dropped (each child evaluated
-    /// every time): what `map` is lowered from unless `Options::bounding_volumes`.
+    /// every time): the plain field the trees are measured and tested against. (The lowering
+    /// drops the trees itself unless `Options::bounding_volumes`.)
     pub fn without_bounding_volumes(&self) -> Scene {
         let mut s = self.clone();
         for n in &mut s.nodes {

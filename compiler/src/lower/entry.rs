@@ -81,6 +81,27 @@ pub(super) fn global(
     )
 }
 
+/// A runtime-sized storage array at group 0, `binding`: elements of `base`, `stride` bytes
+/// apart; the shader may write it if `write`.
+pub(super) fn storage_array(
+    mb: &mut ModuleBuilder,
+    name: &str,
+    (base, stride): (Handle<Type>, u32),
+    write: bool,
+    binding: u32,
+) -> Handle<naga::GlobalVariable> {
+    let ty = mb.ty(TypeInner::Array {
+        base,
+        size: naga::ArraySize::Dynamic,
+        stride,
+    });
+    let access = match write {
+        true => StorageAccess::LOAD | StorageAccess::STORE,
+        false => StorageAccess::LOAD,
+    };
+    global(mb, name, ty, AddressSpace::Storage { access }, binding)
+}
+
 /// Loads member `i` of the view uniform.
 pub(super) fn view_field(b: &mut FnBuilder, view: Handle<naga::GlobalVariable>, i: u32) -> Ex {
     let g = b.expr(Expression::GlobalVariable(view));
@@ -251,13 +272,7 @@ fn compute_pixel(b: &mut FnBuilder, fns: &Fns) -> (Ex, Ex) {
 pub(super) fn add_trace_only(mb: &mut ModuleBuilder, fns: &Fns) {
     let u3 = mb.uvec(VectorSize::Tri);
     let u2 = mb.uvec(VectorSize::Bi);
-    let ty = mb.ty(TypeInner::Array {
-        base: u2,
-        size: naga::ArraySize::Dynamic,
-        stride: 8,
-    });
-    let access = StorageAccess::LOAD | StorageAccess::STORE;
-    let out = global(mb, "out", ty, AddressSpace::Storage { access }, 1);
+    let out = storage_array(mb, "out", (u2, 8), true, 1);
     let hand_over = hand_over(mb, fns);
     let mut b = FnBuilder::new(mb, "main", &[("gid", u3)], None);
     b.func.arguments[0].binding = Some(Binding::BuiltIn(BuiltIn::GlobalInvocationId));
@@ -307,20 +322,7 @@ pub(super) fn add_compute(
     .enumerate()
     .map(|(i, &(name, base))| {
         let stride = if base == v4 { 16 } else { 4 };
-        let ty = mb.ty(TypeInner::Array {
-            base,
-            size: naga::ArraySize::Dynamic,
-            stride,
-        });
-        global(
-            mb,
-            name,
-            ty,
-            AddressSpace::Storage {
-                access: StorageAccess::LOAD | StorageAccess::STORE,
-            },
-            i as u32 + 1,
-        )
+        storage_array(mb, name, (base, stride), true, i as u32 + 1)
     })
     .collect();
     let hand_over = hand_over(mb, fns);

@@ -2,12 +2,9 @@
 //! pass starts each ray, and what it hands to the next.
 
 use super::builder::{Ex, FnBuilder, ModuleBuilder};
-use super::entry::{Fns, global, trace_pixel, view_field};
+use super::entry::{Fns, storage_array, trace_pixel, view_field};
 use super::tracer::Pass;
-use naga::{
-    AddressSpace, Expression, Handle, MathFunction as M, ScalarKind, StorageAccess, TypeInner,
-    VectorSize,
-};
+use naga::{Expression, Handle, MathFunction as M, ScalarKind, VectorSize};
 
 /// With passes: the hand-over buffers (`pass_in` at binding 6, read; `pass_out` at 7).
 pub(super) fn hand_over(
@@ -16,22 +13,9 @@ pub(super) fn hand_over(
 ) -> Option<(Handle<naga::GlobalVariable>, Handle<naga::GlobalVariable>)> {
     fns.passes.then(|| {
         let v2 = mb.vec(VectorSize::Bi);
-        let ty = mb.ty(TypeInner::Array {
-            base: v2,
-            size: naga::ArraySize::Dynamic,
-            stride: 8,
-        });
-        let read = StorageAccess::LOAD;
-        let write = StorageAccess::LOAD | StorageAccess::STORE;
         (
-            global(mb, "pass_in", ty, AddressSpace::Storage { access: read }, 6),
-            global(
-                mb,
-                "pass_out",
-                ty,
-                AddressSpace::Storage { access: write },
-                7,
-            ),
+            storage_array(mb, "pass_in", (v2, 8), false, 6),
+            storage_array(mb, "pass_out", (v2, 8), true, 7),
         )
     })
 }

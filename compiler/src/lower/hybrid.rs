@@ -77,19 +77,7 @@ pub(super) fn hybrid(b: &mut FnBuilder, cx: &Cx) {
                 );
             },
             |b| {
-                let zero = b.f(0.0);
-                let outside = b.gt(d, zero);
-                b.if_(
-                    outside,
-                    |b| {
-                        b.store(lo, tm);
-                        b.store(f_lo, d);
-                    },
-                    |b| {
-                        b.store(hi, tm);
-                        b.store(f_hi, d);
-                    },
-                );
+                narrow(b, (lo, f_lo, hi, f_hi), (tm, d));
                 let one = b.u(1);
                 let next = b.add(k, one);
                 b.store(refining, next);
@@ -130,22 +118,28 @@ pub(super) fn regula_falsi(
         b.repeat("k", limit, |b| {
             let tm = falsi(b, a, fa, c, fc);
             let fm = cx.field(b, tm);
-            let zero = b.f(0.0);
-            let outside = b.gt(fm, zero);
-            b.if_(
-                outside,
-                |b| {
-                    b.store(a, tm);
-                    b.store(fa, fm);
-                },
-                |b| {
-                    b.store(c, tm);
-                    b.store(fc, fm);
-                },
-            );
+            narrow(b, (a, fa, c, fc), (tm, fm));
         });
     }
     falsi(b, a, fa, c, fc)
+}
+
+/// The bracket held in the variables (lo, f(lo)) outside and (hi, f(hi)) inside, narrowed by
+/// the point `t` of field `f`: it replaces the end on its side of the surface.
+fn narrow(b: &mut FnBuilder, (lo, f_lo, hi, f_hi): (Ex, Ex, Ex, Ex), (t, f): (Ex, Ex)) {
+    let zero = b.f(0.0);
+    let outside = b.gt(f, zero);
+    b.if_(
+        outside,
+        |b| {
+            b.store(lo, t);
+            b.store(f_lo, f);
+        },
+        |b| {
+            b.store(hi, t);
+            b.store(f_hi, f);
+        },
+    );
 }
 
 /// The regula falsi point a + (c − a)·f(a)/(f(a) − f(c)) of the bracket held in the variables

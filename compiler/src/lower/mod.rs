@@ -18,11 +18,12 @@ mod shading;
 pub mod tracer;
 mod variants;
 
-use crate::catalog::{MatRule, Ty};
+use crate::catalog::{Ctx, MatRule, Ty};
 use crate::scene::{Field, NodeId, NodeKind, Scene};
 use crate::syntax::BinOp;
 use builder::{Ex, FnBuilder, ModuleBuilder};
 use naga::{Function, Handle, MathFunction, Type};
+use std::borrow::Cow;
 use std::collections::HashMap;
 
 pub use tracer::Entry;
@@ -33,7 +34,8 @@ pub fn lower(scene: &Scene, entry: Entry, options: &tracer::Options) -> naga::Mo
     let reachable = scene.reachable();
     add_primitive_functions(&mut mb, scene, &reachable);
     add_operator_helpers(&mut mb, scene, &reachable);
-    let named = add_let_functions(&mut mb, scene, &reachable);
+    let trees = options.bounding_volumes;
+    let named = add_let_functions(&mut mb, scene, &reachable, trees);
     let map = {
         let v3 = mb.vec3();
         let f32t = mb.f32();
@@ -43,6 +45,7 @@ pub fn lower(scene: &Scene, entry: Entry, options: &tracer::Options) -> naga::Mo
             scene,
             named: &named,
             root_fn: None,
+            trees,
         }
         .distance(&mut b, scene.root, p);
         let d = ops::scale_by(&mut b, d, 1.0 / scene.root_node().lambda);
@@ -59,6 +62,7 @@ pub fn lower(scene: &Scene, entry: Entry, options: &tracer::Options) -> naga::Mo
             scene,
             named: &named,
             root_fn: None,
+            trees,
         }
         .with_material(&mut b, scene.root, p);
         let m = m.unwrap_or_else(|| b.u(0));
@@ -77,6 +81,7 @@ pub fn lower(scene: &Scene, entry: Entry, options: &tracer::Options) -> naga::Mo
             scene,
             named: &named,
             root_fn: None,
+            trees,
         }
         .with_tag(&mut b, scene.root, p, &|b, id, inner| {
             if scene.breaks_unit_gradient(id) {
@@ -173,6 +178,7 @@ fn add_let_functions(
     mb: &mut ModuleBuilder,
     scene: &Scene,
     reachable: &[NodeId],
+    trees: bool,
 ) -> HashMap<NodeId, Handle<Function>> {
     let mut named = HashMap::new();
     for &n in reachable {
@@ -190,6 +196,7 @@ fn add_let_functions(
             scene,
             named: &named,
             root_fn: Some(n),
+            trees,
         }
         .distance(&mut b, n, p);
         b.ret(Some(d));
@@ -208,9 +215,23 @@ struct Walk<'s> {
     named: &'s HashMap<NodeId, Handle<Function>>,
     /// The `let` function being built (which must not call itself).
     root_fn: Option<NodeId>,
+    /// Whether a union's field tests its bounding-volume tree (`Options::bounding_volumes`).
+    trees: bool,
 }
 
 impl Walk<'_> {
+    /// An operator's context as this walk lowers it: a union's bounding-volume tree dropped
+    /// unless the field tests trees; always for `tags`, which need every child's value.
+    fn ctx_for<'c>(&self, ctx: &'c Ctx, tags: bool) -> Cow<'c, Ctx> {
+        match ctx.prune {
+            Some(_) if tags || !self.trees => Cow::Owned(Ctx {
+                prune: None,
+                ..ctx.clone()
+            }),
+            _ => Cow::Borrowed(ctx),
+        }
+    }
+
     /// The raw field of node `id` at `p`.
     fn distance(&self, b: &mut FnBuilder, id: NodeId, p: Ex) -> Ex {
         if self.root_fn != Some(id)
@@ -236,7 +257,7 @@ impl Walk<'_> {
                 };
                 let mut child =
                     |b: &mut FnBuilder, i: usize, q: Ex| inner.distance(b, children[i], q);
-                (op.lower)(b, ctx, p, &mut child)
+                (op.lower)(b, &self.ctx_for(ctx, false), p, &mut child)
             }
         }
     }
@@ -268,17 +289,7 @@ impl Walk<'_> {
         let (d, m) = match &node.kind {
             NodeKind::Operator { op, ctx, children } => {
                 // Every child's field and tag: without a union's bounding-volume tree.
-                let plain;
-                let ctx = match ctx.prune {
-                    Some(_) => {
-                        plain = crate::catalog::Ctx {
-                            prune: None,
-                            ..ctx.clone()
-                        };
-                        &plain
-                    }
-                    None => ctx,
-                };
+                let ctx = &*self.ctx_for(ctx, true);
                 let mut seen: Vec<Option<(Ex, Option<Ex>)>> = vec![None; children.len()];
                 // A child lowered more than once (the copies of a `repeat`) gives the material
                 // of its nearest evaluation, as in `eval::node`.

@@ -3,12 +3,9 @@
 //! `map` at it out).
 
 use super::builder::{Ex, FnBuilder, ModuleBuilder};
-use super::entry::{compute_main, global};
+use super::entry::{compute_main, storage_array};
 use super::tracer::{FIELD_WORKGROUP, Pass, RAYS_WORKGROUP, Tracer};
-use naga::{
-    AddressSpace, Binding, BuiltIn, Expression, Function, Handle, ScalarKind, StorageAccess,
-    TypeInner, VectorSize,
-};
+use naga::{Binding, BuiltIn, Expression, Function, Handle, ScalarKind, VectorSize};
 
 /// The ray-list compute entry ([`Entry::Rays`]), 64 rays per workgroup.
 pub(super) fn add_rays(mb: &mut ModuleBuilder, tracer: &Tracer) {
@@ -98,17 +95,8 @@ impl<'m> List<'m> {
     fn new(mb: &'m mut ModuleBuilder, names: [&str; 2]) -> List<'m> {
         let v4 = mb.vec(VectorSize::Quad);
         let u3 = mb.uvec(VectorSize::Tri);
-        let arr = mb.ty(TypeInner::Array {
-            base: v4,
-            size: naga::ArraySize::Dynamic,
-            stride: 16,
-        });
-        let read = StorageAccess::LOAD;
-        let write = StorageAccess::LOAD | StorageAccess::STORE;
-        let [input, output] =
-            [(names[0], read, 0), (names[1], write, 1)].map(|(name, access, binding)| {
-                global(mb, name, arr, AddressSpace::Storage { access }, binding)
-            });
+        let [input, output] = [(names[0], false, 0), (names[1], true, 1)]
+            .map(|(name, write, binding)| storage_array(mb, name, (v4, 16), write, binding));
         let mut b = FnBuilder::new(mb, "main", &[("gid", u3)], None);
         b.func.arguments[0].binding = Some(Binding::BuiltIn(BuiltIn::GlobalInvocationId));
         let gid = b.arg(0);
