@@ -123,7 +123,6 @@ fn bench(args: &BenchArgs) -> Result<(), String> {
         &module,
         (&name, &source, &scene),
         args.allow_slow_compile,
-        None,
     )?;
     let tracers: Vec<&str> = split(args.tracers);
     let budgets: Vec<&str> = split(args.steps);

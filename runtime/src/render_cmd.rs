@@ -79,13 +79,12 @@ const SLOW_COMPILE: usize = 512;
 pub const MAX_DRIVER_CALLS: usize = 4096;
 
 /// Refuses, with the scene's span, a module too large for the driver to compile in
-/// reasonable time (see [`MAX_DRIVER_CALLS`]); says when compiling will take a while.
+/// reasonable time (see [`MAX_DRIVER_CALLS`]); else its calls of distance functions.
 pub fn check_driver_size(
     module: &naga::Module,
     (name, source, scene): (&str, &str, &sdfc_compiler::scene::Scene),
     allow: bool,
-    gpu_name: Option<&str>,
-) -> Result<(), String> {
+) -> Result<usize, String> {
     let calls = emit::distance_calls(module);
     if calls > MAX_DRIVER_CALLS && !allow {
         let d = sdfc_compiler::diag::Diagnostic::error(
@@ -100,15 +99,7 @@ pub fn check_driver_size(
         say_raw!("{}", sdfc_compiler::diag::render(&[d], name, source));
         return Err(String::new());
     }
-    if calls >= SLOW_COMPILE
-        && let Some(gpu) = gpu_name
-    {
-        // The driver compiles the shader at pipeline creation, silently.
-        say!(
-            "compiling the shader for {gpu} ({calls} calls of distance functions: this can take a while)…"
-        );
-    }
-    Ok(())
+    Ok(calls)
 }
 
 /// How an internal compiler error's message starts.
@@ -139,19 +130,15 @@ fn render(args: &RenderArgs) -> Result<(), String> {
     let options = args.tracer.settle(&mut scene)?;
     let (module, _) = emit::module(&scene, Entry::Compute, &options)
         .map_err(|e| format!("{INTERNAL}: {}", e.0))?;
-    check_driver_size(
-        &module,
-        (&name, &source, &scene),
-        args.allow_slow_compile,
-        None,
-    )?;
+    let calls = check_driver_size(&module, (&name, &source, &scene), args.allow_slow_compile)?;
     let gpu = Gpu::new(args.backend)?;
-    check_driver_size(
-        &module,
-        (&name, &source, &scene),
-        true,
-        Some(&gpu.info.name),
-    )?;
+    if calls >= SLOW_COMPILE {
+        // The driver compiles the shader at pipeline creation, silently.
+        say!(
+            "compiling the shader for {} ({calls} calls of distance functions: this can take a while)…",
+            gpu.info.name
+        );
+    }
     let view = View::new(&scene.camera, w * s, h * s);
     let plan = options.passes.then(|| {
         passes::plan(

@@ -1,21 +1,16 @@
 //! `sdfc bench` smoke test: the command runs on a tiny image and its JSON has every field.
 //! (Benchmarks are never timed assertions; this only checks the command and its output.)
 
-use std::process::Command;
-
-fn sdfc(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_sdfc"))
-        .args(args)
-        .output()
-        .expect("run sdfc")
-}
+mod common;
+use common::{root, scratch, sdfc};
 
 fn example(name: &str) -> String {
-    format!("{}/../examples/{name}", env!("CARGO_MANIFEST_DIR"))
+    root().join("examples").join(name).display().to_string()
 }
 
 fn reference(name: &str) -> String {
-    format!("{}/benches/reference/{name}", env!("CARGO_MANIFEST_DIR"))
+    let path = root().join("runtime/benches/reference").join(name);
+    path.display().to_string()
 }
 
 #[test]
@@ -185,8 +180,7 @@ fn bench_refuses_bad_input() {
 
 #[test]
 fn a_reference_that_does_not_compile_is_a_user_error() {
-    let dir = std::env::temp_dir().join(format!("sdfc-bench-ref-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = scratch("bench-ref");
     let bad = dir.join("bad.wgsl");
     std::fs::write(&bad, "fn main( {").unwrap();
     let o = sdfc(&[
