@@ -2,6 +2,7 @@
 //! materials resolved, a Lipschitz bound for every node; all errors of a file reported at once.
 
 mod args;
+mod call;
 mod expr;
 mod implicit;
 mod settings;

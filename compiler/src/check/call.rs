@@ -1,0 +1,199 @@
+//! Checking calls: math functions, `implicit`, primitives and operators with their children,
+//! material tags, and the copy a tag or annotation makes of a shared shape.
+
+use super::{Binding, Checker, Value};
+use crate::catalog::{self, Arity, Ctx};
+use crate::diag::{Diagnostic, did_you_mean};
+use crate::scene::{NodeId, NodeKind};
+use crate::syntax::{Call, Ident};
+
+impl Checker<'_> {
+    /// A call: a math function, `implicit`, a primitive or an operator. `piped` is the child
+    /// given by `lhs |> call`.
+    pub(super) fn call(&mut self, call: &Call, piped: Option<NodeId>) -> Option<Value> {
+        let name = call.name.name.as_str();
+        if let Some(f) = catalog::math_fn(name) {
+            return self.math_call(f, call);
+        }
+        if name == "implicit" {
+            return self.implicit(call, piped);
+        }
+        if let Some(prim) = catalog::primitive(name) {
+            if piped.is_some() {
+                self.diags.push(
+                    Diagnostic::error(
+                        call.name.span,
+                        format!("`{name}` is a primitive and takes no shape"),
+                    )
+                    .label("only operators can follow `|>`"),
+                );
+                return None;
+            }
+            if let Some(block) = &call.block {
+                let span = block.first().map_or(call.span, |e| e.span);
+                self.diags.push(
+                    Diagnostic::error(span, format!("`{name}` is a primitive and takes no block"))
+                        .label("unexpected block")
+                        .help(format!("write `{}`", signature_of_prim(prim))),
+                );
+                return None;
+            }
+            let args = self.bind(name, prim.params, &call.args, call.span)?;
+            let ctx = Ctx {
+                args,
+                child_lambda: Vec::new(),
+                child_bound: Vec::new(),
+                child_mirror: Vec::new(),
+                child_exact: Vec::new(),
+                prune: None,
+            };
+            let lambda = (prim.lipschitz)(&ctx);
+            let bound = (prim.bound)(&ctx);
+            return self
+                .push_node(NodeKind::Primitive { prim, ctx }, lambda, bound, call.span)
+                .map(Value::Shape);
+        }
+        if let Some(op) = catalog::operator(name) {
+            let args = self.bind(name, op.params, &call.args, call.span);
+            let children = self.children(call, piped, op.arity)?;
+            return self
+                .operator_node(name, args?, children, call.span)
+                .map(Value::Shape);
+        }
+        if let Some((binding, def)) = self.lets.get(name) {
+            let what = match binding {
+                Binding::Value(v) => v.describe(),
+                Binding::Failed => "a failed definition".into(),
+            };
+            let d = Diagnostic::error(call.name.span, format!("`{name}` cannot be called"))
+                .label(format!("`{name}` is {what}"))
+                .also(*def, "defined here");
+            self.diags.push(d);
+            return None;
+        }
+        let mut d = Diagnostic::error(
+            call.name.span,
+            format!("unknown function or shape `{name}`"),
+        )
+        .label("not in the catalog");
+        let candidates = catalog::all_names().chain(["implicit"]);
+        d = match did_you_mean(name, candidates) {
+            Some(s) => d.help(format!("did you mean `{s}`?")),
+            None => d.note("`sdfc check --list` prints the primitives and operators"),
+        };
+        self.diags.push(d);
+        // Check the arguments anyway so their errors are reported too.
+        for a in &call.args {
+            self.value(&a.value);
+        }
+        None
+    }
+
+    pub(super) fn children(
+        &mut self,
+        call: &Call,
+        piped: Option<NodeId>,
+        arity: Arity,
+    ) -> Option<Vec<NodeId>> {
+        let name = &call.name.name;
+        let mut children = Vec::new();
+        let mut ok = true;
+        match (&call.block, piped) {
+            (Some(_), Some(_)) => {
+                self.diags.push(
+                    Diagnostic::error(
+                        call.span,
+                        format!("`{name}` gets its shape from `|>` and a block"),
+                    )
+                    .label("give it one or the other"),
+                );
+                return None;
+            }
+            (Some(block), None) => {
+                for e in block {
+                    match self.shape(e) {
+                        Some(n) => children.push(n),
+                        None => ok = false,
+                    }
+                }
+            }
+            (None, Some(n)) => children.push(n),
+            (None, None) => {
+                self.diags.push(
+                    Diagnostic::error(call.span, format!("`{name}` needs shapes to work on"))
+                        .label("no block")
+                        .help(format!(
+                            "write `{name}(...) {{ shape ... }}` or `shape |> {name}(...)`"
+                        )),
+                );
+                return None;
+            }
+        }
+        if !ok {
+            return None;
+        }
+        if !arity.accepts(children.len()) {
+            let want = match arity {
+                Arity::Exactly(1) => "exactly one shape".to_string(),
+                Arity::Exactly(n) => format!("exactly {n} shapes"),
+                Arity::AtLeast(1) => "at least one shape".to_string(),
+                Arity::AtLeast(n) => format!("at least {n} shapes"),
+            };
+            let msg = if children.is_empty() {
+                format!("empty `{name}` block")
+            } else {
+                format!("`{name}` takes {want}, found {}", children.len())
+            };
+            self.diags
+                .push(Diagnostic::error(call.span, msg).label(format!("`{name}` takes {want}")));
+            return None;
+        }
+        Some(children)
+    }
+
+    pub(super) fn material_ref(&mut self, id: &Ident) -> Option<u32> {
+        if let Some(i) = self.materials.iter().position(|m| m.name == id.name) {
+            return Some(i as u32);
+        }
+        if self.failed.contains(&id.name) {
+            return None;
+        }
+        let d = match self.declared.get(&id.name) {
+            Some(def) if self.material_spans.contains(def) => Diagnostic::error(
+                id.span,
+                format!("material `{}` is used before its definition", id.name),
+            )
+            .label("defined later")
+            .also(*def, "defined here")
+            .help("move the material above its first use"),
+            _ => {
+                let mut d = Diagnostic::error(id.span, format!("unknown material `{}`", id.name))
+                    .label("no such material");
+                let names: Vec<&str> = self.materials.iter().map(|m| m.name.as_str()).collect();
+                d = match did_you_mean(&id.name, names) {
+                    Some(s) => d.help(format!("did you mean `{s}`?")),
+                    None => d.help(format!(
+                        "declare it: `material {} {{ color #d4af37 }}`",
+                        id.name
+                    )),
+                };
+                d
+            }
+        };
+        self.diags.push(d);
+        None
+    }
+
+    /// A copy of a node, so that tagging or annotating a shared (`let`) shape changes only this
+    /// use of it.
+    pub(super) fn copy_node(&mut self, n: NodeId) -> Option<NodeId> {
+        let node = self.nodes[n].clone();
+        let id = self.push_node(node.kind.clone(), node.lambda, node.bound, node.span)?;
+        self.nodes[id] = node;
+        Some(id)
+    }
+}
+
+fn signature_of_prim(p: &catalog::Primitive) -> String {
+    super::signature(p.name, p.params)
+}
