@@ -44,7 +44,7 @@ enum Command {
         /// The interface: the runtime's compute pass, a full-screen fragment pass, or a library of functions.
         #[arg(long, value_enum, default_value = "compute")]
         entry: EntryArg,
-        /// Output file (default: standard output; SPIR-V needs a file).
+        /// Output file (default, or `-`: standard output; SPIR-V only when it is not a terminal).
         #[arg(short, long)]
         output: Option<PathBuf>,
         /// SPIR-V version to write: 1.0 (Vulkan 1.0; the compute entry's storage buffers through
@@ -58,7 +58,7 @@ enum Command {
     Render {
         /// The scene file (`-` for standard input).
         file: PathBuf,
-        /// Output file: `.png`, or `.npy` for raw f32 depth.
+        /// Output file: `.png`, or `.npy` for raw f32 depth (`-`: a PNG to standard output).
         #[arg(short = 'o', long = "output", visible_alias = "out")]
         output: PathBuf,
         /// Image size.

@@ -46,15 +46,21 @@ pub fn run(
         Output::Text(s) => s.clone().into_bytes(),
         Output::Binary(words) => words.iter().flat_map(|w| w.to_le_bytes()).collect(),
     };
-    match output {
-        Some(path) => write_whole(path, &bytes),
+    write_output(output, &bytes, matches!(out, Output::Binary(_)))
+}
+
+/// Writes a command's output: to standard output without a path or for `-` (binary output
+/// refused on a terminal; a closed pipe is not an error), else the whole file; the exit code.
+pub fn write_output(path: Option<&Path>, bytes: &[u8], binary: bool) -> i32 {
+    match path.filter(|p| *p != Path::new("-")) {
+        Some(path) => write_whole(path, bytes),
         None => {
-            if matches!(out, Output::Binary(_)) && std::io::stdout().is_terminal() {
-                say!("error: SPIR-V is binary; write it to a file with `-o FILE`");
+            if binary && std::io::stdout().is_terminal() {
+                say!("error: the output is binary; write it to a file with `-o FILE`");
                 return 1;
             }
             let mut stdout = std::io::stdout().lock();
-            match stdout.write_all(&bytes).and_then(|_| stdout.flush()) {
+            match stdout.write_all(bytes).and_then(|_| stdout.flush()) {
                 Ok(()) => 0,
                 Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => 0,
                 Err(e) => {

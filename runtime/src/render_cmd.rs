@@ -1,7 +1,7 @@
 //! `sdfc render`: a scene file in, a PNG (or `.npy` depth) out, through the wgpu runtime.
 
 use crate::cli::load_scene;
-use crate::emit_cmd::write_whole;
+use crate::emit_cmd::write_output;
 use sdfc::gpu::{BackendChoice, Gpu};
 use sdfc::images::{self, Channel};
 use sdfc_compiler::emit;
@@ -176,7 +176,7 @@ fn render(args: &RenderArgs) -> Result<(), String> {
             h,
         )?
     };
-    match write_whole(args.output, &bytes) {
+    match write_output(Some(args.output), &bytes, true) {
         0 => Ok(()),
         _ => Err(String::new()),
     }

@@ -448,3 +448,32 @@ fn render_output_is_the_file_and_channel_the_kind() {
     assert!(!std::path::Path::new("depth").exists());
     let _ = std::fs::remove_dir_all(dir);
 }
+
+/// `-o -` is standard output, for text and (when it is not a terminal) binary alike: the
+/// shader text or the PNG arrive on stdout and no file named `-` appears.
+#[test]
+fn a_dash_output_is_standard_output() {
+    let dir = scratch("dash-output");
+    let scene = root().join("examples/gem.sdf");
+    let scene = scene.to_str().unwrap();
+    let run = |args: &[&str]| {
+        let o = Command::new(env!("CARGO_BIN_EXE_sdfc"))
+            .args(args)
+            .current_dir(&dir)
+            .output()
+            .unwrap();
+        assert_eq!(
+            o.status.code(),
+            Some(0),
+            "{args:?}: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+        o.stdout
+    };
+    let wgsl = run(&["emit", scene, "--entry", "library", "-o", "-"]);
+    assert!(String::from_utf8_lossy(&wgsl).contains("fn map("));
+    let png = run(&["render", scene, "--size", "16x9", "-o", "-"]);
+    assert!(png.starts_with(b"\x89PNG\r\n\x1a\n"), "not a PNG");
+    assert!(!dir.join("-").exists(), "a file named `-` was written");
+    let _ = std::fs::remove_dir_all(dir);
+}
