@@ -183,6 +183,46 @@ fn only_what_the_scene_requires() {
     assert!(text(&steps, Target::Wgsl, Entry::Compute).contains(">= 77u"));
 }
 
+/// Shadows, occlusion and fog each add their one function (and its call) and nothing else; a
+/// scene without them has none of them (issue 17: each feature emitted only when used).
+#[test]
+fn each_shading_feature_adds_only_its_function() {
+    let base = "light { direction (0, 1, 0) }\nunion { sphere(1)  plane(y, -1) }";
+    let plain = text(
+        &sdfc_tests::scene("plain", base),
+        Target::Wgsl,
+        Entry::Compute,
+    );
+    for absent in ["shadow", "occlusion", "fog"] {
+        assert!(!plain.contains(absent), "the plain scene emits `{absent}`");
+    }
+    let cases = [
+        ("light { direction (0, 1, 0)  shadow hard }", "shadow"),
+        ("light { direction (0, 1, 0)  shadow soft }", "shadow"),
+        ("occlusion { samples 4 }", "occlusion"),
+        ("fog { density 0.1 }", "fog"),
+    ];
+    for (setting, function) in cases {
+        let source = if setting.starts_with("light") {
+            base.replacen("light { direction (0, 1, 0) }", setting, 1)
+        } else {
+            format!("{setting}\n{base}")
+        };
+        let wgsl = text(
+            &sdfc_tests::scene(setting, &source),
+            Target::Wgsl,
+            Entry::Compute,
+        );
+        let (f1, f2) = (functions(&plain), functions(&wgsl));
+        let added: Vec<&String> = f2.iter().filter(|f| !f1.contains(f)).collect();
+        assert_eq!(added, [function], "`{setting}` added {added:?}");
+        assert!(
+            f1.iter().all(|f| f2.contains(f)),
+            "`{setting}` removed a function"
+        );
+    }
+}
+
 #[test]
 fn library_output_is_usable_from_a_host_shader() {
     for path in sdfc_tests::examples() {

@@ -202,3 +202,17 @@ fn materials_follow_csg() {
     );
     assert_eq!(eval::sample(&scene, DVec3::new(6.0, 0.0, 0.0)).mat, Some(0));
 }
+
+/// A fog without a colour takes the scene's background (whatever line declares it).
+#[test]
+fn fog_defaults_to_the_background() {
+    let s = sdfc_tests::scene("f", "fog { density 0.5 }\nbackground #ff0000\nsphere(1)");
+    let fog = s.fog.expect("a fog");
+    assert_eq!(
+        (fog.color, fog.density),
+        (glam::DVec3::new(1.0, 0.0, 0.0), 0.5)
+    );
+    let s = sdfc_tests::scene("g", "fog { density 0.5  color #00ff00 }\nsphere(1)");
+    assert_eq!(s.fog.unwrap().color, glam::DVec3::new(0.0, 1.0, 0.0));
+    assert!(sdfc_tests::scene("h", "sphere(1)").fog.is_none());
+}

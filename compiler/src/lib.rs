@@ -13,6 +13,7 @@ pub mod lipschitz;
 pub mod lower;
 pub mod passes;
 pub mod scene;
+pub mod shading;
 pub mod syntax;
 pub mod trace;
 pub mod truth;

@@ -28,6 +28,10 @@ pub struct Scene {
     pub trace: Trace,
     /// A convex volume enclosing every surface, if the file declares one (`bound`).
     pub bound: Option<Convex>,
+    /// Ambient occlusion, if the file asks for it (`occlusion { .. }`).
+    pub occlusion: Option<Occlusion>,
+    /// Distance fog, if the file asks for it (`fog { .. }`).
+    pub fog: Option<Fog>,
 }
 
 impl Scene {
@@ -309,6 +313,30 @@ pub struct Light {
     pub intensity: f64,
     /// Whether surfaces shade each other from it.
     pub shadow: Shadow,
+}
+
+/// Ambient occlusion (Evans 2006, cited by Keinert et al. §1): `samples` evaluations of the
+/// field along the normal at i·δ, δ = `distance`/`samples`, each missing clearance
+/// iδ − f(p + iδ·n) weighted by 2⁻ⁱ; the ambient and diffuse light are scaled by
+/// clamp(1 − strength·Σ 2⁻ⁱ(iδ − f)/δ, 0, 1).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Occlusion {
+    /// Evaluations along the normal.
+    pub samples: u32,
+    /// How far from the surface the last sample lies.
+    pub distance: f64,
+    /// How strongly missing clearance darkens.
+    pub strength: f64,
+}
+
+/// Exponential distance fog: a hit at distance t along the ray keeps e^(−density·t) of its
+/// colour and takes the rest from the fog's colour (misses keep the background).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Fog {
+    /// sRGB colour (0..1) of the fog.
+    pub color: DVec3,
+    /// Extinction per unit of distance.
+    pub density: f64,
 }
 
 /// A light's shadow.

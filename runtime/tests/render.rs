@@ -212,7 +212,7 @@ fn a_lit_colour_is_lit_in_linear_light() {
     let centre = (H / 2 * W + W / 2) as usize;
     assert!(frame.depth[centre] > 0.0, "the face is hit");
     use sdfc_compiler::color::{to_linear, to_srgb};
-    let lit = to_linear(128.0 / 255.0) * (sdfc_compiler::lower::tracer::AMBIENT + 1.0);
+    let lit = to_linear(128.0 / 255.0) * (sdfc_compiler::shading::AMBIENT + 1.0);
     let want = (to_srgb(lit) * 255.0).round() as i32;
     assert_eq!(want, 135);
     let px = frame.color[centre].to_le_bytes();

@@ -5,11 +5,12 @@ mod args;
 mod call;
 mod expr;
 mod implicit;
+mod look;
 mod settings;
 pub mod tracer;
 
 pub use args::signature;
-pub use settings::LIGHT_KINDS;
+pub use look::LIGHT_KINDS;
 pub use tracer::TRACE_METHODS;
 
 use crate::catalog::{Bound, Ctx};

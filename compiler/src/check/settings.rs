@@ -1,17 +1,18 @@
-//! Checking the settings statements: camera, lights, tracer, materials and background, each a
-//! table of parameters bound by the same code as call arguments.
+//! Checking the settings statements: camera, tracer, bound and background (lights, materials,
+//! occlusion and fog in `look.rs`), each a table of parameters bound by the same code as call
+//! arguments.
 
 use super::Checker;
 use crate::catalog::{Param, Ty, Val, opt, req};
 use crate::diag::{Diagnostic, Span, did_you_mean};
 use crate::scene::{
-    BoundShape, Camera, Convex, Light, LightKind, Material, Method, Node, NodeId, Scene, Shadow,
-    Trace,
+    BoundShape, Camera, Convex, Fog, Light, LightKind, Material, Method, Node, NodeId, Occlusion,
+    Scene, Shadow, Trace,
 };
 use crate::syntax::{Arg, Expr, Ident, Setting};
 use glam::DVec3;
 
-const fn v(x: f64, y: f64, z: f64) -> Val {
+pub(super) const fn v(x: f64, y: f64, z: f64) -> Val {
     Val::Vec3(DVec3::new(x, y, z))
 }
 
@@ -20,40 +21,6 @@ const CAMERA: &[Param] = &[
     opt("target", Ty::Vec3, v(0.0, 0.0, 0.0)),
     opt("up", Ty::Axis, v(0.0, 1.0, 0.0)),
     opt("fov", Ty::Angle, Val::Num(std::f64::consts::PI / 4.0)),
-];
-
-const MATERIAL: &[Param] = &[
-    opt("color", Ty::Color, v(0.8, 0.8, 0.8)),
-    opt("specular", Ty::Fraction, Val::Num(0.0)),
-];
-
-/// A light's shadow: none, hard (Munini §2.3, Liktor: a shadow ray towards the light), or soft
-/// (the penumbra from the shadow ray's closest approach, sharper with a larger `softness`).
-const SHADOW: Param = opt("shadow", Ty::Word(&["none", "hard", "soft"]), Val::Word(0));
-const SOFTNESS: Param = opt("softness", Ty::Positive, Val::Num(8.0));
-
-/// Light kinds (`light point { .. }`); the first is the default.
-pub const LIGHT_KINDS: &[(&str, &[Param])] = &[
-    (
-        "directional",
-        &[
-            opt("direction", Ty::Axis, v(-0.4, 1.0, -0.3)),
-            opt("color", Ty::Color, v(1.0, 1.0, 1.0)),
-            opt("intensity", Ty::Length, Val::Num(1.0)),
-            SHADOW,
-            SOFTNESS,
-        ],
-    ),
-    (
-        "point",
-        &[
-            req("position", Ty::Vec3),
-            opt("color", Ty::Color, v(1.0, 1.0, 1.0)),
-            opt("intensity", Ty::Length, Val::Num(1.0)),
-            SHADOW,
-            SOFTNESS,
-        ],
-    ),
 ];
 
 const CONVEX: Param = opt("convex", Ty::Word(&["no", "yes"]), Val::Word(0));
@@ -81,6 +48,9 @@ pub const BOUND_KINDS: &[(&str, &[Param])] = &[
     ),
 ];
 
+/// The background without a `background` statement (sRGB).
+pub(super) const DEFAULT_BACKGROUND: DVec3 = DVec3::new(0.08, 0.09, 0.12);
+
 /// Relative spacing of f32 numbers (2⁻²³).
 const F32_RESOLUTION: f64 = 1.0 / 8_388_608.0;
 /// Image height the resolution warning assumes for a pixel's footprint.
@@ -92,9 +62,12 @@ const F32_SQUARE_LIMIT: f64 = 1e19;
 #[derive(Default)]
 pub(super) struct Settings {
     camera: Option<(Camera, Span)>,
-    lights: Vec<Light>,
+    pub(super) lights: Vec<Light>,
     trace: Option<(Trace, Span)>,
     background: Option<(DVec3, Span)>,
+    pub(super) occlusion: Option<(Occlusion, Span)>,
+    /// The fog, its colour `None` for the background's.
+    pub(super) fog: Option<((Option<DVec3>, f64), Span)>,
     /// The declared bound; `None` inside for `bound auto`, resolved once the root is known.
     bound: Option<((Option<Convex>, bool), Span)>,
 }
@@ -121,6 +94,7 @@ impl Settings {
             })
         });
         let camera = self.camera();
+        let background = self.background.map_or(DEFAULT_BACKGROUND, |b| b.0);
         let lights = if self.lights.is_empty() {
             vec![Light {
                 kind: LightKind::Directional(DVec3::new(-0.4, 1.0, -0.3).normalize()),
@@ -137,13 +111,16 @@ impl Settings {
             materials,
             camera,
             lights,
-            background: self
-                .background
-                .map_or(DVec3::new(0.08, 0.09, 0.12), |b| b.0),
+            background,
             trace: self
                 .trace
                 .map_or_else(super::tracer::default_trace, |t| t.0),
             bound,
+            occlusion: self.occlusion.map(|o| o.0),
+            fog: self.fog.map(|((color, density), _)| Fog {
+                color: color.unwrap_or(background),
+                density,
+            }),
         }
     }
 }
@@ -166,11 +143,7 @@ impl Checker<'_> {
             .collect();
         match keyword.name.as_str() {
             "camera" => {
-                if let Some(k) = kind {
-                    self.diags.push(
-                        Diagnostic::error(k.span, "a camera has no kind").label("remove this name"),
-                    );
-                }
+                self.no_kind(keyword, kind);
                 let Some(a) = self.bind("camera", CAMERA, &args, span) else {
                     return;
                 };
@@ -208,38 +181,9 @@ impl Checker<'_> {
                 }
                 self.once(|s| &mut s.camera, camera, span, "camera");
             }
-            "light" => {
-                let Some((name, params)) =
-                    self.kind_of(LIGHT_KINDS.iter().map(|(n, p)| (*n, *p)), kind, "light")
-                else {
-                    return;
-                };
-                let Some(a) = self.bind(&format!("light {name}"), params, &args, span) else {
-                    return;
-                };
-                let place = a[0].vec();
-                if self.settings.lights.len() == super::MAX_LIGHTS {
-                    self.diags.push(
-                        Diagnostic::error(span, "the scene has too many lights")
-                            .label("one light more than the limit")
-                            .note(format!("the limit is {} lights: each is a term of the shading the GPU driver compiles", super::MAX_LIGHTS)),
-                    );
-                }
-                self.settings.lights.push(Light {
-                    kind: if name == "point" {
-                        LightKind::Point(place)
-                    } else {
-                        LightKind::Directional(place)
-                    },
-                    color: a[1].vec(),
-                    intensity: a[2].num(),
-                    shadow: match a[3] {
-                        Val::Word(1) => Shadow::Hard,
-                        Val::Word(2) => Shadow::Soft(a[4].num()),
-                        _ => Shadow::None,
-                    },
-                });
-            }
+            "light" => self.light(kind, &args, span),
+            "occlusion" => self.occlusion(keyword, kind, &args, span),
+            "fog" => self.fog(keyword, kind, &args, span),
             "trace" => {
                 let methods = super::tracer::TRACE_METHODS
                     .iter()
@@ -379,50 +323,6 @@ impl Checker<'_> {
         }
     }
 
-    fn material(&mut self, kind: Option<&Ident>, args: &[Arg], span: Span) {
-        let Some(name) = kind else {
-            self.diags.push(
-                Diagnostic::error(span, "a material needs a name")
-                    .label("e.g. `material gold { color #d4af37 }`"),
-            );
-            return;
-        };
-        if let Some(d) = self.reserved_name(name) {
-            self.diags.push(d);
-            self.failed.insert(name.name.clone());
-            return;
-        }
-        if let Some(first) = self.materials.iter().find(|m| m.name == name.name) {
-            let first = first.span;
-            self.diags.push(
-                Diagnostic::error(
-                    name.span,
-                    format!("material `{}` is defined twice", name.name),
-                )
-                .label("second definition")
-                .also(first, "first definition"),
-            );
-            return;
-        }
-        let Some(a) = self.bind(&format!("material {}", name.name), MATERIAL, args, span) else {
-            self.failed.insert(name.name.clone());
-            return;
-        };
-        if self.materials.len() == super::MAX_MATERIALS {
-            self.diags.push(
-                Diagnostic::error(name.span, "the scene has too many materials")
-                    .label("one material more than the limit")
-                    .note(format!("the limit is {} materials: each is a branch of the shading the GPU driver compiles", super::MAX_MATERIALS)),
-            );
-        }
-        self.materials.push(Material {
-            name: name.name.clone(),
-            color: a[0].vec(),
-            specular: a[1].num(),
-            span: name.span,
-        });
-    }
-
     /// `background #202030`
     pub(super) fn value_statement(&mut self, keyword: &Ident, value: &Expr) {
         if let Some(Val::Vec3(c)) = self.convert(value, Ty::Color, "background") {
@@ -436,7 +336,7 @@ impl Checker<'_> {
     }
 
     /// Resolves the name after `light` or `trace` (default: the table's first entry).
-    fn kind_of(
+    pub(super) fn kind_of(
         &mut self,
         table: impl Iterator<Item = (&'static str, &'static [Param])> + Clone,
         kind: Option<&Ident>,
@@ -459,8 +359,18 @@ impl Checker<'_> {
         None
     }
 
+    /// Reports a name after a block keyword that takes none (`camera`, `occlusion`, `fog`).
+    pub(super) fn no_kind(&mut self, keyword: &Ident, kind: Option<&Ident>) {
+        if let Some(k) = kind {
+            self.diags.push(
+                Diagnostic::error(k.span, format!("`{}` has no kind", keyword.name))
+                    .label("remove this name"),
+            );
+        }
+    }
+
     /// Stores a setting that may be given only once.
-    fn once<T>(
+    pub(super) fn once<T>(
         &mut self,
         slot: impl Fn(&mut Settings) -> &mut Option<(T, Span)>,
         value: T,

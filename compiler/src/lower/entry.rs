@@ -18,6 +18,7 @@ pub(super) struct Fns {
     normal: Handle<Function>,
     shade: Handle<Function>,
     material: Option<Handle<Function>>,
+    fog: Option<Handle<Function>>,
     ray: Handle<Function>,
     pub(super) view: Handle<naga::GlobalVariable>,
     pub(super) passes: bool,
@@ -28,9 +29,9 @@ impl Fns {
     pub fn new(
         mb: &mut ModuleBuilder,
         tracer: Tracer,
-        normal: Handle<Function>,
-        shade: Handle<Function>,
+        [normal, shade]: [Handle<Function>; 2],
         material: Option<Handle<Function>>,
+        fog: Option<Handle<Function>>,
         passes: bool,
     ) -> Fns {
         let view = add_view(mb, passes);
@@ -40,6 +41,7 @@ impl Fns {
             normal,
             shade,
             material,
+            fog,
             ray,
             view,
             passes,
@@ -194,10 +196,15 @@ fn shade_hit(
         };
         {
             let mut args = vec![p, n, rd, m];
-            if super::shading::has_shadows(scene) {
+            if crate::shading::has_shadows(scene) {
                 args.push(h);
             }
-            (b.call(fns.shade, args), n, m)
+            let c = b.call(fns.shade, args);
+            let c = match fns.fog {
+                Some(f) => b.call(f, vec![c, t]),
+                None => c,
+            };
+            (c, n, m)
         }
     };
     b.if_(

@@ -12,6 +12,7 @@ mod hybrid;
 pub mod march;
 pub mod ops;
 pub mod prims;
+mod probes;
 mod prune;
 mod rays;
 mod shading;

@@ -1,9 +1,11 @@
-//! Shading in IR: `normal` from a tetrahedron of samples and `shade` with only the lights and
-//! material terms the scene has.
+//! Shading in IR: `normal` from a tetrahedron of samples, `shade` with only the lights,
+//! material terms, shadows and occlusion the scene has, and `fog` if it has fog (the f64
+//! reference they mirror: `crate::shading`).
 
 use super::builder::{FnBuilder, ModuleBuilder};
-use super::tracer::{AMBIENT, DEFAULT_COLOR, SHININESS};
+use super::probes::{add_occlusion, add_shadow};
 use crate::scene::{LightKind, Scene, Shadow};
+use crate::shading::{AMBIENT, DEFAULT_COLOR, SHININESS, has_shadows};
 use naga::{Function, Handle, MathFunction as M};
 
 /// `normal(p, h)`: the field's gradient from four samples at the corners of a tetrahedron
@@ -44,101 +46,17 @@ pub(super) fn add_normal(mb: &mut ModuleBuilder, map: Handle<Function>) -> Handl
     mb.add_function(f)
 }
 
-/// Most steps of a shadow ray.
-pub const SHADOW_STEPS: u32 = 64;
-
-/// Whether some light casts shadows (then `shade` takes the hit threshold `h` and calls
-/// `shadow`).
-pub fn has_shadows(scene: &Scene) -> bool {
-    scene.lights.iter().any(|l| l.shadow != Shadow::None)
-}
-
-/// `shadow(p, n, l, far, h, k)`: how much of the light in direction `l` reaches the surface
-/// point `p` of normal `n` — sphere tracing towards it from `p` moved along `n` by Keinert's
-/// ε_dynamic = 2·max(h, |f(p)|) (§3.3: the ray neither finds the surface it leaves nor starts
-/// inside another), up to `far`: 0 when some step comes within `h` of a surface; with `k` > 0
-/// the penumbra min(k·f/t) of the closest approach (soft), else 1 (hard). At most
-/// [`SHADOW_STEPS`] evaluations; a ray that runs out counts as lit.
-fn add_shadow(mb: &mut ModuleBuilder, map: Handle<Function>) -> Handle<Function> {
-    let v3 = mb.vec3();
-    let f32t = mb.f32();
-    let args = [
-        ("p", v3),
-        ("n", v3),
-        ("l", v3),
-        ("far", f32t),
-        ("h", f32t),
-        ("k", f32t),
-    ];
-    let mut b = FnBuilder::new(mb, "shadow", &args, Some(f32t));
-    let (p, n, l, far, h, k) = (b.arg(0), b.arg(1), b.arg(2), b.arg(3), b.arg(4), b.arg(5));
-    let here = b.call(map, vec![p]);
-    let here = b.abs(here);
-    let lift = b.max(here, h);
-    let two = b.f(2.0);
-    let lift = b.mul(lift, two);
-    let up = b.mul(n, lift);
-    let p = b.add(p, up);
-    let zero = b.f(0.0);
-    let t = b.local("t", f32t, Some(zero));
-    let one = b.f(1.0);
-    let lit = b.local("lit", f32t, Some(one));
-    let u32t = b.m.u32();
-    let zero_u = b.u(0);
-    let i = b.local("i", u32t, Some(zero_u));
-    b.loop_(|b| {
-        let (tv, iv) = (b.load(t), b.load(i));
-        let limit = b.u(SHADOW_STEPS);
-        let out = b.ge(iv, limit);
-        let gone = b.ge(tv, far);
-        let stop = b.bin(naga::BinaryOperator::LogicalOr, out, gone);
-        b.break_if(stop);
-        b.increment(i);
-        let s = b.mul(l, tv);
-        let q = b.add(p, s);
-        let d = b.call(map, vec![q]);
-        let blocked = b.lt(d, h);
-        b.if_(
-            blocked,
-            |b| {
-                let zero = b.f(0.0);
-                b.store(lit, zero);
-                b.brk();
-            },
-            |_| {},
-        );
-        // Soft: the closest approach relative to the distance travelled (k = 0: hard, 1).
-        let kd = b.mul(k, d);
-        let tiny = b.f(1e-6);
-        let tt = b.max(tv, tiny);
-        let kd = b.div(kd, tt);
-        let zero = b.f(0.0);
-        let soft = b.gt(k, zero);
-        let cur = b.load(lit);
-        let m = b.min(cur, kd);
-        let m = b.select(soft, m, cur);
-        b.store(lit, m);
-        let nt = b.add(tv, d);
-        b.store(t, nt);
-    });
-    let v = b.load(lit);
-    let zero = b.f(0.0);
-    let one = b.f(1.0);
-    let v = b.clamp(v, zero, one);
-    b.ret(Some(v));
-    let f = b.finish();
-    mb.add_function(f)
-}
-
 /// `shade(p, n, rd, material[, h])`: Lambert with an ambient term (Munini §2.3), a Blinn–Phong
 /// highlight only if some material is specular, the scene's lights folded in as constants;
-/// with shadows, each shadowing light's terms scaled by `shadow` (`h`: the hit threshold).
+/// with shadows, each shadowing light's terms scaled by `shadow` (`h`: the hit threshold);
+/// with occlusion, the ambient and diffuse terms scaled by `occlusion(p, n)`.
 pub(super) fn add_shade(
     mb: &mut ModuleBuilder,
     scene: &Scene,
     map: Handle<Function>,
 ) -> Handle<Function> {
     let shadow = has_shadows(scene).then(|| add_shadow(mb, map));
+    let occlusion = scene.occlusion.map(|o| add_occlusion(mb, map, &o));
     let v3 = mb.vec3();
     let u32t = mb.u32();
     let f32t = mb.f32();
@@ -165,8 +83,16 @@ pub(super) fn add_shade(
             spec = Some(b.select(is, s, prev));
         }
     }
+    // Occlusion darkens the light that reaches the surface from all around, and the diffuse.
+    let lit_base = match occlusion {
+        Some(f) => {
+            let ao = b.call(f, vec![p, n]);
+            b.mul(base, ao)
+        }
+        None => base,
+    };
     let amb = b.f(AMBIENT);
-    let mut color = b.mul(base, amb);
+    let mut color = b.mul(lit_base, amb);
     for light in &scene.lights {
         let (l, far) = match light.kind {
             LightKind::Directional(d) => (b.vec3_lit(d.normalize()), b.f(scene.trace.max_distance)),
@@ -193,7 +119,7 @@ pub(super) fn add_shade(
             _ => lc,
         };
         let lit = b.mul(lc, diff);
-        let lit = b.mul(base, lit);
+        let lit = b.mul(lit_base, lit);
         color = b.add(color, lit);
         if let Some(s) = spec {
             let hv = b.sub(l, rd);
@@ -210,4 +136,23 @@ pub(super) fn add_shade(
     b.ret(Some(color));
     let f = b.finish();
     mb.add_function(f)
+}
+
+/// `fog(c, t)`: the linear colour `c` seen through the scene's fog from distance `t`,
+/// mix(fog, c, e^(−density·t)) (as `crate::shading::fog`); `None` without fog.
+pub(super) fn add_fog(mb: &mut ModuleBuilder, scene: &Scene) -> Option<Handle<Function>> {
+    let fog = scene.fog?;
+    let v3 = mb.vec3();
+    let f32t = mb.f32();
+    let mut b = FnBuilder::new(mb, "fog", &[("c", v3), ("t", f32t)], Some(v3));
+    let (c, t) = (b.arg(0), b.arg(1));
+    let k = b.f(-fog.density);
+    let kt = b.mul(k, t);
+    let keep = b.math(M::Exp, &[kt]);
+    let keep = b.splat(keep, naga::VectorSize::Tri);
+    let color = b.vec3_lit(crate::color::linear(fog.color));
+    let out = b.math(M::Mix, &[color, c, keep]);
+    b.ret(Some(out));
+    let f = b.finish();
+    Some(mb.add_function(f))
 }

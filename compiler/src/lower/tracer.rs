@@ -7,7 +7,6 @@ use super::builder::{Ex, FnBuilder, ModuleBuilder};
 use super::march::{self, Inputs};
 use super::{entry, rays, shading};
 use crate::scene::{Epsilon, Scene};
-use glam::DVec3;
 use naga::{Function, Handle, StructMember, Type, TypeInner};
 
 /// Which interface the module has.
@@ -67,18 +66,9 @@ impl Options {
 /// Workgroup size of the compute entry point (8×8).
 pub const WORKGROUP: u32 = 8;
 
-/// Ambient light term of `shade` (Munini §2.3: Lambert with an ambient term).
-pub const AMBIENT: f64 = 0.12;
-
-/// Base colour of surfaces without a material.
-pub const DEFAULT_COLOR: DVec3 = DVec3::new(0.8, 0.8, 0.8);
-
 /// Smallest hit threshold, relative to the camera's distance from its target: keeps ε above the
 /// f32 resolution of positions there (about 6e-8 of their magnitude).
 pub const EPSILON_FLOOR: f64 = 1e-5;
-
-/// Phong exponent of the specular term.
-pub const SHININESS: f64 = 32.0;
 
 /// The uniform block: camera basis (right and up pre-scaled by tan(fov/2)·aspect and
 /// tan(fov/2)), image size and pixel footprint, the tile's offset and the image size as
@@ -179,6 +169,7 @@ pub fn add(
     };
     let normal = shading::add_normal(mb, map);
     let shade = shading::add_shade(mb, scene, map);
+    let fog = shading::add_fog(mb, scene);
     match entry {
         Entry::Library => {
             // A stable name whatever the variant.
@@ -200,7 +191,7 @@ pub fn add(
         Entry::Field => unreachable!("the field entry returned above"),
         Entry::Compute | Entry::Fragment | Entry::Trace => {
             let passes = options.passes && entry != Entry::Fragment;
-            let fns = entry::Fns::new(mb, tracer, normal, shade, material, passes);
+            let fns = entry::Fns::new(mb, tracer, [normal, shade], material, fog, passes);
             match entry {
                 Entry::Compute => entry::add_compute(mb, scene, &fns, options, floor),
                 Entry::Fragment => entry::add_fragment(mb, scene, &fns, options, floor),

@@ -1,0 +1,174 @@
+//! Checking what a scene looks like: lights with their shadows, materials, ambient occlusion and
+//! fog, each a table of parameters bound by the same code as call arguments.
+
+use super::Checker;
+use super::settings::{DEFAULT_BACKGROUND, v};
+use crate::catalog::{Param, Ty, Val, opt, req};
+use crate::diag::{Diagnostic, Span};
+use crate::scene::{Light, LightKind, Material, Occlusion, Shadow};
+use crate::syntax::{Arg, Ident};
+
+const MATERIAL: &[Param] = &[
+    opt("color", Ty::Color, v(0.8, 0.8, 0.8)),
+    opt("specular", Ty::Fraction, Val::Num(0.0)),
+];
+
+/// A light's shadow: none, hard (Munini §2.3, Liktor: a shadow ray towards the light), or soft
+/// (the penumbra from the shadow ray's closest approach, sharper with a larger `softness`).
+const SHADOW: Param = opt("shadow", Ty::Word(&["none", "hard", "soft"]), Val::Word(0));
+const SOFTNESS: Param = opt("softness", Ty::Positive, Val::Num(8.0));
+
+/// Light kinds (`light point { .. }`); the first is the default.
+pub const LIGHT_KINDS: &[(&str, &[Param])] = &[
+    (
+        "directional",
+        &[
+            opt("direction", Ty::Axis, v(-0.4, 1.0, -0.3)),
+            opt("color", Ty::Color, v(1.0, 1.0, 1.0)),
+            opt("intensity", Ty::Length, Val::Num(1.0)),
+            SHADOW,
+            SOFTNESS,
+        ],
+    ),
+    (
+        "point",
+        &[
+            req("position", Ty::Vec3),
+            opt("color", Ty::Color, v(1.0, 1.0, 1.0)),
+            opt("intensity", Ty::Length, Val::Num(1.0)),
+            SHADOW,
+            SOFTNESS,
+        ],
+    ),
+];
+
+/// Most samples of ambient occlusion (each is an evaluation of the field per shaded pixel).
+pub const MAX_OCCLUSION_SAMPLES: u32 = 16;
+
+/// `occlusion { samples 5  distance 0.5  strength 1 }` ([`Occlusion`]).
+pub const OCCLUSION: &[Param] = &[
+    opt("samples", Ty::CountTo(MAX_OCCLUSION_SAMPLES), Val::Num(5.0)),
+    opt("distance", Ty::Positive, Val::Num(0.5)),
+    opt("strength", Ty::Length, Val::Num(1.0)),
+];
+
+/// `fog { density 0.05  color #aabbcc }`: without a colour, the scene's background (the default
+/// shown is the default background's).
+pub const FOG: &[Param] = &[
+    req("density", Ty::Positive),
+    opt("color", Ty::Color, Val::Vec3(DEFAULT_BACKGROUND)),
+];
+
+impl Checker<'_> {
+    /// `light [directional|point] { .. }`.
+    pub(super) fn light(&mut self, kind: Option<&Ident>, args: &[Arg], span: Span) {
+        let Some((name, params)) =
+            self.kind_of(LIGHT_KINDS.iter().map(|(n, p)| (*n, *p)), kind, "light")
+        else {
+            return;
+        };
+        let Some(a) = self.bind(&format!("light {name}"), params, args, span) else {
+            return;
+        };
+        let place = a[0].vec();
+        if self.settings.lights.len() == super::MAX_LIGHTS {
+            self.diags.push(
+                Diagnostic::error(span, "the scene has too many lights")
+                    .label("one light more than the limit")
+                    .note(format!("the limit is {} lights: each is a term of the shading the GPU driver compiles", super::MAX_LIGHTS)),
+            );
+        }
+        self.settings.lights.push(Light {
+            kind: if name == "point" {
+                LightKind::Point(place)
+            } else {
+                LightKind::Directional(place)
+            },
+            color: a[1].vec(),
+            intensity: a[2].num(),
+            shadow: match a[3] {
+                Val::Word(1) => Shadow::Hard,
+                Val::Word(2) => Shadow::Soft(a[4].num()),
+                _ => Shadow::None,
+            },
+        });
+    }
+
+    /// `occlusion { .. }`.
+    pub(super) fn occlusion(
+        &mut self,
+        keyword: &Ident,
+        kind: Option<&Ident>,
+        args: &[Arg],
+        span: Span,
+    ) {
+        self.no_kind(keyword, kind);
+        let Some(a) = self.bind("occlusion", OCCLUSION, args, span) else {
+            return;
+        };
+        let occlusion = Occlusion {
+            samples: a[0].num() as u32,
+            distance: a[1].num(),
+            strength: a[2].num(),
+        };
+        self.once(|s| &mut s.occlusion, occlusion, span, "occlusion");
+    }
+
+    /// `fog { .. }`.
+    pub(super) fn fog(&mut self, keyword: &Ident, kind: Option<&Ident>, args: &[Arg], span: Span) {
+        self.no_kind(keyword, kind);
+        let Some(a) = self.bind("fog", FOG, args, span) else {
+            return;
+        };
+        let given = args
+            .iter()
+            .any(|a| a.name.as_ref().is_some_and(|n| n.name == "color"));
+        let color = given.then(|| a[1].vec());
+        self.once(|s| &mut s.fog, (color, a[0].num()), span, "fog");
+    }
+
+    /// `material name { .. }`.
+    pub(super) fn material(&mut self, kind: Option<&Ident>, args: &[Arg], span: Span) {
+        let Some(name) = kind else {
+            self.diags.push(
+                Diagnostic::error(span, "a material needs a name")
+                    .label("e.g. `material gold { color #d4af37 }`"),
+            );
+            return;
+        };
+        if let Some(d) = self.reserved_name(name) {
+            self.diags.push(d);
+            self.failed.insert(name.name.clone());
+            return;
+        }
+        if let Some(first) = self.materials.iter().find(|m| m.name == name.name) {
+            let first = first.span;
+            self.diags.push(
+                Diagnostic::error(
+                    name.span,
+                    format!("material `{}` is defined twice", name.name),
+                )
+                .label("second definition")
+                .also(first, "first definition"),
+            );
+            return;
+        }
+        let Some(a) = self.bind(&format!("material {}", name.name), MATERIAL, args, span) else {
+            self.failed.insert(name.name.clone());
+            return;
+        };
+        if self.materials.len() == super::MAX_MATERIALS {
+            self.diags.push(
+                Diagnostic::error(name.span, "the scene has too many materials")
+                    .label("one material more than the limit")
+                    .note(format!("the limit is {} materials: each is a branch of the shading the GPU driver compiles", super::MAX_MATERIALS)),
+            );
+        }
+        self.materials.push(Material {
+            name: name.name.clone(),
+            color: a[0].vec(),
+            specular: a[1].num(),
+            span: name.span,
+        });
+    }
+}
