@@ -21,6 +21,9 @@ pub struct View {
     pub height: u32,
     /// tan of half a pixel's angle at the centre: the pixel footprint per unit of distance.
     pub pixel: f64,
+    /// Where in its pixel the compute entry's ray passes, in pixels from the pixel's corner
+    /// (x right, y down): (0.5, 0.5) the centre; other points for anti-aliasing samples.
+    pub jitter: [f64; 2],
 }
 
 impl View {
@@ -39,6 +42,7 @@ impl View {
             width,
             height,
             pixel: t / height as f64,
+            jitter: [0.5, 0.5],
         }
     }
 
@@ -73,18 +77,22 @@ impl View {
 
     /// The `View` uniform's 112 bytes: seven vec4s, the sixth (tile offset, image size) as
     /// u32, the seventh the multi-resolution `pass` field (cone slope, budget, previous pass's
-    /// width and height; zeros outside passes, where the module's view is 96 bytes).
+    /// width and height; zeros outside passes, where the module's view is 96 bytes). `right.w`
+    /// and `up.w` hold the jitter (x and y).
     pub fn uniform(&self, tile_x: u32, tile_y: u32, pass: [f32; 4]) -> [u8; 112] {
         let mut out = [0u8; 112];
         let vecs = [
-            self.eye,
-            self.right,
-            self.up,
-            self.forward,
-            DVec3::new(self.width as f64, self.height as f64, self.pixel),
+            (self.eye, 0.0),
+            (self.right, self.jitter[0]),
+            (self.up, self.jitter[1]),
+            (self.forward, 0.0),
+            (
+                DVec3::new(self.width as f64, self.height as f64, self.pixel),
+                0.0,
+            ),
         ];
-        for (i, v) in vecs.iter().enumerate() {
-            for (j, c) in [v.x, v.y, v.z, 0.0].iter().enumerate() {
+        for (i, (v, w)) in vecs.iter().enumerate() {
+            for (j, c) in [v.x, v.y, v.z, *w].iter().enumerate() {
                 let at = 16 * i + 4 * j;
                 out[at..at + 4].copy_from_slice(&(*c as f32).to_le_bytes());
             }

@@ -72,9 +72,11 @@ enum Command {
         /// What to write.
         #[arg(long = "channel", value_enum, default_value = "color")]
         kind: sdfc::images::Channel,
-        /// Samples per pixel for anti-aliasing: a square number (a stratified grid).
-        #[arg(long, default_value_t = 1)]
-        samples: u32,
+        /// Samples per pixel for anti-aliasing: a square number (a stratified grid), accumulated
+        /// at the output's size. Default: 4 for `--channel color` (1 when the scene's tracer
+        /// does Hart's cone anti-aliasing), 1 for the other channels.
+        #[arg(long)]
+        samples: Option<u32>,
         /// Render a shader larger than the driver compiles in reasonable time (more than
         /// 4 096 calls of distance functions; docs/stability.md).
         #[arg(long)]

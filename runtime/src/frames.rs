@@ -85,8 +85,10 @@ pub struct Timing {
     pub gpu: Option<f64>,
 }
 
-/// One dispatch: its uniform, bind group and workgroup counts.
+/// One dispatch: its uniform (the buffer and what was written to it), bind group and
+/// workgroup counts.
 struct Dispatch {
+    uniform: (wgpu::Buffer, [u8; 112]),
     bind: wgpu::BindGroup,
     groups: (u32, u32),
 }
@@ -193,8 +195,8 @@ impl Gpu {
                         usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
                         mapped_at_creation: false,
                     });
-                    self.queue
-                        .write_buffer(&uniform, 0, &pass.view.uniform(x, y, field));
+                    let bytes = pass.view.uniform(x, y, field);
+                    self.queue.write_buffer(&uniform, 0, &bytes);
                     let mut entries = vec![wgpu::BindGroupEntry {
                         binding: 0,
                         resource: uniform.as_entire_binding(),
@@ -223,6 +225,7 @@ impl Gpu {
                             .div_ceil(sdfc_compiler::lower::tracer::WORKGROUP)
                     };
                     dispatches.push(Dispatch {
+                        uniform: (uniform, bytes),
                         bind,
                         groups: (groups(pw - x), groups(ph - y)),
                     });
@@ -277,6 +280,22 @@ impl Prepared<'_> {
     /// Dispatches how many tiles there are in all passes.
     pub fn dispatches(&self) -> u32 {
         self.passes.iter().map(|p| p.len() as u32).sum()
+    }
+
+    /// Moves the rays of the next frames to `jitter` within their pixels (`View::jitter`), in
+    /// the last pass only: an earlier, coarser pass's cone covers its whole pixels from their
+    /// centres, so it stays there.
+    pub fn set_jitter(&self, jitter: [f64; 2]) {
+        let Some(last) = self.passes.last() else {
+            return;
+        };
+        for d in last {
+            let mut bytes = d.uniform.1;
+            for (at, v) in [(28, jitter[0]), (44, jitter[1])] {
+                bytes[at..at + 4].copy_from_slice(&(v as f32).to_le_bytes());
+            }
+            self.gpu.queue.write_buffer(&d.uniform.0, 0, &bytes);
+        }
     }
 
     /// Runs one frame as a single submission (all passes, all tiles) and waits for it.

@@ -126,18 +126,46 @@ impl Gpu {
         passes: Option<&[Pass]>,
         progress: impl FnMut(u32, u32),
     ) -> Result<Frame, String> {
+        let mut out = None;
+        self.render_samples(module, view, passes, &[view.jitter], progress, |f| {
+            out = Some(f);
+            Ok(())
+        })?;
+        Ok(out.expect("one frame"))
+    }
+
+    /// [`Gpu::render`] once per point of `jitters` (where in its pixel each frame's ray
+    /// passes, `View::jitter`), the module prepared once; each frame is handed to `each` as
+    /// it is read back, so that memory does not grow with the number of samples. `progress`
+    /// counts the tiles of all frames.
+    pub fn render_samples(
+        &self,
+        module: &naga::Module,
+        view: &View,
+        passes: Option<&[Pass]>,
+        jitters: &[[f64; 2]],
+        mut progress: impl FnMut(u32, u32),
+        mut each: impl FnMut(Frame) -> Result<(), String>,
+    ) -> Result<(), String> {
         let layout = Layout::Full {
             passes: passes.is_some(),
         };
         let prepared = self.prepare(Source::Module(module), layout, view, passes, TILE)?;
-        let validation = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let seconds = prepared.run_tiles(progress)?;
-        if let Some(e) = pollster::block_on(validation.pop()) {
-            return Err(format!(
-                "internal error: the GPU rejected the compiled shader: {e}"
-            ));
+        let per_frame = prepared.dispatches();
+        let total = per_frame * jitters.len() as u32;
+        for (k, &jitter) in jitters.iter().enumerate() {
+            prepared.set_jitter(jitter);
+            let validation = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
+            let before = k as u32 * per_frame;
+            let seconds = prepared.run_tiles(|done, _| progress(before + done, total))?;
+            if let Some(e) = pollster::block_on(validation.pop()) {
+                return Err(format!(
+                    "internal error: the GPU rejected the compiled shader: {e}"
+                ));
+            }
+            each(prepared.frame(seconds)?)?;
         }
-        prepared.frame(seconds)
+        Ok(())
     }
 
     /// Traces a list of rays with a module compiled for `Entry::Rays`: each ray is an origin,

@@ -83,34 +83,69 @@ fn palette(id: u32) -> [u8; 4] {
     [(r * 255.0) as u8, (g * 255.0) as u8, (b * 255.0) as u8, 255]
 }
 
-/// Averages `s`×`s` blocks of an RGBA8 image (supersampling's resolve); with `srgb`, in linear
-/// light (each sample decoded, the mean encoded again), as colour must be averaged.
-pub fn downsample(pixels: &[u8], width: u32, height: u32, s: u32, srgb: bool) -> Vec<u8> {
-    use sdfc_compiler::color::{to_linear, to_srgb};
-    if s == 1 {
-        return pixels.to_vec();
-    }
-    let (w, h) = (width / s, height / s);
-    let mut out = Vec::with_capacity((w * h * 4) as usize);
-    for y in 0..h {
-        for x in 0..w {
-            for c in 0..4 {
-                let decode = srgb && c < 3;
-                let mut sum = 0.0;
-                for dy in 0..s {
-                    for dx in 0..s {
-                        let v = pixels[(((y * s + dy) * width + x * s + dx) * 4 + c) as usize];
-                        let v = v as f64 / 255.0;
-                        sum += if decode { to_linear(v) } else { v };
-                    }
-                }
-                let mean = sum / (s * s) as f64;
-                let mean = if decode { to_srgb(mean) } else { mean };
-                out.push((mean * 255.0).round() as u8);
-            }
+/// Anti-aliasing samples accumulated at the output's size (memory independent of their
+/// number): the sum of several frames' RGBA8 pixels, colour in linear light (decoded from sRGB,
+/// averaged, encoded again), other channels as they are.
+pub struct Accumulator {
+    sum: Vec<f32>,
+    frames: u32,
+    srgb: bool,
+}
+
+impl Accumulator {
+    /// An empty sum over `pixels` pixels; `srgb`: the frames are sRGB-encoded colour.
+    pub fn new(pixels: usize, srgb: bool) -> Accumulator {
+        Accumulator {
+            sum: vec![0.0; pixels * 4],
+            frames: 0,
+            srgb,
         }
     }
-    out
+
+    /// Adds one frame's RGBA8 pixels.
+    pub fn add(&mut self, rgba: &[u8]) {
+        use sdfc_compiler::color::to_linear;
+        for (i, (s, &v)) in self.sum.iter_mut().zip(rgba).enumerate() {
+            let v = v as f64 / 255.0;
+            *s += if self.srgb && i % 4 < 3 {
+                to_linear(v)
+            } else {
+                v
+            } as f32;
+        }
+        self.frames += 1;
+    }
+
+    /// The mean of the frames added, as RGBA8.
+    pub fn finish(self) -> Vec<u8> {
+        use sdfc_compiler::color::to_srgb;
+        let n = self.frames.max(1) as f64;
+        self.sum
+            .iter()
+            .enumerate()
+            .map(|(i, &s)| {
+                let mean = s as f64 / n;
+                let v = if self.srgb && i % 4 < 3 {
+                    to_srgb(mean)
+                } else {
+                    mean
+                };
+                (v.clamp(0.0, 1.0) * 255.0).round() as u8
+            })
+            .collect()
+    }
+}
+
+/// The points in a pixel where `n` anti-aliasing samples pass (`n` a square, s²): the centres
+/// of an s×s grid of sub-pixels, row by row.
+pub fn sample_points(n: u32) -> Vec<[f64; 2]> {
+    let s = (n as f64).sqrt().round().max(1.0) as u32;
+    (0..s * s)
+        .map(|k| {
+            let (i, j) = (k % s, k / s);
+            [(i as f64 + 0.5) / s as f64, (j as f64 + 0.5) / s as f64]
+        })
+        .collect()
 }
 
 /// Encodes RGBA8 pixels as PNG bytes.

@@ -477,3 +477,49 @@ fn a_dash_output_is_standard_output() {
     assert!(!dir.join("-").exists(), "a file named `-` was written");
     let _ = std::fs::remove_dir_all(dir);
 }
+
+/// Anti-aliasing samples are accumulated at the output's size: 64 samples of a 2100-pixel-wide
+/// strip work (an 8× larger image would pass the 16384-pixel side limit), and `--samples` is
+/// refused with `.npy` depth.
+#[test]
+fn many_samples_do_not_make_a_larger_image() {
+    let dir = scratch("many-samples");
+    let scene = root().join("examples/gem.sdf");
+    let scene = scene.to_str().unwrap();
+    let out = dir.join("strip.png");
+    let o = sdfc(&[
+        "render",
+        scene,
+        "-o",
+        out.to_str().unwrap(),
+        "--size",
+        "2100x8",
+        "--samples",
+        "64",
+    ]);
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let img = image::open(&out).unwrap();
+    assert_eq!((img.width(), img.height()), (2100, 8));
+    let npy = dir.join("d.npy");
+    let o = sdfc(&[
+        "render",
+        scene,
+        "-o",
+        npy.to_str().unwrap(),
+        "--size",
+        "8x8",
+        "--channel",
+        "depth",
+        "--samples",
+        "4",
+    ]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("one sample per pixel"));
+    assert!(!npy.exists());
+    let _ = std::fs::remove_dir_all(dir);
+}

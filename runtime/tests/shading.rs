@@ -121,3 +121,64 @@ fn every_shading_feature_matches_the_cpu_reference() {
     }
     println!("{report}");
 }
+
+/// Anti-aliasing at the output's size (`--samples N`): N frames, each with its rays moved to
+/// one point of an s×s grid in every pixel, averaged in linear light — the mean of the CPU
+/// reference's colours at those points; and the edges change from one sample per pixel.
+#[test]
+fn anti_aliasing_samples_average_the_cpu_reference_at_their_points() {
+    use sdfc::images::{Accumulator, Channel, rgba, sample_points};
+    let gpu = gpu();
+    let scene = compile(&scene("light { direction (-0.6, 1, 0.5)  shadow soft }"));
+    let (w, h) = (48, 32);
+    let view = View::new(&scene.camera, w, h);
+    let (module, _) = emit::module(&scene, Entry::Compute, &Options::from_scene(&scene)).unwrap();
+    let n = (w * h) as usize;
+    let render = |points: &[[f64; 2]]| {
+        let mut sum = Accumulator::new(n, true);
+        gpu.render_samples(
+            &module,
+            &view,
+            None,
+            points,
+            |_, _| {},
+            |f| {
+                sum.add(&rgba(&f, Channel::Color, scene.trace.steps));
+                Ok(())
+            },
+        )
+        .unwrap();
+        sum.finish()
+    };
+    let points = sample_points(9);
+    assert_eq!(points.len(), 9);
+    let (one, nine) = (render(&sample_points(1)), render(&points));
+    let (mut within, mut edges) = (0, 0);
+    for y in 0..h {
+        for x in 0..w {
+            let i = (y * w + x) as usize;
+            let mean = points
+                .iter()
+                .map(|[px, py]| {
+                    shading::pixel(&scene, &scene.trace, &view, x as f64 + px, y as f64 + py)
+                        .clamp(glam::DVec3::ZERO, glam::DVec3::ONE)
+                })
+                .sum::<glam::DVec3>()
+                / points.len() as f64;
+            let want = [mean.x, mean.y, mean.z].map(|v| (to_srgb(v) * 255.0).round() as i32);
+            if (0..3).all(|k| (nine[4 * i + k] as i32 - want[k]).abs() <= LEVELS) {
+                within += 1;
+            }
+            if (0..3).any(|k| one[4 * i + k].abs_diff(nine[4 * i + k]) > 8) {
+                edges += 1;
+            }
+        }
+    }
+    let share = within as f64 / n as f64;
+    assert!(share >= SHARE, "only {:.2}% of pixels match", share * 100.0);
+    assert!(edges > 40, "anti-aliasing changed only {edges} pixels");
+    println!(
+        "9 samples: {:.2}% within {LEVELS} levels of the CPU; {edges} pixels changed",
+        share * 100.0
+    );
+}

@@ -251,8 +251,8 @@ fn hit_bit(b: &mut FnBuilder, result: Ex) -> Ex {
 }
 
 /// The pixel of a compute invocation (`gid` plus the tile origin in `view.offset.xy`), or a
-/// return when it lies outside the image (`view.offset.zw`): (index in the image, pixel
-/// centre).
+/// return when it lies outside the image (`view.offset.zw`): (index in the image, the point
+/// in it the ray passes through: the pixel's corner plus `(right.w, up.w)`).
 fn compute_pixel(b: &mut FnBuilder, fns: &Fns) -> (Ex, Ex) {
     let gid = b.arg(0);
     let offset = view_field(b, fns.view, 5);
@@ -269,9 +269,14 @@ fn compute_pixel(b: &mut FnBuilder, fns: &Fns) -> (Ex, Ex) {
     let index = b.add(row, x);
     b.name(index, "index");
     let pf = b.cast(pxy, ScalarKind::Float);
-    let half = b.f(0.5);
-    let half2 = b.splat(half, VectorSize::Bi);
-    (index, b.add(pf, half2))
+    // Where in the pixel the ray passes: `right.w`, `up.w` (the centre, 0.5, unless
+    // anti-aliasing samples move it).
+    let right = view_field(b, fns.view, 1);
+    let up = view_field(b, fns.view, 2);
+    let (jx, jy) = (b.at(right, 3), b.at(up, 3));
+    let v2 = b.m.vec(VectorSize::Bi);
+    let jitter = b.compose(v2, vec![jx, jy]);
+    (index, b.add(pf, jitter))
 }
 
 /// The trace-only compute entry ([`super::Entry::Trace`]): each pixel's ray traced (in passes
