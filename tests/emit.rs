@@ -183,42 +183,76 @@ fn only_what_the_scene_requires() {
     assert!(text(&steps, Target::Wgsl, Entry::Compute).contains(">= 77u"));
 }
 
-/// Shadows, occlusion and fog each add their one function (and its call) and nothing else; a
-/// scene without them has none of them (issue 17: each feature emitted only when used).
+/// Shadows, occlusion, fog, mirrors and transparent solids each add their own functions (and
+/// their calls) and nothing else; a scene without them has none of them (issue 17: each feature
+/// emitted only when used).
 #[test]
 fn each_shading_feature_adds_only_its_function() {
-    let base = "light { direction (0, 1, 0) }\nunion { sphere(1)  plane(y, -1) }";
+    let base = "material m { color #fff }\nlight { direction (0, 1, 0) }\n\
+                union { sphere(1) : m  plane(y, -1) }";
     let plain = text(
         &sdfc_tests::scene("plain", base),
         Target::Wgsl,
         Entry::Compute,
     );
-    for absent in ["shadow", "occlusion", "fog"] {
+    for absent in [
+        "shadow",
+        "occlusion",
+        "fog",
+        "march",
+        "path",
+        "refract",
+        "reflect",
+    ] {
         assert!(!plain.contains(absent), "the plain scene emits `{absent}`");
     }
-    let cases = [
-        ("light { direction (0, 1, 0)  shadow hard }", "shadow"),
-        ("light { direction (0, 1, 0)  shadow soft }", "shadow"),
-        ("occlusion { samples 4 }", "occlusion"),
-        ("fog { density 0.1 }", "fog"),
+    let light = "light { direction (0, 1, 0) }";
+    let material = "material m { color #fff }";
+    let cases: [(&str, &str, &[&str]); 6] = [
+        (
+            light,
+            "light { direction (0, 1, 0)  shadow hard }",
+            &["shadow"],
+        ),
+        (
+            light,
+            "light { direction (0, 1, 0)  shadow soft }",
+            &["shadow"],
+        ),
+        (
+            light,
+            "occlusion { samples 4 }\nlight { direction (0, 1, 0) }",
+            &["occlusion"],
+        ),
+        (
+            light,
+            "fog { density 0.1 }\nlight { direction (0, 1, 0) }",
+            &["fog"],
+        ),
+        (
+            material,
+            "material m { color #fff  reflect 0.5 }",
+            &["march", "path"],
+        ),
+        (
+            material,
+            "material m { color #fff  transparent 0.5  ior 1.3 }",
+            &["march", "path"],
+        ),
     ];
-    for (setting, function) in cases {
-        let source = if setting.starts_with("light") {
-            base.replacen("light { direction (0, 1, 0) }", setting, 1)
-        } else {
-            format!("{setting}\n{base}")
-        };
+    for (from, to, expected) in cases {
+        let source = base.replacen(from, to, 1);
         let wgsl = text(
-            &sdfc_tests::scene(setting, &source),
+            &sdfc_tests::scene(to, &source),
             Target::Wgsl,
             Entry::Compute,
         );
         let (f1, f2) = (functions(&plain), functions(&wgsl));
         let added: Vec<&String> = f2.iter().filter(|f| !f1.contains(f)).collect();
-        assert_eq!(added, [function], "`{setting}` added {added:?}");
+        assert_eq!(added, expected, "`{to}` added {added:?}");
         assert!(
             f1.iter().all(|f| f2.contains(f)),
-            "`{setting}` removed a function"
+            "`{to}` removed a function"
         );
     }
 }

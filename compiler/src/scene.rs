@@ -211,8 +211,22 @@ pub struct Material {
     pub color: DVec3,
     /// Strength of the specular highlight, 0..1.
     pub specular: f64,
+    /// Share of the light a mirror reflects (Keinert §3.3's reflection rays), 0..1.
+    pub reflect: f64,
+    /// Share of the light that passes into the solid and through it (refraction rays),
+    /// 0..1; `reflect + transparent` ≤ 1, the rest is the surface's own shading.
+    pub transparent: f64,
+    /// Index of refraction of a transparent solid (1.5 glass, 2.42 diamond).
+    pub ior: f64,
     /// Where it was declared.
     pub span: Span,
+}
+
+impl Material {
+    /// Whether rays go on from a surface of this material (it reflects or lets light through).
+    pub fn continues(&self) -> bool {
+        self.reflect > 0.0 || self.transparent > 0.0
+    }
 }
 
 /// A pinhole camera (Munini §2.1).

@@ -52,6 +52,11 @@ pub struct TracerArgs {
     /// pays on GPUs that branch per SIMD group, not on lavapipe: docs/benchmarks.md).
     #[arg(long)]
     pub bvh: bool,
+    /// Start shadow, reflected and refracted rays a fixed 2·ε_floor off the surface instead of
+    /// Keinert's ε_dynamic = 2·max(ε, |f(p)|): only to see and measure what ε_dynamic prevents
+    /// (shadow acne, self-intersecting refraction).
+    #[arg(long)]
+    pub fixed_offset: bool,
 }
 
 impl TracerArgs {
@@ -93,6 +98,7 @@ impl TracerArgs {
         let mut options = sdfc_compiler::lower::tracer::Options::from_scene(scene);
         options.passes = self.passes > 1;
         options.bounding_volumes = self.bvh;
+        options.fixed_offset = self.fixed_offset;
         Ok(options)
     }
 }

@@ -8,9 +8,13 @@ use crate::diag::{Diagnostic, Span};
 use crate::scene::{Light, LightKind, Material, Occlusion, Shadow};
 use crate::syntax::{Arg, Ident};
 
+/// `material name { color  specular  reflect  transparent  ior }`.
 const MATERIAL: &[Param] = &[
     opt("color", Ty::Color, v(0.8, 0.8, 0.8)),
     opt("specular", Ty::Fraction, Val::Num(0.0)),
+    opt("reflect", Ty::Fraction, Val::Num(0.0)),
+    opt("transparent", Ty::Fraction, Val::Num(0.0)),
+    opt("ior", Ty::Range(1.0, 5.0), Val::Num(1.5)),
 ];
 
 /// A light's shadow: none, hard (Munini §2.3, Liktor: a shadow ray towards the light), or soft
@@ -164,10 +168,21 @@ impl Checker<'_> {
                     .note(format!("the limit is {} materials: each is a branch of the shading the GPU driver compiles", super::MAX_MATERIALS)),
             );
         }
+        let (reflect, transparent) = (a[2].num(), a[3].num());
+        if reflect + transparent > 1.0 {
+            self.diags.push(
+                Diagnostic::error(span, format!("`reflect {reflect}` and `transparent {transparent}` add up to more than 1"))
+                    .label("more light leaves the surface than reaches it")
+                    .note("the surface's own shading gets 1 − reflect − transparent of the light; lower one of them"),
+            );
+        }
         self.materials.push(Material {
             name: name.name.clone(),
             color: a[0].vec(),
             specular: a[1].num(),
+            reflect,
+            transparent,
+            ior: a[4].num(),
             span: name.span,
         });
     }

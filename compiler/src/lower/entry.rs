@@ -19,6 +19,7 @@ pub(super) struct Fns {
     shade: Handle<Function>,
     material: Option<Handle<Function>>,
     fog: Option<Handle<Function>>,
+    path: Option<Handle<Function>>,
     ray: Handle<Function>,
     pub(super) view: Handle<naga::GlobalVariable>,
     pub(super) passes: bool,
@@ -31,7 +32,7 @@ impl Fns {
         tracer: Tracer,
         [normal, shade]: [Handle<Function>; 2],
         material: Option<Handle<Function>>,
-        fog: Option<Handle<Function>>,
+        [fog, path]: [Option<Handle<Function>>; 2],
         passes: bool,
     ) -> Fns {
         let view = add_view(mb, passes);
@@ -42,6 +43,7 @@ impl Fns {
             shade,
             material,
             fog,
+            path,
             ray,
             view,
             passes,
@@ -200,6 +202,11 @@ fn shade_hit(
                 args.push(h);
             }
             let c = b.call(fns.shade, args);
+            // Mirrors and transparent solids: the path of reflected and refracted rays.
+            let c = match fns.path {
+                Some(f) => b.call(f, vec![p, n, rd, m, h, c]),
+                None => c,
+            };
             let c = match fns.fog {
                 Some(f) => b.call(f, vec![c, t]),
                 None => c,

@@ -3,6 +3,7 @@
 //! `map`, (only when the scene has materials) `map_material` and (only when it has a loose part)
 //! `map_loose`; the tracer and entry points come from `tracer.rs`.
 
+mod bounce;
 mod bound;
 pub mod builder;
 mod careful;

@@ -12,7 +12,11 @@ use naga::{Function, Handle};
 /// inside another), up to `far`: 0 when some step comes within `h` of a surface; with `k` > 0
 /// the penumbra min(k·f/t) of the closest approach (soft), else 1 (hard). At most
 /// [`SHADOW_STEPS`] evaluations; a ray that runs out counts as lit.
-pub(super) fn add_shadow(mb: &mut ModuleBuilder, map: Handle<Function>) -> Handle<Function> {
+pub(super) fn add_shadow(
+    mb: &mut ModuleBuilder,
+    map: Handle<Function>,
+    fixed_offset: Option<f64>,
+) -> Handle<Function> {
     let v3 = mb.vec3();
     let f32t = mb.f32();
     let args = [
@@ -25,11 +29,7 @@ pub(super) fn add_shadow(mb: &mut ModuleBuilder, map: Handle<Function>) -> Handl
     ];
     let mut b = FnBuilder::new(mb, "shadow", &args, Some(f32t));
     let (p, n, l, far, h, k) = (b.arg(0), b.arg(1), b.arg(2), b.arg(3), b.arg(4), b.arg(5));
-    let here = b.call(map, vec![p]);
-    let here = b.abs(here);
-    let lift = b.max(here, h);
-    let two = b.f(2.0);
-    let lift = b.mul(lift, two);
+    let lift = super::bounce::lift(&mut b, map, p, h, fixed_offset);
     let up = b.mul(n, lift);
     let p = b.add(p, up);
     let zero = b.f(0.0);

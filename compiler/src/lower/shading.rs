@@ -54,8 +54,9 @@ pub(super) fn add_shade(
     mb: &mut ModuleBuilder,
     scene: &Scene,
     map: Handle<Function>,
+    fixed_offset: Option<f64>,
 ) -> Handle<Function> {
-    let shadow = has_shadows(scene).then(|| add_shadow(mb, map));
+    let shadow = has_shadows(scene).then(|| add_shadow(mb, map, fixed_offset));
     let occlusion = scene.occlusion.map(|o| add_occlusion(mb, map, &o));
     let v3 = mb.vec3();
     let u32t = mb.u32();

@@ -50,6 +50,10 @@ pub struct Options {
     /// groups of far parts skipped. Off by default: on lavapipe a branch does not skip work
     /// (every lane runs both sides), so the tests only cost (docs/benchmarks.md).
     pub bounding_volumes: bool,
+    /// Start shadow, reflected and refracted rays a fixed 2·ε_floor from the surface instead
+    /// of Keinert's ε_dynamic = 2·max(h, |f(p)|) (§3.3): only to measure what ε_dynamic
+    /// prevents (`--fixed-offset`).
+    pub fixed_offset: bool,
 }
 
 impl Options {
@@ -59,6 +63,7 @@ impl Options {
             trace: scene.trace,
             passes: false,
             bounding_volumes: false,
+            fixed_offset: false,
         }
     }
 }
@@ -168,8 +173,26 @@ pub fn add(
         antialias: options.trace.antialias,
     };
     let normal = shading::add_normal(mb, map);
-    let shade = shading::add_shade(mb, scene, map);
+    // The offset of secondary rays' origins: ε_dynamic, or a fixed one to compare with.
+    let fixed = options
+        .fixed_offset
+        .then(|| 2.0 * scene.camera.epsilon_floor());
+    let shade = shading::add_shade(mb, scene, map, fixed);
     let fog = shading::add_fog(mb, scene);
+    let path = match material {
+        Some(material) if crate::shading::has_paths(scene) => {
+            let march = super::bounce::add_march(mb, map);
+            let calls = super::bounce::Calls {
+                map,
+                normal,
+                material,
+                shade,
+                march,
+            };
+            Some(super::bounce::add_path(mb, scene, &calls, fixed))
+        }
+        _ => None,
+    };
     match entry {
         Entry::Library => {
             // A stable name whatever the variant.
@@ -191,7 +214,7 @@ pub fn add(
         Entry::Field => unreachable!("the field entry returned above"),
         Entry::Compute | Entry::Fragment | Entry::Trace => {
             let passes = options.passes && entry != Entry::Fragment;
-            let fns = entry::Fns::new(mb, tracer, [normal, shade], material, fog, passes);
+            let fns = entry::Fns::new(mb, tracer, [normal, shade], material, [fog, path], passes);
             match entry {
                 Entry::Compute => entry::add_compute(mb, scene, &fns, options, floor),
                 Entry::Fragment => entry::add_fragment(mb, scene, &fns, options, floor),
