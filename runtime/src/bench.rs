@@ -34,9 +34,10 @@ pub struct Cell {
     pub evals_mean: f64,
     /// Most evaluations any pixel's ray made.
     pub evals_max: u32,
-    /// Mean evaluations per pixel that a full frame adds after the trace: the normal's at
-    /// every hit, and the material's where the scene has materials (cone anti-aliasing's
-    /// shading of near misses not counted).
+    /// Mean evaluations per pixel that a full frame adds after the trace, as counted by the
+    /// compute entry (`out_shading`): the normal's and the material's at every hit, shadow
+    /// rays, occlusion, reflected and refracted rays, and cone anti-aliasing's shading of
+    /// near misses.
     pub shading_evals_mean: f64,
     /// Mean squared difference to the ground truth's depth of the t where each ray stopped
     /// (hit, best candidate, budget out, or escaped: at most `max_distance`), over the pixels
@@ -82,9 +83,6 @@ pub struct Truth {
     pub seconds: f64,
 }
 
-/// Normal evaluations of the field per hit in a full frame.
-const NORMAL_EVALUATIONS: f64 = sdfc_compiler::lower::tracer::NORMAL_EVALUATIONS as f64;
-
 /// What one cell measures.
 pub struct Job<'a> {
     /// The scene.
@@ -104,6 +102,8 @@ pub struct Job<'a> {
     pub reference: Option<(&'a str, &'a str)>,
     /// Compile `map` with bounding-volume tests.
     pub bvh: bool,
+    /// Start secondary rays a fixed 2·ε_floor off the surface.
+    pub fixed_offset: bool,
 }
 
 /// Compiles the scene with `trace` for `entry`, with passes if more than one is asked; and
@@ -119,6 +119,7 @@ fn compile(
     let mut options = Options::from_scene(&s);
     options.passes = passes > 1;
     options.bounding_volumes = job.bvh;
+    options.fixed_offset = job.fixed_offset;
     let (module, _) = emit::module(&s, entry, &options)
         .map_err(|e| format!("internal compiler error: {}", e.0))?;
     let plan = match passes {
@@ -211,13 +212,9 @@ pub fn measure(gpu: &Gpu, job: &Job) -> Result<Cell, String> {
     }
     let n = job.truth.len().max(1) as f64;
     let evals_mean = mean_steps(&rays);
-    let hits = rays.iter().filter(|r| r.hit).count() as f64;
-    // The material's evaluation, where the module has a material function.
-    let has_material = full_module
-        .functions
-        .iter()
-        .any(|(_, f)| f.name.as_deref() == Some("map_material"));
-    let material = if has_material { 1.0 } else { 0.0 };
+    // What shading evaluated, counted by the full frame's module itself.
+    let shaded = full.frame(0.0)?.shading;
+    let shading_evals_mean = shaded.iter().map(|&e| e as f64).sum::<f64>() / n;
     let mse = if counted > 0 {
         sum / counted as f64
     } else {
@@ -253,7 +250,7 @@ pub fn measure(gpu: &Gpu, job: &Job) -> Result<Cell, String> {
         frame_seconds_each: times[1].clone(),
         evals_mean,
         evals_max: rays.iter().map(|r| r.steps).max().unwrap_or(0),
-        shading_evals_mean: hits * (NORMAL_EVALUATIONS + material) / n,
+        shading_evals_mean,
         mse,
         mismatch: mismatch as f64 / n,
         error_x_time: mse * seconds,

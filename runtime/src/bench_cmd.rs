@@ -43,6 +43,8 @@ pub struct BenchArgs<'a> {
     pub reference: Option<&'a Path>,
     /// Compile `map` with bounding-volume tests.
     pub bvh: bool,
+    /// Start secondary rays a fixed 2·ε_floor off the surface.
+    pub fixed_offset: bool,
     /// Go on with a shader above `render_cmd::MAX_DRIVER_CALLS`.
     pub allow_slow_compile: bool,
 }
@@ -116,6 +118,7 @@ fn bench(args: &BenchArgs) -> Result<(), String> {
     };
     let mut options = sdfc_compiler::lower::tracer::Options::from_scene(&scene);
     options.bounding_volumes = args.bvh;
+    options.fixed_offset = args.fixed_offset;
     let (module, _) =
         sdfc_compiler::emit::module(&scene, sdfc_compiler::lower::Entry::Compute, &options)
             .map_err(|e| format!("internal compiler error: {}", e.0))?;
@@ -177,6 +180,7 @@ fn bench(args: &BenchArgs) -> Result<(), String> {
             repeat: args.repeat,
             reference: reference.as_ref().map(|(t, p)| (t.as_str(), p.as_str())),
             bvh: args.bvh,
+            fixed_offset: args.fixed_offset,
         };
         measured.push(bench::measure(&gpu, &job)?);
     }

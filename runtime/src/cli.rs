@@ -130,6 +130,9 @@ enum Command {
         /// Compile `map` with bounding-volume tests (as `render --bvh`).
         #[arg(long)]
         bvh: bool,
+        /// Start secondary rays a fixed 2·ε_floor off the surface (as `render --fixed-offset`).
+        #[arg(long)]
+        fixed_offset: bool,
         /// Measure a shader larger than the driver compiles in reasonable time (as `render`).
         #[arg(long)]
         allow_slow_compile: bool,
@@ -267,6 +270,7 @@ pub fn run() -> i32 {
             passes,
             reference,
             bvh,
+            fixed_offset,
             allow_slow_compile,
         } => crate::bench_cmd::run(&crate::bench_cmd::BenchArgs {
             file: &file,
@@ -284,6 +288,7 @@ pub fn run() -> i32 {
             passes,
             reference: reference.as_deref(),
             bvh,
+            fixed_offset,
             allow_slow_compile,
         }),
     }

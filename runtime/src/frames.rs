@@ -17,7 +17,8 @@ pub const TILE: u32 = 256;
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Layout {
     /// The compute entry (`Entry::Compute`): colour, depth, normal, material and steps at
-    /// bindings 1–5; with `passes`, the hand-over buffers at 6 and 7.
+    /// bindings 1–5, shading's evaluations at 8; with `passes`, the hand-over buffers at 6
+    /// and 7.
     Full {
         /// Compiled with `Options::passes`.
         passes: bool,
@@ -54,8 +55,11 @@ pub struct Frame {
     pub normal: Vec<[f32; 4]>,
     /// Material id (0 default, i + 1 the i-th declared).
     pub material: Vec<u32>,
-    /// Evaluations of the field.
+    /// Evaluations of the field by the camera ray's trace.
     pub steps: Vec<u32>,
+    /// Evaluations of the field by shading: the normal, the material, shadow rays, occlusion,
+    /// reflected and refracted rays.
+    pub shading: Vec<u32>,
     /// Wall time of the dispatches: from the first tile's submission to the last one's
     /// completion (pipeline creation, buffer set-up and read-back excluded).
     pub seconds: f64,
@@ -99,8 +103,8 @@ pub struct Prepared<'g> {
     pipeline: wgpu::ComputePipeline,
     /// Per pass, its dispatches (tiles).
     passes: Vec<Vec<Dispatch>>,
-    /// Output buffers and their sizes, in binding order.
-    outputs: Vec<(wgpu::Buffer, u64)>,
+    /// Output buffers, their sizes and bindings, in binding order.
+    outputs: Vec<(wgpu::Buffer, u64, u32)>,
     hand_over: Vec<wgpu::Buffer>,
     /// Two timestamps per pass, resolved into a buffer.
     queries: Option<(wgpu::QuerySet, wgpu::Buffer)>,
@@ -148,13 +152,17 @@ impl Gpu {
             }
         };
         let pipeline = self.pipeline(module);
-        let sizes: Vec<u64> = match layout {
-            Layout::Full { .. } => [4, 4, 16, 4, 4].map(|b| pixels * b).to_vec(),
-            Layout::TraceOnly { .. } => vec![pixels * 8],
+        // (bytes per pixel, binding)
+        let sizes: Vec<(u64, u32)> = match layout {
+            Layout::Full { .. } => vec![(4, 1), (4, 2), (16, 3), (4, 4), (4, 5), (4, 8)],
+            Layout::TraceOnly { .. } => vec![(8, 1)],
         };
-        let outputs: Vec<(wgpu::Buffer, u64)> = sizes
+        let outputs: Vec<(wgpu::Buffer, u64, u32)> = sizes
             .iter()
-            .map(|&size| (self.storage("output", size), size))
+            .map(|&(bytes, binding)| {
+                let size = pixels * bytes;
+                (self.storage("output", size), size, binding)
+            })
             .collect();
         let with_passes = matches!(
             layout,
@@ -201,9 +209,9 @@ impl Gpu {
                         binding: 0,
                         resource: uniform.as_entire_binding(),
                     }];
-                    for (i, (b, _)) in outputs.iter().enumerate() {
+                    for (b, _, binding) in &outputs {
                         entries.push(wgpu::BindGroupEntry {
-                            binding: i as u32 + 1,
+                            binding: *binding,
                             resource: b.as_entire_binding(),
                         });
                     }
@@ -378,7 +386,7 @@ impl Prepared<'_> {
             matches!(self.layout, Layout::TraceOnly { .. }),
             "a trace-only module"
         );
-        let (b, size) = &self.outputs[0];
+        let (b, size, _) = &self.outputs[0];
         let bytes = self.gpu.read(b, *size)?;
         Ok(bytes
             .chunks_exact(8)
@@ -411,7 +419,7 @@ impl Prepared<'_> {
         let bytes: Vec<Vec<u8>> = self
             .outputs
             .iter()
-            .map(|(b, s)| self.gpu.read(b, *s))
+            .map(|(b, s, _)| self.gpu.read(b, *s))
             .collect::<Result<_, _>>()?;
         let words = |b: &[u8]| -> Vec<u32> {
             b.chunks_exact(4)
@@ -435,6 +443,7 @@ impl Prepared<'_> {
                 .collect(),
             material: words(&bytes[3]),
             steps: words(&bytes[4]),
+            shading: words(&bytes[5]),
             seconds,
             reached,
         })

@@ -419,3 +419,46 @@ fn every_feature_stays_finite_at_every_scale() {
 fn extremes_base() -> &'static str {
     "sphere(1) at (0, 1, 0)\nbox((1.5, 1, 1)) |> rotate(y, 30deg) at (2, 0.5, 1)\ntorus(0.8, 0.2) at (-2, 0.2, 0.5)\nplane(y, 0)"
 }
+
+/// The compute entry counts shading's evaluations of the field (`Frame::shading`, what `sdfc
+/// bench` reports as "+shading"): without shadows, occlusion or secondary rays, exactly the
+/// normal's four and the material's one at every hit and none at a miss; occlusion adds its
+/// samples at every hit; a shadowing light and a mirror add more.
+#[test]
+fn shading_counts_its_evaluations() {
+    let gpu = gpu();
+    let (w, h) = (48, 32);
+    let run = |extra: &str| {
+        let scene = compile(&scene(extra));
+        let view = View::new(&scene.camera, w, h);
+        let (module, _) =
+            emit::module(&scene, Entry::Compute, &Options::from_scene(&scene)).unwrap();
+        gpu.render(&module, &view, None, |_, _| {}).unwrap()
+    };
+    let light = "light { direction (-0.6, 1, 0.5) }";
+    let plain = run(light);
+    for (d, &e) in plain.depth.iter().zip(&plain.shading) {
+        assert_eq!(e, if *d >= 0.0 { 5 } else { 0 });
+    }
+    let occluded = run(&format!("{light}\nocclusion {{ samples 6 }}"));
+    for (d, &e) in occluded.depth.iter().zip(&occluded.shading) {
+        assert_eq!(e, if *d >= 0.0 { 11 } else { 0 });
+    }
+    let mean = |f: &sdfc::gpu::Frame| f.shading.iter().sum::<u32>() as f64 / (w * h) as f64;
+    let shadowed = run("light { direction (-0.6, 1, 0.5)  shadow hard }");
+    let mirrored = run(&format!(
+        "{light}\nmaterial chrome {{ reflect 0.8 }}\nsphere(0.45) at (-0.6, 0.45, -0.9) : chrome"
+    ));
+    assert!(
+        mean(&shadowed) > mean(&plain) + 5.0,
+        "{} {}",
+        mean(&shadowed),
+        mean(&plain)
+    );
+    assert!(
+        mean(&mirrored) > mean(&plain),
+        "{} {}",
+        mean(&mirrored),
+        mean(&plain)
+    );
+}

@@ -36,6 +36,7 @@ pub(super) fn add_march(mb: &mut ModuleBuilder, map: Handle<Function>) -> Handle
         let tv = b.load(t);
         let s = b.mul(rd, tv);
         let q = b.add(ro, s);
+        super::count::count(b, 1);
         let d = b.call(map, vec![q]);
         let d = b.mul(sign, d);
         let hit = b.lt(d, h);
@@ -63,6 +64,7 @@ pub(super) fn lift(
     if let Some(f) = fixed {
         return b.f(f);
     }
+    super::count::count(b, 1);
     let here = b.call(map, vec![p]);
     let here = b.abs(here);
     let lift = b.max(here, h);
@@ -301,6 +303,7 @@ pub(super) fn add_path(
         b.if_(
             out,
             |b| {
+                super::count::count(b, 1);
                 let nm = b.call(c.material, vec![np]);
                 let mut args = vec![np, nn, dir, nm];
                 if has_shadows(scene) {

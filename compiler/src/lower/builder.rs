@@ -17,6 +17,8 @@ pub struct ModuleBuilder {
     /// The module.
     pub module: Module,
     helpers: std::collections::HashMap<String, Handle<Function>>,
+    /// The compute entry's count of shading evaluations, if it has one (`count.rs`).
+    pub evaluations: Option<Handle<naga::GlobalVariable>>,
 }
 
 impl ModuleBuilder {

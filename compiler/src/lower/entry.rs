@@ -193,7 +193,10 @@ fn shade_hit(
         let h = epsilon(b, &options.trace, t, h, floor);
         let n = b.call(fns.normal, vec![p, h]);
         let m = match fns.material {
-            Some(f) => b.call(f, vec![p]),
+            Some(f) => {
+                super::count::count(b, 1);
+                b.call(f, vec![p])
+            }
             None => b.u(0),
         };
         {
@@ -320,7 +323,8 @@ pub(super) fn add_trace_only(mb: &mut ModuleBuilder, fns: &Fns) {
 /// `@compute @workgroup_size(8, 8)` `main`: one pixel per invocation, offset by the tile origin
 /// in `view.offset.xy`, the full image size in `view.offset.zw`; writes the outputs at
 /// bindings 1 (colour, rgba8 packed), 2 (depth t, −1 for a miss), 3 (normal), 4 (material id),
-/// 5 (steps).
+/// 5 (steps: the camera ray's evaluations of the field), 8 (the evaluations shading took:
+/// normal, material, shadow rays, occlusion, reflected and refracted rays).
 pub(super) fn add_compute(
     mb: &mut ModuleBuilder,
     scene: &Scene,
@@ -331,17 +335,17 @@ pub(super) fn add_compute(
     let u3 = mb.uvec(VectorSize::Tri);
     let (u, f, v4) = (mb.u32(), mb.f32(), mb.vec(VectorSize::Quad));
     let outputs: Vec<Handle<naga::GlobalVariable>> = [
-        ("out_color", u),
-        ("out_depth", f),
-        ("out_normal", v4),
-        ("out_material", u),
-        ("out_steps", u),
+        ("out_color", u, 1),
+        ("out_depth", f, 2),
+        ("out_normal", v4, 3),
+        ("out_material", u, 4),
+        ("out_steps", u, 5),
+        ("out_shading", u, 8),
     ]
     .iter()
-    .enumerate()
-    .map(|(i, &(name, base))| {
+    .map(|&(name, base, binding)| {
         let stride = if base == v4 { 16 } else { 4 };
-        storage_array(mb, name, (base, stride), true, i as u32 + 1)
+        storage_array(mb, name, (base, stride), true, binding)
     })
     .collect();
     let hand_over = hand_over(mb, fns);
@@ -368,7 +372,13 @@ pub(super) fn add_compute(
     let depth = b.select(is_hit, t, miss);
     let [nx, ny, nz] = b.xyz(s.normal);
     let n4 = b.compose(v4t, vec![nx, ny, nz, zero]);
-    for (g, v) in outputs.iter().zip([packed, depth, n4, s.material, steps]) {
+    let counter =
+        b.m.evaluations
+            .expect("the compute entry counts evaluations");
+    let counter = b.expr(Expression::GlobalVariable(counter));
+    let shading = b.load(counter);
+    let values = [packed, depth, n4, s.material, steps, shading];
+    for (g, v) in outputs.iter().zip(values) {
         let base = b.expr(Expression::GlobalVariable(*g));
         let ptr = b.expr(Expression::Access { base, index });
         b.store(ptr, v);

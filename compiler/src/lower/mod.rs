@@ -7,6 +7,7 @@ mod bounce;
 mod bound;
 pub mod builder;
 mod careful;
+mod count;
 mod entry;
 mod handoff;
 mod hybrid;

@@ -49,6 +49,7 @@ pub(super) fn add_shadow(
         b.increment(i);
         let s = b.mul(l, tv);
         let q = b.add(p, s);
+        super::count::count(b, 1);
         let d = b.call(map, vec![q]);
         let blocked = b.lt(d, h);
         b.if_(
@@ -114,6 +115,7 @@ pub(super) fn add_occlusion(
         let s = b.mul(d, fi);
         let off = b.mul(n, s);
         let q = b.add(p, off);
+        super::count::count(b, 1);
         let f = b.call(map, vec![q]);
         let gap = b.sub(s, f);
         let wv = b.load(w);

@@ -18,6 +18,7 @@ pub(super) fn add_normal(mb: &mut ModuleBuilder, map: Handle<Function>) -> Handl
     let f32t = mb.f32();
     let mut b = FnBuilder::new(mb, "normal", &[("p", v3), ("h", f32t)], Some(v3));
     let (p, h) = (b.arg(0), b.arg(1));
+    super::count::count(&mut b, crate::eval::TETRAHEDRON.len() as u32);
     let zero = b.f(0.0);
     let third = b.f(1.0 / 3f64.sqrt());
     let e = b.mul(h, third);

@@ -172,6 +172,9 @@ pub fn add(
         steps: options.trace.steps,
         antialias: options.trace.antialias,
     };
+    if entry == Entry::Compute {
+        super::count::add_counter(mb);
+    }
     let normal = shading::add_normal(mb, map);
     // The offset of secondary rays' origins: ε_dynamic, or a fixed one to compare with.
     let fixed = options
