@@ -9,15 +9,41 @@ use sdfc_compiler::lipschitz::{self, Effort};
 use sdfc_compiler::lower::Entry;
 use std::path::{Path, PathBuf};
 
+/// The version `--version` prints: the package's, and the commit it was built from when the
+/// build could ask git (`build.rs`).
+const VERSION: &str = match option_env!("SDFC_COMMIT") {
+    Some(_) => concat!(
+        env!("CARGO_PKG_VERSION"),
+        " (commit ",
+        env!("SDFC_COMMIT"),
+        ")"
+    ),
+    None => env!("CARGO_PKG_VERSION"),
+};
+
+/// The command line.
 #[derive(Parser)]
 #[command(
     name = "sdfc",
-    version,
+    version = VERSION,
     about = "A compiler for scenes of signed distance functions"
 )]
-struct Cli {
+pub struct Cli {
     #[command(subcommand)]
     command: Command,
+    /// Print nothing on success (errors and warnings still go to standard error).
+    #[arg(short, long, global = true)]
+    quiet: bool,
+}
+
+/// Whether `-q/--quiet` was given.
+static QUIET: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+
+/// Prints a command's one line of success to standard error, unless `--quiet`.
+pub fn done(line: &str) {
+    if !QUIET.load(std::sync::atomic::Ordering::Relaxed) {
+        say!("{line}");
+    }
 }
 
 #[derive(Subcommand)]
@@ -137,6 +163,21 @@ enum Command {
         #[arg(long)]
         allow_slow_compile: bool,
     },
+    /// Print shell completions for `sdfc` (bash, zsh, fish, elvish, powershell).
+    Completions {
+        /// The shell.
+        #[arg(value_enum)]
+        shell: clap_complete::Shell,
+        /// Output file (default, or `-`: standard output).
+        #[arg(short, long)]
+        output: Option<PathBuf>,
+    },
+    /// Print the man page of `sdfc` (roff; `man -l sdfc.1` shows it).
+    Man {
+        /// Output file (default, or `-`: standard output).
+        #[arg(short, long)]
+        output: Option<PathBuf>,
+    },
 }
 
 /// A SPIR-V version.
@@ -199,7 +240,12 @@ pub fn run() -> i32 {
             return code;
         }
     };
+    QUIET.store(cli.quiet, std::sync::atomic::Ordering::Relaxed);
     match cli.command {
+        Command::Completions { shell, output } => {
+            crate::shell::completions(shell, output.as_deref())
+        }
+        Command::Man { output } => crate::shell::man(output.as_deref()),
         Command::Check { list: true, .. } => print_out(&sdfc_compiler::docs::catalog_table())
             .err()
             .unwrap_or(0),
@@ -333,8 +379,11 @@ pub fn exit_code(result: Result<(), String>) -> i32 {
     match result {
         Ok(()) => 0,
         Err(e) => {
-            if !e.is_empty() {
-                say!("{e}");
+            // Every error says so first (messages from the GPU layers do not).
+            match e.as_str() {
+                "" => {}
+                e if e.starts_with("error") => say!("{e}"),
+                e => say!("error: {e}"),
             }
             1
         }

@@ -14,6 +14,12 @@ pub fn run(
     settings: &emit::Settings,
     tracer: &crate::cli::TracerArgs,
 ) -> i32 {
+    if let Some(path) = output
+        && let Err(e) = check_extension(path, target)
+    {
+        say!("{e}");
+        return 1;
+    }
     let Some((name, _, mut scene)) = load_scene(file) else {
         return 1;
     };
@@ -46,7 +52,79 @@ pub fn run(
         Output::Text(s) => s.clone().into_bytes(),
         Output::Binary(words) => words.iter().flat_map(|w| w.to_le_bytes()).collect(),
     };
-    write_output(output, &bytes, matches!(out, Output::Binary(_)))
+    let code = write_output(output, &bytes, matches!(out, Output::Binary(_)));
+    if let (0, Some(path)) = (code, output.filter(|p| *p != Path::new("-"))) {
+        crate::cli::done(&format!(
+            "wrote {} — {}, {} bytes",
+            path.display(),
+            describe(target, entry),
+            bytes.len()
+        ));
+    }
+    code
+}
+
+/// The file extensions each target's output may have (an extension-less path, a device or a
+/// pipe, takes any).
+fn extensions(target: Target) -> &'static [&'static str] {
+    match target {
+        Target::Wgsl => &["wgsl"],
+        Target::Spirv => &["spv", "spirv"],
+        Target::Glsl => &["glsl", "comp", "frag", "vert"],
+        Target::Msl => &["metal", "msl"],
+        Target::Hlsl => &["hlsl", "fx"],
+    }
+}
+
+/// Refuses an output file whose extension belongs to another language than the target's.
+fn check_extension(path: &Path, target: Target) -> Result<(), String> {
+    let Some(ext) = path.extension().and_then(|e| e.to_str()) else {
+        return Ok(());
+    };
+    let allowed = extensions(target);
+    if allowed.contains(&ext.to_ascii_lowercase().as_str()) {
+        return Ok(());
+    }
+    let list: Vec<String> = allowed.iter().map(|e| format!("`.{e}`")).collect();
+    Err(format!(
+        "error: `{}`: `--target {}` writes {}; its files end in {}, not `.{ext}`",
+        path.display(),
+        target_name(target),
+        describe_target(target),
+        list.join(", ")
+    ))
+}
+
+fn target_name(target: Target) -> &'static str {
+    match target {
+        Target::Wgsl => "wgsl",
+        Target::Spirv => "spirv",
+        Target::Glsl => "glsl",
+        Target::Msl => "msl",
+        Target::Hlsl => "hlsl",
+    }
+}
+
+fn describe_target(target: Target) -> &'static str {
+    match target {
+        Target::Wgsl => "WGSL",
+        Target::Spirv => "SPIR-V",
+        Target::Glsl => "GLSL",
+        Target::Msl => "Metal Shading Language",
+        Target::Hlsl => "HLSL",
+    }
+}
+
+/// "WGSL, compute entry".
+fn describe(target: Target, entry: Entry) -> String {
+    let entry = match entry {
+        Entry::Compute => "compute entry",
+        Entry::Fragment => "fragment entry",
+        Entry::Library => "library",
+        Entry::Trace => "trace-only entry",
+        Entry::Rays | Entry::Field => "test entry",
+    };
+    format!("{}, {entry}", describe_target(target))
 }
 
 /// Writes a command's output: to standard output without a path or for `-` (binary output

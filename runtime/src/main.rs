@@ -21,6 +21,7 @@ mod bench_cmd;
 mod cli;
 mod emit_cmd;
 mod render_cmd;
+mod shell;
 mod tracer_args;
 
 fn main() {

@@ -113,6 +113,8 @@ fn render(args: &RenderArgs) -> Result<(), String> {
             "error: `--output {word}` names the file to write; the channel is `--channel {word}`\nhelp: sdfc render FILE -o OUT.png --channel {word}"
         ));
     }
+    check_extension(args.output)?;
+    let started = std::time::Instant::now();
     let (w, h) = parse_size(args.size)?;
     if let Some(n) = args.samples {
         let s = (n as f64).sqrt().round() as u32;
@@ -122,7 +124,10 @@ fn render(args: &RenderArgs) -> Result<(), String> {
             ));
         }
     }
-    let wants_npy = args.output.extension().is_some_and(|e| e == "npy");
+    let wants_npy = args
+        .output
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("npy"));
     if wants_npy && (args.channel != Channel::Depth || args.samples.is_some_and(|n| n > 1)) {
         return Err(
             "error: `.npy` output is for `--channel depth` with one sample per pixel".into(),
@@ -152,10 +157,10 @@ fn render(args: &RenderArgs) -> Result<(), String> {
     let mut sum = images::Accumulator::new((w * h) as usize, args.channel == Channel::Color);
     let mut depth = Vec::new();
     let bar = progress_bar("rendering tiles");
-    let points = images::sample_points(
-        args.samples
-            .unwrap_or_else(|| default_samples(args.channel, &options.trace)),
-    );
+    let samples = args
+        .samples
+        .unwrap_or_else(|| default_samples(args.channel, &options.trace));
+    let points = images::sample_points(samples);
     gpu.render_samples(
         &module,
         &view,
@@ -184,9 +189,42 @@ fn render(args: &RenderArgs) -> Result<(), String> {
     } else {
         images::png(sum.finish(), w, h)?
     };
-    match write_output(Some(args.output), &bytes, true) {
-        0 => Ok(()),
-        _ => Err(String::new()),
+    if write_output(Some(args.output), &bytes, true) != 0 {
+        return Err(String::new());
+    }
+    let place = match args.output.to_str() {
+        Some("-") => "standard output".to_string(),
+        _ => args.output.display().to_string(),
+    };
+    let per = if samples == 1 { "sample" } else { "samples" };
+    crate::cli::done(&format!(
+        "wrote {place} — {w}×{h}, {samples} {per} per pixel, {:.1} s, {} ({})",
+        started.elapsed().as_secs_f64(),
+        gpu.info.name,
+        gpu.backend()
+    ));
+    Ok(())
+}
+
+/// What `render` writes, by the output file's extension (`-`: a PNG to standard output).
+const IMAGE_EXTENSIONS: &[&str] = &["png", "npy"];
+
+/// Refuses an output file whose extension names a format `render` does not write (a PNG in
+/// `out.jpg` would be a lie).
+fn check_extension(output: &Path) -> Result<(), String> {
+    if output == Path::new("-") {
+        return Ok(());
+    }
+    match output.extension().and_then(|e| e.to_str()) {
+        Some(e) if IMAGE_EXTENSIONS.contains(&e.to_ascii_lowercase().as_str()) => Ok(()),
+        found => Err(format!(
+            "error: `{}`: render writes PNG images (`.png`) and raw f32 depth (`.npy`){}",
+            output.display(),
+            match found {
+                Some(e) => format!(", not `.{e}`"),
+                None => "; give the file one of these extensions".into(),
+            }
+        )),
     }
 }
 

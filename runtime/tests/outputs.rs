@@ -1,0 +1,191 @@
+//! What commands write and say: `-o -` to standard output, anti-aliasing samples at the
+//! output's size, one line on success (none with `-q`), `error:` first on every error, output
+//! extensions checked, `--version`, shell completions and the man page.
+
+mod common;
+
+use common::{root, scratch, sdfc};
+use std::process::Command;
+
+/// `-o -` is standard output, for text and (when it is not a terminal) binary alike: the
+/// shader text or the PNG arrive on stdout and no file named `-` appears.
+#[test]
+fn a_dash_output_is_standard_output() {
+    let dir = scratch("dash-output");
+    let scene = root().join("examples/gem.sdf");
+    let scene = scene.to_str().unwrap();
+    let run = |args: &[&str]| {
+        let o = Command::new(env!("CARGO_BIN_EXE_sdfc"))
+            .args(args)
+            .current_dir(&dir)
+            .output()
+            .unwrap();
+        assert_eq!(
+            o.status.code(),
+            Some(0),
+            "{args:?}: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+        o.stdout
+    };
+    let wgsl = run(&["emit", scene, "--entry", "library", "-o", "-"]);
+    assert!(String::from_utf8_lossy(&wgsl).contains("fn map("));
+    let png = run(&["render", scene, "--size", "16x9", "-o", "-"]);
+    assert!(png.starts_with(b"\x89PNG\r\n\x1a\n"), "not a PNG");
+    assert!(!dir.join("-").exists(), "a file named `-` was written");
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+/// Anti-aliasing samples are accumulated at the output's size: 64 samples of a 2100-pixel-wide
+/// strip work (an 8× larger image would pass the 16384-pixel side limit), and `--samples` is
+/// refused with `.npy` depth.
+#[test]
+fn many_samples_do_not_make_a_larger_image() {
+    let dir = scratch("many-samples");
+    let scene = root().join("examples/gem.sdf");
+    let scene = scene.to_str().unwrap();
+    let out = dir.join("strip.png");
+    let o = sdfc(&[
+        "render",
+        scene,
+        "-o",
+        out.to_str().unwrap(),
+        "--size",
+        "2100x8",
+        "--samples",
+        "64",
+    ]);
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let img = image::open(&out).unwrap();
+    assert_eq!((img.width(), img.height()), (2100, 8));
+    let npy = dir.join("d.npy");
+    let o = sdfc(&[
+        "render",
+        scene,
+        "-o",
+        npy.to_str().unwrap(),
+        "--size",
+        "8x8",
+        "--channel",
+        "depth",
+        "--samples",
+        "4",
+    ]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("one sample per pixel"));
+    assert!(!npy.exists());
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+/// The rough edges a new user met: one line on success (and none with `-q`), every error
+/// starting with `error:`, an output extension that does not match what is written refused
+/// (naming the right ones) before anything is written.
+#[test]
+fn success_is_one_line_and_wrong_extensions_are_refused() {
+    let dir = scratch("success-line");
+    let scene = root().join("examples/gem.sdf");
+    let scene = scene.to_str().unwrap();
+    let png = dir.join("gem.png");
+    let png = png.to_str().unwrap();
+    let o = sdfc(&["render", scene, "-o", png, "--size", "16x9"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(0), "{err}");
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(
+        err.starts_with(&format!("wrote {png} — 16×9, 4 samples per pixel, ")),
+        "{err}"
+    );
+    assert!(err.contains("(vulkan)") || err.contains("(gl)"), "{err}");
+    let o = sdfc(&["render", scene, "-o", png, "--size", "16x9", "-q"]);
+    assert_eq!((o.status.code(), o.stderr.len()), (Some(0), 0));
+    let wgsl = dir.join("gem.wgsl");
+    let o = sdfc(&["emit", scene, "-o", wgsl.to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.starts_with(&format!("wrote {} — WGSL, compute entry, ", wgsl.display())),
+        "{err}"
+    );
+    let o = sdfc(&["--quiet", "emit", scene, "-o", wgsl.to_str().unwrap()]);
+    assert_eq!((o.status.code(), o.stderr.len()), (Some(0), 0));
+    let refused: [(&[&str], &str); 3] = [
+        (
+            &["render", scene, "-o", "x.jpg"],
+            "`.png`) and raw f32 depth (`.npy`), not `.jpg`",
+        ),
+        (&["render", scene, "-o", "x.stl"], "not `.stl`"),
+        (
+            &["emit", scene, "--target", "spirv", "-o", "x.wgsl"],
+            "end in `.spv`, `.spirv`, not `.wgsl`",
+        ),
+    ];
+    for (args, says) in refused {
+        let mut a = args.to_vec();
+        let out = dir.join(a[a.len() - 1]);
+        let last = a.len() - 1;
+        let out_s = out.to_str().unwrap().to_string();
+        a[last] = &out_s;
+        let o = sdfc(&a);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(1), "{args:?}: {err}");
+        assert!(
+            err.starts_with("error: ") && err.contains(says),
+            "{args:?}: {err}"
+        );
+        assert!(!out.exists(), "{args:?} wrote a file");
+    }
+    // A message from the GPU layer (the device's storage limit) is an error too.
+    let o = sdfc(&[
+        "render",
+        scene,
+        "-o",
+        png,
+        "--size",
+        "16384x16384",
+        "--samples",
+        "1",
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(err.starts_with("error: "), "{err}");
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+/// `--version` names the version (and the commit when built from a git checkout); shell
+/// completions for bash, zsh and fish and the man page are generated from the command line's
+/// definition (bash's script parses with `bash -n`).
+#[test]
+fn version_completions_and_man_page() {
+    let o = sdfc(&["--version"]);
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        out.starts_with(concat!("sdfc ", env!("CARGO_PKG_VERSION"))),
+        "{out}"
+    );
+    let dir = scratch("completions");
+    for shell in ["bash", "zsh", "fish"] {
+        let o = sdfc(&["completions", shell]);
+        let text = String::from_utf8_lossy(&o.stdout);
+        assert_eq!(o.status.code(), Some(0), "{shell}");
+        for word in ["render", "emit", "channel", "samples"] {
+            assert!(text.contains(word), "{shell}: no `{word}`");
+        }
+        if shell == "bash" {
+            let file = dir.join("sdfc.bash");
+            std::fs::write(&file, text.as_bytes()).unwrap();
+            let ok = Command::new("bash").arg("-n").arg(&file).status().unwrap();
+            assert!(ok.success(), "the bash completions do not parse");
+        }
+    }
+    let o = sdfc(&["man"]);
+    let page = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        page.contains(".TH sdfc") && page.contains("render"),
+        "{page}"
+    );
+    let _ = std::fs::remove_dir_all(dir);
+}
