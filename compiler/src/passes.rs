@@ -86,7 +86,9 @@ pub fn plan(scene: &Scene, width: u32, height: u32, steps: u32, count: usize) ->
 }
 
 /// The nearest pixel of a `from_w`×`from_h` pass to the centre of pixel (x, y) of a
-/// `to_w`×`to_h` one, as the shader finds it (floor of the scaled centre, clamped).
+/// `to_w`×`to_h` one, as the shader finds it (floor of the scaled centre, clamped) for rays
+/// through pixel centres (`View::jitter` (0.5, 0.5); an anti-aliasing sample's jittered point
+/// lies in the same pixel, whose coarse pixel it also finds).
 pub fn nearest(
     x: u32,
     y: u32,

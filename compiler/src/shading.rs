@@ -31,8 +31,7 @@ pub fn has_shadows(scene: &Scene) -> bool {
 /// min(k·f/t) of the closest approach (soft), else 1 (hard). At most [`SHADOW_STEPS`]
 /// evaluations; a ray that runs out counts as lit.
 pub fn shadow(scene: &Scene, p: DVec3, n: DVec3, l: DVec3, far: f64, h: f64, k: f64) -> f64 {
-    let lift = 2.0 * eval::distance(scene, p).abs().max(h);
-    let p = p + n * lift;
+    let p = p + n * lift(scene, p, h);
     let (mut t, mut lit) = (0.0, 1.0f64);
     for _ in 0..SHADOW_STEPS {
         if t >= far {
@@ -71,11 +70,8 @@ pub fn occlusion(scene: &Scene, o: &Occlusion, p: DVec3, n: DVec3) -> f64 {
 /// Lambert (Munini §2.3) scaled by the occlusion, Blinn–Phong highlights, each shadowing
 /// light's terms scaled by [`shadow`] (`h`: the hit threshold there).
 pub fn shade(scene: &Scene, p: DVec3, n: DVec3, rd: DVec3, material: u32, h: f64) -> DVec3 {
-    let (base, specular) = match material.checked_sub(1) {
-        Some(i) => {
-            let m = &scene.materials[i as usize];
-            (m.color, m.specular)
-        }
+    let (base, specular) = match material_of(scene, material) {
+        Some(m) => (m.color, m.specular),
         None => (DEFAULT_COLOR, 0.0),
     };
     let base = crate::color::linear(base);
@@ -84,7 +80,8 @@ pub fn shade(scene: &Scene, p: DVec3, n: DVec3, rd: DVec3, material: u32, h: f64
     for light in &scene.lights {
         let (l, far) = match light.kind {
             LightKind::Directional(d) => (d.normalize(), scene.trace.max_distance),
-            LightKind::Point(pos) => ((pos - p).normalize(), (pos - p).length()),
+            // (A light at the point itself lights it from no direction: zero, not NaN.)
+            LightKind::Point(pos) => (unit_or_zero(pos - p), (pos - p).length()),
         };
         let diffuse = n.dot(l).max(0.0);
         let mut lc = crate::color::linear(light.color) * light.intensity;
@@ -95,11 +92,33 @@ pub fn shade(scene: &Scene, p: DVec3, n: DVec3, rd: DVec3, material: u32, h: f64
         }
         color += base * lc * diffuse * ao;
         if specular > 0.0 {
-            let half = (l - rd).normalize();
+            // (A light straight along the ray has no half vector: no highlight, not NaN.)
+            let half = unit_or_zero(l - rd);
             color += lc * n.dot(half).max(0.0).powf(SHININESS) * specular;
         }
     }
     color
+}
+
+/// Material id `m` (0 the default, i + 1 the i-th declared), if declared.
+pub fn material_of(scene: &Scene, m: u32) -> Option<&crate::scene::Material> {
+    m.checked_sub(1).map(|i| &scene.materials[i as usize])
+}
+
+/// `v` normalised, or zero for the zero vector (as the shader's
+/// `select(normalize(v), vec3(0), dot(v, v) == 0)`).
+pub fn unit_or_zero(v: DVec3) -> DVec3 {
+    if v.dot(v) == 0.0 {
+        DVec3::ZERO
+    } else {
+        v.normalize()
+    }
+}
+
+/// How far a secondary ray's origin moves off the surface point `p`: Keinert's
+/// ε_dynamic = 2·max(h, |f(p)|) (§3.3).
+pub fn lift(scene: &Scene, p: DVec3, h: f64) -> f64 {
+    2.0 * eval::distance(scene, p).abs().max(h)
 }
 
 /// `c` seen through the scene's fog (if any) from distance `t`:
@@ -212,38 +231,45 @@ pub fn path_counted(
     let (mut acc, mut w) = (DVec3::ZERO, DVec3::ONE);
     let (mut inside, mut solid_ior) = (false, 1.0);
     loop {
-        let (facing, reflected, refracted, dir_t);
-        if inside {
-            facing = -n;
-            dir_t = refract(rd, facing, solid_ior);
-            let f = if dir_t == DVec3::ZERO {
-                1.0
-            } else {
-                schlick(dir_t.dot(n), solid_ior)
-            };
-            reflected = f;
-            refracted = DVec3::splat(1.0 - f);
-        } else {
-            let (r, t, ior, tint) = match m.checked_sub(1) {
-                Some(i) => {
-                    let mat = &scene.materials[i as usize];
-                    (
-                        mat.reflect,
-                        mat.transparent,
-                        mat.ior,
-                        crate::color::linear(mat.color),
-                    )
-                }
-                None => (0.0, 0.0, 1.0, DVec3::ONE),
-            };
+        // The surface seen from outside: its own shading's share, and what goes on.
+        let (r, t, ior, tint) = match material_of(scene, m).filter(|_| !inside) {
+            Some(mat) => (
+                mat.reflect,
+                mat.transparent,
+                mat.ior,
+                crate::color::linear(mat.color),
+            ),
+            None => (0.0, 0.0, 1.0, DVec3::ONE),
+        };
+        if !inside {
             acc += w * (1.0 - r - t) * local;
             if r + t == 0.0 {
                 return (acc, count);
             }
-            facing = n;
-            dir_t = refract(rd, n, 1.0 / ior);
+            solid_ior = ior;
+        }
+        // No normal (a zero gradient): nowhere to reflect or refract to.
+        if n == DVec3::ZERO {
+            let rest = if inside { 1.0 } else { r + t };
+            return (acc + w * rest * bg, count);
+        }
+        // The normal on the ray's side (`faceForward`), so that a silhouette's normal facing
+        // away from the ray does not send a reflection into the solid.
+        let facing = if rd.dot(n) < 0.0 { n } else { -n };
+        let (reflected, refracted, dir_t);
+        if inside {
+            dir_t = refract(rd, facing, solid_ior);
+            let f = if dir_t == DVec3::ZERO {
+                1.0
+            } else {
+                schlick(-dir_t.dot(facing), solid_ior)
+            };
+            reflected = f;
+            refracted = DVec3::splat(1.0 - f);
+        } else {
+            dir_t = refract(rd, facing, 1.0 / ior);
             let f = if t > 0.0 {
-                schlick(-rd.dot(n), ior)
+                schlick(-rd.dot(facing), ior)
             } else {
                 0.0
             };
@@ -253,29 +279,29 @@ pub fn path_counted(
             } else {
                 t * (1.0 - f) * tint
             };
-            solid_ior = ior;
         }
         let mean = refracted.element_sum() / 3.0;
         let through = mean >= reflected && mean > 0.0;
+        // A way through or within a solid spends a refraction, a mirror a reflection.
+        let budget = if through || inside {
+            &mut count.refractions
+        } else {
+            &mut count.reflections
+        };
+        let limit = if through || inside {
+            REFRACTIONS
+        } else {
+            REFLECTIONS
+        };
+        if *budget >= limit {
+            return (acc + w * (refracted + DVec3::splat(reflected)) * bg, count);
+        }
+        *budget += 1;
         let dir = if through {
-            if count.refractions == REFRACTIONS {
-                return (acc + w * (refracted + DVec3::splat(reflected)) * bg, count);
-            }
-            count.refractions += 1;
             acc += w * reflected * bg;
             w *= refracted;
             dir_t
         } else {
-            // A mirror's reflection, or an internal one (part of the way through a solid).
-            let budget = if inside {
-                &mut count.refractions
-            } else {
-                &mut count.reflections
-            };
-            if *budget == if inside { REFRACTIONS } else { REFLECTIONS } {
-                return (acc + w * (refracted + DVec3::splat(reflected)) * bg, count);
-            }
-            *budget += 1;
             if inside && dir_t == DVec3::ZERO {
                 count.total_internal += 1;
             }
@@ -286,10 +312,12 @@ pub fn path_counted(
         if w.max_element() < MIN_WEIGHT {
             return (acc + w * bg, count);
         }
-        let side = if dir.dot(n) > 0.0 { 1.0 } else { -1.0 };
-        let lift = 2.0 * eval::distance(scene, p).abs().max(h);
-        let ro = p + n * (side * lift);
-        inside = side < 0.0;
+        // A reflection stays on the ray's side of the surface, a refraction crosses it.
+        let side = if through { -1.0 } else { 1.0 };
+        let ro = p + facing * (side * lift(scene, p, h));
+        if through {
+            inside = !inside;
+        }
         let sign = if inside { -1.0 } else { 1.0 };
         let Some(t) = march(scene, ro, dir, sign, h, far) else {
             return (acc + w * bg, count);

@@ -114,6 +114,11 @@ fn render(args: &RenderArgs) -> Result<(), String> {
         ));
     }
     check_extension(args.output)?;
+    if args.output == Path::new("-") && std::io::stdout().is_terminal() {
+        return Err(
+            "error: a PNG is binary; write it to a file with `-o FILE` (or pipe it)".into(),
+        );
+    }
     let started = std::time::Instant::now();
     let (w, h) = parse_size(args.size)?;
     if let Some(n) = args.samples {

@@ -448,4 +448,3 @@ fn render_output_is_the_file_and_channel_the_kind() {
     assert!(!std::path::Path::new("depth").exists());
     let _ = std::fs::remove_dir_all(dir);
 }
-

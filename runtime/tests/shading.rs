@@ -20,6 +20,31 @@ const LEVELS: i32 = 2;
 /// differently.
 const SHARE: f64 = 0.995;
 
+/// The compute entry's 8-bit sRGB for the CPU reference's linear colour `c`.
+fn srgb8(c: glam::DVec3) -> [i32; 3] {
+    [c.x, c.y, c.z].map(|v| (to_srgb(v.clamp(0.0, 1.0)) * 255.0).round() as i32)
+}
+
+/// The largest difference over the three channels between a frame's packed pixel and `want`.
+fn off_by(px: u32, want: [i32; 3]) -> i32 {
+    let got = px.to_le_bytes();
+    (0..3)
+        .map(|k| (got[k] as i32 - want[k]).abs())
+        .max()
+        .unwrap()
+}
+
+/// `scene` rendered on the GPU with its own settings.
+fn render(
+    gpu: &sdfc::gpu::Gpu,
+    scene: &sdfc_compiler::scene::Scene,
+    view: &View,
+) -> sdfc::gpu::Frame {
+    let (module, _) = emit::module(scene, Entry::Compute, &Options::from_scene(scene))
+        .unwrap_or_else(|e| panic!("{}", e.0));
+    gpu.render(&module, view, None, |_, _| {}).unwrap()
+}
+
 /// A box on a floor with a ball beside it, lit from above and the side; `extra` adds the
 /// feature under test.
 fn scene(extra: &str) -> String {
@@ -87,9 +112,7 @@ fn every_shading_feature_matches_the_cpu_reference() {
     for (name, extra) in &cases {
         let scene = compile(&scene(extra));
         let view = View::new(&scene.camera, W, H);
-        let (module, _) = emit::module(&scene, Entry::Compute, &Options::from_scene(&scene))
-            .unwrap_or_else(|e| panic!("{name}: {}", e.0));
-        let frame = gpu.render(&module, &view, None, |_, _| {}).unwrap();
+        let frame = render(&gpu, &scene, &view);
         // The feature shows: pixels it changes from the plain scene (and the plain scene has
         // surfaces, not only background).
         let changed = match &plain {
@@ -110,13 +133,7 @@ fn every_shading_feature_matches_the_cpu_reference() {
             for x in 0..W {
                 let i = (y * W + x) as usize;
                 let c = shading::pixel(&scene, &scene.trace, &view, x as f64 + 0.5, y as f64 + 0.5);
-                let want =
-                    [c.x, c.y, c.z].map(|v| (to_srgb(v.clamp(0.0, 1.0)) * 255.0).round() as i32);
-                let got = frame.color[i].to_le_bytes();
-                let diff = (0..3)
-                    .map(|k| (got[k] as i32 - want[k]).abs())
-                    .max()
-                    .unwrap();
+                let diff = off_by(frame.color[i], srgb8(c));
                 worst = worst.max(diff);
                 sum += diff as f64;
                 if diff <= LEVELS {
@@ -199,12 +216,43 @@ fn anti_aliasing_samples_average_the_cpu_reference_at_their_points() {
         "9 samples: {:.2}% within {LEVELS} levels of the CPU; {edges} pixels changed",
         share * 100.0
     );
+    // One point off the centre and off every symmetry of the grid, on an image two tiles wide
+    // (256-pixel tiles): every pixel's ray passes through (x + 0.1, y + 0.8).
+    let (w, h) = (300, 24);
+    let view = View::new(&scene.camera, w, h);
+    let mut got = Vec::new();
+    gpu.render_samples(
+        &module,
+        &view,
+        None,
+        &[[0.1, 0.8]],
+        |_, _| {},
+        |f| {
+            got = f.color;
+            Ok(())
+        },
+    )
+    .unwrap();
+    let within = (0..w * h)
+        .filter(|&i| {
+            let (x, y) = ((i % w) as f64 + 0.1, (i / w) as f64 + 0.8);
+            let c = shading::pixel(&scene, &scene.trace, &view, x, y);
+            off_by(got[i as usize], srgb8(c)) <= LEVELS
+        })
+        .count();
+    let share = within as f64 / (w * h) as f64;
+    assert!(
+        share >= SHARE,
+        "jitter (0.1, 0.8): only {:.2}% match",
+        share * 100.0
+    );
 }
 
 /// Refraction (Keinert §3.3): a glass ball and a diamond-like octahedron in front of a checker
 /// floor, against the CPU reference pixel by pixel; their rays really pass through (the
 /// picture differs from the same solids opaque), total internal reflection happens inside the
-/// octahedron (counted by the reference) and nothing is NaN or infinite.
+/// octahedron (counted by the reference), and the reference's colours are finite. (The GPU's
+/// are bytes: a NaN there would show only as a pixel that disagrees.)
 #[test]
 fn refraction_through_glass_and_a_gem_matches_the_cpu_reference() {
     let gpu = gpu();
@@ -232,11 +280,7 @@ fn refraction_through_glass_and_a_gem_matches_the_cpu_reference() {
     let opaque = compile(&source("", ""));
     let (w, h) = (96, 64);
     let view = View::new(&clear.camera, w, h);
-    let frame = |scene: &sdfc_compiler::scene::Scene| {
-        let (module, _) = emit::module(scene, Entry::Compute, &Options::from_scene(scene)).unwrap();
-        gpu.render(&module, &view, None, |_, _| {}).unwrap()
-    };
-    let (got, solid) = (frame(&clear), frame(&opaque));
+    let (got, solid) = (render(&gpu, &clear, &view), render(&gpu, &opaque, &view));
     let (mut within, mut differ, mut internal, mut worst) = (0, 0, 0, 0);
     for y in 0..h {
         for x in 0..w {
@@ -245,12 +289,8 @@ fn refraction_through_glass_and_a_gem_matches_the_cpu_reference() {
                 shading::pixel_counted(&clear, &clear.trace, &view, x as f64 + 0.5, y as f64 + 0.5);
             assert!(c.is_finite(), "({x}, {y}): {c}");
             internal += (bounces.total_internal > 0) as u32;
-            let want = [c.x, c.y, c.z].map(|v| (to_srgb(v.clamp(0.0, 1.0)) * 255.0).round() as i32);
+            let d = off_by(got.color[i], srgb8(c));
             let px = got.color[i].to_le_bytes();
-            let d = (0..3)
-                .map(|k| (px[k] as i32 - want[k]).abs())
-                .max()
-                .unwrap();
             worst = worst.max(d);
             within += (d <= LEVELS) as u32;
             let o = solid.color[i].to_le_bytes();
@@ -356,7 +396,8 @@ fn shadows_have_no_acne_and_no_leaks_with_the_dynamic_offset() {
 
 /// Every shading feature at once (soft shadows, occlusion, fog, a mirror, a glass ball) on the
 /// extremes suite's scene scaled from 1e-4 to 1e4: the CPU reference's colours are finite and
-/// the GPU's agree with them (a NaN or Inf reaching the image would not).
+/// the GPU's agree with them on 97% of the pixels at least (a NaN or Inf reaching the image
+/// would show as a pixel that disagrees; the rest are left to f32 against f64).
 #[test]
 fn every_feature_stays_finite_at_every_scale() {
     let gpu = gpu();
@@ -389,19 +430,14 @@ fn every_feature_stays_finite_at_every_scale() {
         let scene = compile(&source);
         let (w, h) = (64, 40);
         let view = View::new(&scene.camera, w, h);
-        let (module, _) =
-            emit::module(&scene, Entry::Compute, &Options::from_scene(&scene)).unwrap();
-        let frame = gpu.render(&module, &view, None, |_, _| {}).unwrap();
+        let frame = render(&gpu, &scene, &view);
         let mut within = 0;
         for y in 0..h {
             for x in 0..w {
                 let i = (y * w + x) as usize;
                 let c = shading::pixel(&scene, &scene.trace, &view, x as f64 + 0.5, y as f64 + 0.5);
                 assert!(c.is_finite(), "× {s:e}, ({x}, {y}): {c}");
-                let want =
-                    [c.x, c.y, c.z].map(|v| (to_srgb(v.clamp(0.0, 1.0)) * 255.0).round() as i32);
-                let px = frame.color[i].to_le_bytes();
-                within += (0..3).all(|k| (px[k] as i32 - want[k]).abs() <= LEVELS) as u32;
+                within += (off_by(frame.color[i], srgb8(c)) <= LEVELS) as u32;
             }
         }
         let share = within as f64 / (w * h) as f64;
@@ -430,10 +466,7 @@ fn shading_counts_its_evaluations() {
     let (w, h) = (48, 32);
     let run = |extra: &str| {
         let scene = compile(&scene(extra));
-        let view = View::new(&scene.camera, w, h);
-        let (module, _) =
-            emit::module(&scene, Entry::Compute, &Options::from_scene(&scene)).unwrap();
-        gpu.render(&module, &view, None, |_, _| {}).unwrap()
+        render(&gpu, &scene, &View::new(&scene.camera, w, h))
     };
     let light = "light { direction (-0.6, 1, 0.5) }";
     let plain = run(light);
@@ -455,10 +488,17 @@ fn shading_counts_its_evaluations() {
         mean(&shadowed),
         mean(&plain)
     );
+    // Every mirror pixel: the normal and material (5), the lift off the surface (1), at least
+    // one step of the reflected ray (1), and where that ray hits, its normal and material (5).
+    let chrome = 3; // after red and floor
+    let mirror: Vec<u32> = (0..mirrored.shading.len())
+        .filter(|&i| mirrored.material[i] == chrome)
+        .map(|i| mirrored.shading[i])
+        .collect();
+    assert!(mirror.len() > 50, "{} mirror pixels", mirror.len());
+    assert!(mirror.iter().all(|&e| e >= 7), "{mirror:?}");
     assert!(
-        mean(&mirrored) > mean(&plain),
-        "{} {}",
-        mean(&mirrored),
-        mean(&plain)
+        mirror.iter().filter(|&&e| e >= 12).count() > mirror.len() / 2,
+        "{mirror:?}"
     );
 }

@@ -37,13 +37,15 @@ pub fn show_val(v: Val, ty: Ty) -> String {
         (Val::Num(x), _) => format!("{x}"),
         (Val::Vec3(v), _) => format!("({}, {}, {})", v.x, v.y, v.z),
         (Val::Word(i), Ty::PositiveOr(words) | Ty::Word(words)) => words[i].to_string(),
+        // A colour that defaults to the scene's background (`fog`).
+        (Val::Word(_), Ty::Color) => "background".into(),
         (Val::Word(_), _) => "…".into(),
     }
 }
 
 /// Whether `what` names a settings block rather than a call.
 fn is_settings(what: &str) -> bool {
-    ["camera", "light", "trace", "material", "bound"]
+    super::settings::BLOCK_KEYWORDS
         .iter()
         .any(|k| what.split(' ').next() == Some(k))
 }

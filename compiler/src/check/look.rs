@@ -2,7 +2,7 @@
 //! fog, each a table of parameters bound by the same code as call arguments.
 
 use super::Checker;
-use super::settings::{DEFAULT_BACKGROUND, v};
+use super::settings::v;
 use crate::catalog::{Param, Ty, Val, opt, req};
 use crate::diag::{Diagnostic, Span};
 use crate::scene::{Light, LightKind, Material, Occlusion, Shadow};
@@ -56,11 +56,11 @@ pub const OCCLUSION: &[Param] = &[
     opt("strength", Ty::Length, Val::Num(1.0)),
 ];
 
-/// `fog { density 0.05  color #aabbcc }`: without a colour, the scene's background (the default
-/// shown is the default background's).
+/// `fog { density 0.05  color #aabbcc }`: without a colour, the scene's background (the word
+/// default stands for it).
 pub const FOG: &[Param] = &[
     req("density", Ty::Positive),
-    opt("color", Ty::Color, Val::Vec3(DEFAULT_BACKGROUND)),
+    opt("color", Ty::Color, Val::Word(0)),
 ];
 
 impl Checker<'_> {
@@ -124,10 +124,10 @@ impl Checker<'_> {
         let Some(a) = self.bind("fog", FOG, args, span) else {
             return;
         };
-        let given = args
-            .iter()
-            .any(|a| a.name.as_ref().is_some_and(|n| n.name == "color"));
-        let color = given.then(|| a[1].vec());
+        let color = match a[1] {
+            Val::Vec3(c) => Some(c),
+            _ => None,
+        };
         self.once(|s| &mut s.fog, (color, a[0].num()), span, "fog");
     }
 

@@ -48,8 +48,19 @@ pub const BOUND_KINDS: &[(&str, &[Param])] = &[
     ),
 ];
 
+/// The keywords of settings blocks (`block_kw` in grammar/sdf.pest).
+pub(super) const BLOCK_KEYWORDS: &[&str] = &[
+    "camera",
+    "light",
+    "trace",
+    "material",
+    "bound",
+    "occlusion",
+    "fog",
+];
+
 /// The background without a `background` statement (sRGB).
-pub(super) const DEFAULT_BACKGROUND: DVec3 = DVec3::new(0.08, 0.09, 0.12);
+const DEFAULT_BACKGROUND: DVec3 = DVec3::new(0.08, 0.09, 0.12);
 
 /// Relative spacing of f32 numbers (2⁻²³).
 const F32_RESOLUTION: f64 = 1.0 / 8_388_608.0;

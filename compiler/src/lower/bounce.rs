@@ -4,7 +4,7 @@
 
 use super::builder::{Ex, FnBuilder, ModuleBuilder};
 use crate::scene::Scene;
-use crate::shading::{MIN_WEIGHT, REFLECTIONS, REFRACTIONS, SECONDARY_STEPS, has_shadows};
+use crate::shading::{MIN_WEIGHT, REFLECTIONS, REFRACTIONS, SECONDARY_STEPS};
 use naga::{BinaryOperator as Op, Function, Handle, MathFunction as M, VectorSize};
 
 /// `march(ro, rd, sign, h, far)`: basic sphere tracing of sign·f from `ro` along `rd` (sign −1
@@ -198,18 +198,30 @@ pub(super) fn add_path(
         });
         let stop = b.bin(Op::LogicalAnd, outside, opaque);
         b.if_(stop, |b| b.ret(Some(acc)), |_| {});
-        // The lobes: refracted (leaving, or entering tinted) and reflected.
+        // No normal (a zero gradient): nowhere to reflect or refract to.
+        let n2 = b.dot(n, n);
+        let no_normal = b.bin(Op::Equal, n2, zero);
+        b.if_(
+            no_normal,
+            |b| {
+                let rest = b.select(inside, one, rt);
+                finish(b, Some(rest));
+            },
+            |_| {},
+        );
+        // The lobes: refracted (leaving, or entering tinted) and reflected, about the normal
+        // on the ray's side (`faceForward`: a silhouette's normal may face away from it).
         let solid_ior = b.load(ior_v);
         let s_ior = b.select(inside, solid_ior, ior);
-        let minus_n = b.neg(n);
-        let facing = b.select(inside, minus_n, n);
+        let facing = b.math(M::FaceForward, &[n, rd, n]);
         let inv = b.div(one, ior);
         let eta = b.select(inside, s_ior, inv);
         let dir_t = b.math(M::Refract, &[rd, facing, eta]);
         let len2 = b.dot(dir_t, dir_t);
         let tir = b.bin(Op::Equal, len2, zero);
-        let c_in = b.dot(dir_t, n);
-        let c_out = b.dot(rd, n);
+        let c_in = b.dot(dir_t, facing);
+        let c_in = b.neg(c_in);
+        let c_out = b.dot(rd, facing);
         let c_out = b.neg(c_out);
         let cos = b.select(inside, c_in, c_out);
         let f = schlick(b, cos, s_ior);
@@ -269,23 +281,21 @@ pub(super) fn add_path(
         b.store(w_v, w);
         let mirror = b.math(M::Reflect, &[rd, facing]);
         let dir = b.select(through, dir_t, mirror);
-        let [wx, wy, wz] = b.xyz(w);
-        let wmax = b.max(wx, wy);
-        let wmax = b.max(wmax, wz);
+        let wmax = b.max3(w);
         let least = b.f(MIN_WEIGHT);
         let faint = b.lt(wmax, least);
         b.if_(faint, |b| finish(b, None), |_| {});
-        // The next ray: from p moved by ε_dynamic = 2·max(h, |f(p)|) to the side it goes to.
-        let dn = b.dot(dir, n);
-        let ahead = b.gt(dn, zero);
+        // The next ray: from p moved by ε_dynamic = 2·max(h, |f(p)|) to the side it goes to —
+        // a reflection stays on the ray's side, a refraction crosses into or out of the solid.
         let minus_one = b.f(-1.0);
-        let side = b.select(ahead, one, minus_one);
+        let side = b.select(through, minus_one, one);
         let lift = lift(b, c.map, p, h, fixed_offset);
         let off = b.mul(side, lift);
-        let off = b.mul(n, off);
+        let off = b.mul(facing, off);
         let ro = b.add(p, off);
-        let now_inside = b.lt(side, zero);
-        let tt = b.call(c.march, vec![ro, dir, side, h, far]);
+        let now_inside = b.select(through, outside, inside);
+        let sign = b.select(now_inside, minus_one, one);
+        let tt = b.call(c.march, vec![ro, dir, sign, h, far]);
         let missed = b.lt(tt, zero);
         b.if_(missed, |b| finish(b, None), |_| {});
         let step = b.mul(dir, tt);
@@ -305,11 +315,7 @@ pub(super) fn add_path(
             |b| {
                 super::count::count(b, 1);
                 let nm = b.call(c.material, vec![np]);
-                let mut args = vec![np, nn, dir, nm];
-                if has_shadows(scene) {
-                    args.push(h);
-                }
-                let nl = b.call(c.shade, args);
+                let nl = super::shading::call_shade(b, c.shade, scene, [np, nn, dir, nm], h);
                 b.store(m_v, nm);
                 b.store(local_v, nl);
             },

@@ -200,11 +200,7 @@ fn shade_hit(
             None => b.u(0),
         };
         {
-            let mut args = vec![p, n, rd, m];
-            if crate::shading::has_shadows(scene) {
-                args.push(h);
-            }
-            let c = b.call(fns.shade, args);
+            let c = super::shading::call_shade(b, fns.shade, scene, [p, n, rd, m], h);
             // Mirrors and transparent solids: the path of reflected and refracted rays.
             let c = match fns.path {
                 Some(f) => b.call(f, vec![p, n, rd, m, h, c]),
@@ -284,8 +280,7 @@ fn compute_pixel(b: &mut FnBuilder, fns: &Fns) -> (Ex, Ex) {
     let right = view_field(b, fns.view, 1);
     let up = view_field(b, fns.view, 2);
     let (jx, jy) = (b.at(right, 3), b.at(up, 3));
-    let v2 = b.m.vec(VectorSize::Bi);
-    let jitter = b.compose(v2, vec![jx, jy]);
+    let jitter = b.vec2(jx, jy);
     (index, b.add(pf, jitter))
 }
 

@@ -2,7 +2,7 @@
 //! material terms, shadows and occlusion the scene has, and `fog` if it has fog (the f64
 //! reference they mirror: `crate::shading`).
 
-use super::builder::{FnBuilder, ModuleBuilder};
+use super::builder::{Ex, FnBuilder, ModuleBuilder};
 use super::probes::{add_occlusion, add_shadow};
 use crate::scene::{LightKind, Scene, Shadow};
 use crate::shading::{AMBIENT, DEFAULT_COLOR, SHININESS, has_shadows};
@@ -19,7 +19,6 @@ pub(super) fn add_normal(mb: &mut ModuleBuilder, map: Handle<Function>) -> Handl
     let mut b = FnBuilder::new(mb, "normal", &[("p", v3), ("h", f32t)], Some(v3));
     let (p, h) = (b.arg(0), b.arg(1));
     super::count::count(&mut b, crate::eval::TETRAHEDRON.len() as u32);
-    let zero = b.f(0.0);
     let third = b.f(1.0 / 3f64.sqrt());
     let e = b.mul(h, third);
     let mut g = None;
@@ -40,7 +39,9 @@ pub(super) fn add_normal(mb: &mut ModuleBuilder, map: Handle<Function>) -> Handl
     let inv = b.div(one, l);
     let n = b.mul(g, inv);
     let zv = b.splat3(0.0);
-    let ok = b.gt(l, zero);
+    // (Below 1e-30 the reciprocal would overflow f32: no direction, zero.)
+    let tiny = b.f(1e-30);
+    let ok = b.gt(l, tiny);
     let n = b.select(ok, n, zv);
     b.ret(Some(n));
     let f = b.finish();
@@ -101,7 +102,7 @@ pub(super) fn add_shade(
             LightKind::Point(pos) => {
                 let pv = b.vec3_lit(pos);
                 let d = b.sub(pv, p);
-                (b.math(M::Normalize, &[d]), b.length(d))
+                (unit_or_zero(&mut b, d), b.length(d))
             }
         };
         let ndl = b.dot(n, l);
@@ -125,7 +126,7 @@ pub(super) fn add_shade(
         color = b.add(color, lit);
         if let Some(s) = spec {
             let hv = b.sub(l, rd);
-            let hv = b.math(M::Normalize, &[hv]);
+            let hv = unit_or_zero(&mut b, hv);
             let ndh = b.dot(n, hv);
             let ndh = b.max(ndh, zero);
             let e = b.f(SHININESS);
@@ -138,6 +139,31 @@ pub(super) fn add_shade(
     b.ret(Some(color));
     let f = b.finish();
     mb.add_function(f)
+}
+
+/// `shade(p, n, rd, material[, h])`: `h` only where the scene has shadows (`add_shade`).
+pub(super) fn call_shade(
+    b: &mut FnBuilder,
+    shade: Handle<Function>,
+    scene: &Scene,
+    [p, n, rd, m]: [Ex; 4],
+    h: Ex,
+) -> Ex {
+    let mut args = vec![p, n, rd, m];
+    if has_shadows(scene) {
+        args.push(h);
+    }
+    b.call(shade, args)
+}
+
+/// `v` normalised, or zero for the zero vector (no NaN): `crate::shading::unit_or_zero`.
+fn unit_or_zero(b: &mut FnBuilder, v: Ex) -> Ex {
+    let unit = b.math(M::Normalize, &[v]);
+    let len2 = b.dot(v, v);
+    let zero = b.f(0.0);
+    let none = b.bin(naga::BinaryOperator::Equal, len2, zero);
+    let zv = b.splat3(0.0);
+    b.select(none, zv, unit)
 }
 
 /// `fog(c, t)`: the linear colour `c` seen through the scene's fog from distance `t`,

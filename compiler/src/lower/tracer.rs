@@ -126,9 +126,6 @@ impl Tracer {
     }
 }
 
-/// Evaluations of `map` by `normal` at a hit.
-pub const NORMAL_EVALUATIONS: u32 = crate::eval::TETRAHEDRON.len() as u32;
-
 /// Workgroup size of the ray-list entry.
 pub const RAYS_WORKGROUP: u32 = 64;
 
