@@ -183,8 +183,8 @@ fn only_what_the_scene_requires() {
     assert!(text(&steps, Target::Wgsl, Entry::Compute).contains(">= 77u"));
 }
 
-/// Shadows, occlusion, fog, mirrors and transparent solids each add their own functions (and
-/// their calls) and nothing else; a scene without them has none of them (issue 17: each feature
+/// Shadows, occlusion, fog, mirrors and transparent solids, and patterns each add their own
+/// functions and nothing else (no function of the plain scene goes); a scene without them has none of them (issue 17: each feature
 /// emitted only when used).
 #[test]
 fn each_shading_feature_adds_only_its_function() {
@@ -203,12 +203,14 @@ fn each_shading_feature_adds_only_its_function() {
         "path",
         "refract",
         "reflect",
+        "texture",
+        "noise",
     ] {
         assert!(!plain.contains(absent), "the plain scene emits `{absent}`");
     }
     let light = "light { direction (0, 1, 0) }";
     let material = "material m { color #fff }";
-    let cases: [(&str, &str, &[&str]); 6] = [
+    let cases: [(&str, &str, &[&str]); 8] = [
         (
             light,
             "light { direction (0, 1, 0)  shadow hard }",
@@ -238,6 +240,16 @@ fn each_shading_feature_adds_only_its_function() {
             material,
             "material m { color #fff  transparent 0.5  ior 1.3 }",
             &["march", "path"],
+        ),
+        (
+            material,
+            "material m { color checker(#fff, #000) }",
+            &["map_texture"],
+        ),
+        (
+            material,
+            "material m { color marble(#fff, #000) }",
+            &["map_texture", "lattice_hash", "value_noise"],
         ),
     ];
     for (from, to, expected) in cases {

@@ -216,3 +216,37 @@ fn fog_defaults_to_the_background() {
     assert_eq!(s.fog.unwrap().color, glam::DVec3::new(0.0, 1.0, 0.0));
     assert!(sdfc_tests::scene("h", "sphere(1)").fog.is_none());
 }
+
+/// A pattern follows its shape's transforms: the colour at a point of a marble ball equals the
+/// colour at the same point of the ball turned and moved (`eval::surface` gives the point in
+/// the ball's own coordinates; the material is given to the ball before it is turned).
+#[test]
+fn patterns_follow_their_shapes_transforms() {
+    use glam::{DMat3, DVec3};
+    let marble = "material m { color marble(#ffffff, #203040, 0.4, 5) }\n";
+    let here = sdfc_tests::scene("here", &format!("{marble}sphere(1) : m"));
+    let moved = sdfc_tests::scene(
+        "moved",
+        &format!("{marble}(sphere(1) : m) |> rotate(x, 40deg) |> translate((3, -1, 2))"),
+    );
+    let turn = DMat3::from_rotation_x(40f64.to_radians());
+    let mut checked = 0;
+    for k in 0..200 {
+        let a = k as f64 * 0.7;
+        let p = DVec3::new(
+            a.cos() * (a * 0.3).sin(),
+            (a * 0.3).cos(),
+            a.sin() * (a * 0.3).sin(),
+        );
+        let p = p.normalize();
+        let q = turn * p + DVec3::new(3.0, -1.0, 2.0);
+        let c1 = sdfc_compiler::shading::albedo(&here, 1, p, p);
+        let c2 = sdfc_compiler::shading::albedo(&moved, 1, q, turn * p);
+        assert!((c1 - c2).length() < 1e-9, "at {p}: {c1} against {c2}");
+        checked += 1;
+    }
+    // And the pattern is not uniform (the comparison could not fail otherwise).
+    let c = |p: DVec3| sdfc_compiler::shading::albedo(&here, 1, p, p);
+    assert!((c(DVec3::X) - c(DVec3::Z)).length() > 0.05);
+    assert_eq!(checked, 200);
+}

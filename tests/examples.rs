@@ -58,6 +58,20 @@ fn readme_reference_table_is_current() {
     );
 }
 
+/// The README's table of texture patterns is the one the texture module documents.
+#[test]
+fn readme_pattern_table_is_current() {
+    let readme = std::fs::read_to_string(sdfc_tests::root().join("README.md")).unwrap();
+    let table: String = docs::pattern_table()
+        .lines()
+        .map(|l| format!("  {l}\n"))
+        .collect();
+    assert!(
+        readme.contains(&table),
+        "README's pattern table is stale; it should read:\n{table}"
+    );
+}
+
 /// The tracer steps by f/λ; that is safe only if |∇(f/λ)| ≤ 1 everywhere. Sample it.
 #[test]
 fn every_example_respects_its_lipschitz_bound() {

@@ -43,6 +43,16 @@ pub fn catalog_table() -> String {
     s
 }
 
+/// The Markdown table of procedural texture patterns (in the README, where a test checks it
+/// is current).
+pub fn pattern_table() -> String {
+    let mut s = String::from("| pattern | what it is |\n| --- | --- |\n");
+    for (name, _, doc) in crate::texture::PATTERNS {
+        let _ = writeln!(s, "| `{name}` | {} |", cell(doc));
+    }
+    s
+}
+
 /// A table cell: `|` escaped.
 fn cell(text: &str) -> String {
     text.replace('|', "\\|")

@@ -9,8 +9,8 @@ use glam::DVec3;
 /// never passes a surface (Liktor §2.2, f/λ).
 pub fn distance(scene: &Scene, p: DVec3) -> f64 {
     // No materials: a union's bounding-volume tree may leave children unevaluated.
-    let no_tag = |_: NodeId, _: Option<u32>| None;
-    node_with(scene, scene.root, p, &mut |_, _| {}, &no_tag, false).d / scene.root_node().lambda
+    let no_tag = |_: NodeId, _: DVec3, _: Option<u32>| None;
+    node_with(scene, scene.root, p, &mut |_, _| {}, &no_tag, false).0 / scene.root_node().lambda
 }
 
 /// Distance bound and material at `p`.
@@ -35,21 +35,34 @@ pub fn node_seen<F: FnMut(NodeId, DVec3)>(
     p: DVec3,
     seen: &mut F,
 ) -> Sample {
-    node_with(
+    let (d, mat) = node_with(
         scene,
         id,
         p,
         seen,
-        &|n, inner| inner.or(scene.nodes[n].material),
+        &|n, _, inner| inner.or(scene.nodes[n].material),
         true,
-    )
+    );
+    Sample { d, mat }
+}
+
+/// The material id at `p` (0 the default, i + 1 the i-th declared) and the point in the own
+/// coordinates of the node that gave it (where a material's pattern is evaluated, so that it
+/// follows the shape's transforms); `p` itself for the default material.
+pub fn surface(scene: &Scene, p: DVec3) -> (u32, DVec3) {
+    let tag = |n: NodeId, q: DVec3, inner: Option<(u32, DVec3)>| {
+        inner.or(scene.nodes[n].material.map(|m| (m + 1, q)))
+    };
+    node_with(scene, scene.root, p, &mut |_, _| {}, &tag, true)
+        .1
+        .unwrap_or((0, p))
 }
 
 /// Whether the surface nearest `p` (as the materials pick it: the nearest part of a union, the
 /// bounding one of an intersection…) belongs to a part whose f/λ is not a distance to first
 /// order (`Scene::breaks_unit_gradient`): where a hit needs confirming (`trace::careful`).
 pub fn loose(scene: &Scene, p: DVec3) -> bool {
-    let tag = |id: NodeId, inner: Option<u32>| {
+    let tag = |id: NodeId, _: DVec3, inner: Option<u32>| {
         if scene.breaks_unit_gradient(id) {
             Some(1)
         } else {
@@ -57,43 +70,38 @@ pub fn loose(scene: &Scene, p: DVec3) -> bool {
         }
     };
     node_with(scene, scene.root, p, &mut |_, _| {}, &tag, true)
-        .mat
+        .1
         .is_some()
 }
 
-/// The walk of [`node_seen`] with the tag a node gives its result (`tag(node, the tag its
-/// operator picked from the children)`): the material, or whether the part is loose. With
-/// `tags`, the children a union's bounding-volume tree skipped are evaluated after all, so
-/// that the tag is picked from every child as without the tree.
-fn node_with<F: FnMut(NodeId, DVec3)>(
+/// The walk of [`node_seen`] with the tag a node gives its result (`tag(node, its point, the
+/// tag its operator picked from the children)`): the material, whether the part is loose, or
+/// the material with the point where it was given. With `tags`, the children a union's
+/// bounding-volume tree skipped are evaluated after all, so that the tag is picked from every
+/// child as without the tree. Returns the raw field and the tag.
+fn node_with<F: FnMut(NodeId, DVec3), T: Copy>(
     scene: &Scene,
     id: NodeId,
     p: DVec3,
     seen: &mut F,
-    tag: &impl Fn(NodeId, Option<u32>) -> Option<u32>,
+    tag: &impl Fn(NodeId, DVec3, Option<T>) -> Option<T>,
     tags: bool,
-) -> Sample {
+) -> (f64, Option<T>) {
     seen(id, p);
     let n = &scene.nodes[id];
-    let s = match &n.kind {
-        NodeKind::Primitive { prim, ctx } => Sample {
-            d: (prim.eval)(ctx, p),
-            mat: None,
-        },
-        NodeKind::Implicit { field } => Sample {
-            d: field.eval(p),
-            mat: None,
-        },
+    let (d, inner) = match &n.kind {
+        NodeKind::Primitive { prim, ctx } => ((prim.eval)(ctx, p), None),
+        NodeKind::Implicit { field } => (field.eval(p), None),
         NodeKind::Operator { op, ctx, children } => {
-            let mut nearest = vec![None; children.len()];
+            let mut nearest: Vec<Option<(f64, Option<T>)>> = vec![None; children.len()];
             // A child evaluated more than once (the copies of a `repeat`) gives the material
             // of its nearest evaluation.
             let mut child = |i: usize, q: DVec3| {
                 let s = node_with(scene, children[i], q, seen, tag, tags);
-                if nearest[i].is_none_or(|old: Sample| s.d < old.d) {
+                if nearest[i].is_none_or(|old| s.0 < old.0) {
                     nearest[i] = Some(s);
                 }
-                s.d
+                s.0
             };
             let d = (op.eval)(ctx, p, &mut child);
             if tags && ctx.prune.is_some() {
@@ -104,20 +112,14 @@ fn node_with<F: FnMut(NodeId, DVec3)>(
                     }
                 }
             }
-            let nearest: Vec<Sample> = nearest
+            let nearest: Vec<(f64, Option<T>)> = nearest
                 .into_iter()
-                .map(|s| s.unwrap_or(Sample { d, mat: None }))
+                .map(|s| s.unwrap_or((d, None)))
                 .collect();
-            Sample {
-                d,
-                mat: op.materials.pick(ctx, &nearest),
-            }
+            (d, op.materials.pick(ctx, &nearest))
         }
     };
-    Sample {
-        d: s.d,
-        mat: tag(id, s.mat),
-    }
+    (d, tag(id, p, inner))
 }
 
 /// The corners of the tetrahedron whose samples give the normal: they sum to zero and

@@ -15,6 +15,7 @@ pub mod passes;
 pub mod scene;
 pub mod shading;
 pub mod syntax;
+pub mod texture;
 pub mod trace;
 pub mod truth;
 pub mod view;

@@ -218,8 +218,42 @@ pub struct Material {
     pub transparent: f64,
     /// Index of refraction of a transparent solid (1.5 glass, 2.42 diamond).
     pub ior: f64,
+    /// A procedural pattern mixing `color` with a second colour (`crate::texture`).
+    pub pattern: Option<Pattern>,
     /// Where it was declared.
     pub span: Span,
+}
+
+/// A procedural texture (Liktor §4): `color KIND(first, second, scale, octaves)`, the surface
+/// colour mix(first, second, w) with w ∈ [0, 1] the pattern's weight at the point in the
+/// tagged shape's own coordinates.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Pattern {
+    /// Which pattern.
+    pub kind: PatternKind,
+    /// The second colour (sRGB, 0..1); the first is the material's `color`.
+    pub other: DVec3,
+    /// The pattern's size: a checker's cell, noise's feature, marble's band, wood's ring.
+    pub scale: f64,
+    /// Octaves of noise summed (noise, turbulence, marble, wood).
+    pub octaves: u32,
+}
+
+/// The patterns (`crate::texture::PATTERNS` documents each).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PatternKind {
+    /// A solid 3D checker.
+    Checker,
+    /// A 2D checker projected along the three axes and blended by the normal (triplanar).
+    Tiles,
+    /// Value noise summed over octaves (fractal Brownian motion).
+    Noise,
+    /// |2·noise − 1| summed over octaves (Perlin's turbulence).
+    Turbulence,
+    /// Bands along x bent by turbulence.
+    Marble,
+    /// Rings around the y axis bent by noise.
+    Wood,
 }
 
 impl Material {

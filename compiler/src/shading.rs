@@ -70,11 +70,8 @@ pub fn occlusion(scene: &Scene, o: &Occlusion, p: DVec3, n: DVec3) -> f64 {
 /// Lambert (Munini §2.3) scaled by the occlusion, Blinn–Phong highlights, each shadowing
 /// light's terms scaled by [`shadow`] (`h`: the hit threshold there).
 pub fn shade(scene: &Scene, p: DVec3, n: DVec3, rd: DVec3, material: u32, h: f64) -> DVec3 {
-    let (base, specular) = match material_of(scene, material) {
-        Some(m) => (m.color, m.specular),
-        None => (DEFAULT_COLOR, 0.0),
-    };
-    let base = crate::color::linear(base);
+    let specular = material_of(scene, material).map_or(0.0, |m| m.specular);
+    let base = albedo(scene, material, p, n);
     let ao = scene.occlusion.map_or(1.0, |o| occlusion(scene, &o, p, n));
     let mut color = base * AMBIENT * ao;
     for light in &scene.lights {
@@ -98,6 +95,30 @@ pub fn shade(scene: &Scene, p: DVec3, n: DVec3, rd: DVec3, material: u32, h: f64
         }
     }
     color
+}
+
+/// The linear base colour of material `m` at the surface point `p` of normal `n`: its colour,
+/// or with a pattern (Liktor §4) mix(colour, second, w), w the pattern's weight at the point in
+/// the own coordinates of the shape the material was given to (`eval::surface`), so that the
+/// pattern follows the shape's transforms; a triplanar pattern's normal there is where a step
+/// of `NORMAL_STEP`·scale along `n` goes.
+pub fn albedo(scene: &Scene, m: u32, p: DVec3, n: DVec3) -> DVec3 {
+    let Some(mat) = material_of(scene, m) else {
+        return crate::color::linear(DEFAULT_COLOR);
+    };
+    let first = crate::color::linear(mat.color);
+    let Some(pattern) = mat.pattern else {
+        return first;
+    };
+    let q = eval::surface(scene, p).1;
+    let nq = if pattern.kind == crate::scene::PatternKind::Tiles {
+        let step = n * (crate::texture::NORMAL_STEP * pattern.scale);
+        unit_or_zero(eval::surface(scene, p + step).1 - q)
+    } else {
+        DVec3::ZERO
+    };
+    let w = crate::texture::weight(&pattern, q, nq);
+    first.lerp(crate::color::linear(pattern.other), w)
 }
 
 /// Material id `m` (0 the default, i + 1 the i-th declared), if declared.

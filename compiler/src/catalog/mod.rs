@@ -273,22 +273,23 @@ pub enum MatRule {
 }
 
 impl MatRule {
-    /// The material of an operator's result from its children's raw samples, in child order.
-    pub fn pick(self, ctx: &Ctx, children: &[Sample]) -> Option<u32> {
-        let norm = |i: usize| children[i].d / ctx.child_lambda[i];
+    /// The material (or any tag) of an operator's result from its children's raw fields and
+    /// tags, in child order.
+    pub fn pick<T: Copy>(self, ctx: &Ctx, children: &[(f64, Option<T>)]) -> Option<T> {
+        let norm = |i: usize| children[i].0 / ctx.child_lambda[i];
         let fold = |better: &dyn Fn(f64, f64) -> bool, sign: f64| {
-            let (mut d, mut m) = (norm(0), children[0].mat);
+            let (mut d, mut m) = (norm(0), children[0].1);
             for (i, child) in children.iter().enumerate().skip(1) {
                 let di = sign * norm(i);
                 if better(di, d) {
-                    (d, m) = (di, child.mat);
+                    (d, m) = (di, child.1);
                 }
             }
             m
         };
         match self {
-            MatRule::Pass => children[0].mat,
-            MatRule::Weighted => children[usize::from(ctx.num(0) >= 0.5)].mat,
+            MatRule::Pass => children[0].1,
+            MatRule::Weighted => children[usize::from(ctx.num(0) >= 0.5)].1,
             MatRule::Nearest => fold(&|a, b| a < b, 1.0),
             MatRule::Farthest => fold(&|a, b| a > b, 1.0),
             MatRule::Cut => fold(&|a, b| a > b, -1.0),

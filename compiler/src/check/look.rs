@@ -4,9 +4,10 @@
 use super::Checker;
 use super::settings::v;
 use crate::catalog::{Param, Ty, Val, opt, req};
-use crate::diag::{Diagnostic, Span};
-use crate::scene::{Light, LightKind, Material, Occlusion, Shadow};
+use crate::diag::{Diagnostic, Span, did_you_mean};
+use crate::scene::{Light, LightKind, Material, Occlusion, Pattern, Shadow};
 use crate::syntax::{Arg, Ident};
+use crate::texture::{MAX_OCTAVES, PATTERNS};
 
 /// `material name { color  specular  reflect  transparent  ior }`.
 const MATERIAL: &[Param] = &[
@@ -44,6 +45,14 @@ pub const LIGHT_KINDS: &[(&str, &[Param])] = &[
             SOFTNESS,
         ],
     ),
+];
+
+/// A pattern's arguments: `checker(first, second, scale = 1, octaves = 4)`.
+pub const PATTERN: &[Param] = &[
+    req("first", Ty::Color),
+    req("second", Ty::Color),
+    opt("scale", Ty::Positive, Val::Num(1.0)),
+    opt("octaves", Ty::CountTo(MAX_OCTAVES), Val::Num(4.0)),
 ];
 
 /// Most samples of ambient occlusion (each is an evaluation of the field per shaded pixel).
@@ -157,7 +166,58 @@ impl Checker<'_> {
             );
             return;
         }
-        let Some(a) = self.bind(&format!("material {}", name.name), MATERIAL, args, span) else {
+        // `color checker(#fff, #222, 0.5)`: a pattern; the material's colour is its first.
+        let mut args = args.to_vec();
+        let mut pattern = None;
+        for a in &mut args {
+            let is_color = a.name.as_ref().is_some_and(|n| n.name == "color");
+            let crate::syntax::ExprKind::Call(call) = &a.value.kind else {
+                continue;
+            };
+            if !is_color {
+                continue;
+            }
+            let Some(&(pname, kind, _)) = PATTERNS.iter().find(|p| p.0 == call.name.name) else {
+                let names = PATTERNS.iter().map(|p| p.0);
+                let mut d = Diagnostic::error(
+                    call.name.span,
+                    format!("unknown pattern `{}`", call.name.name),
+                )
+                .label("not a pattern");
+                d = match did_you_mean(&call.name.name, names.clone()) {
+                    Some(n) => d.help(format!("did you mean `{n}`?")),
+                    None => d.note(format!(
+                        "a colour is `#rrggbb`, `(r, g, b)` or a pattern: {}",
+                        names.collect::<Vec<_>>().join(", ")
+                    )),
+                };
+                self.diags.push(d);
+                self.failed.insert(name.name.clone());
+                return;
+            };
+            let Some(v) = self.bind(pname, PATTERN, &call.args, call.span) else {
+                self.failed.insert(name.name.clone());
+                return;
+            };
+            pattern = Some(Pattern {
+                kind,
+                other: v[1].vec(),
+                scale: v[2].num(),
+                octaves: v[3].num() as u32,
+            });
+            let first = v[0].vec();
+            a.value.kind =
+                crate::syntax::ExprKind::Vector(Box::new([first.x, first.y, first.z].map(|c| {
+                    crate::syntax::Expr {
+                        kind: crate::syntax::ExprKind::Number {
+                            value: c,
+                            unit: None,
+                        },
+                        span: call.span,
+                    }
+                })));
+        }
+        let Some(a) = self.bind(&format!("material {}", name.name), MATERIAL, &args, span) else {
             self.failed.insert(name.name.clone());
             return;
         };
@@ -183,6 +243,7 @@ impl Checker<'_> {
             reflect,
             transparent,
             ior: a[4].num(),
+            pattern,
             span: name.span,
         });
     }

@@ -1,7 +1,8 @@
 //! Lowering: the checked scene graph becomes a naga module — `sd_*` functions for the primitives
 //! used, `op_*` helpers for the blends used, a function `let_<name>` per surviving `let` shape,
-//! `map`, (only when the scene has materials) `map_material` and (only when it has a loose part)
-//! `map_loose`; the tracer and entry points come from `tracer.rs`.
+//! `map`, (only when the scene has materials) `map_material`, (only when a material has a
+//! pattern) `map_texture` and (only when it has a loose part) `map_loose` (the tag walks:
+//! `tags.rs`); the tracer and entry points come from `tracer.rs`.
 
 mod bounce;
 mod bound;
@@ -18,10 +19,12 @@ mod probes;
 mod prune;
 mod rays;
 mod shading;
+mod tags;
+mod texture;
 pub mod tracer;
 mod variants;
 
-use crate::catalog::{Ctx, MatRule, Ty};
+use crate::catalog::{Ctx, Ty};
 use crate::scene::{Field, NodeId, NodeKind, Scene};
 use crate::syntax::BinOp;
 use builder::{Ex, FnBuilder, ModuleBuilder};
@@ -86,20 +89,62 @@ pub fn lower(scene: &Scene, entry: Entry, options: &tracer::Options) -> naga::Mo
             root_fn: None,
             trees,
         }
-        .with_tag(&mut b, scene.root, p, &|b, id, inner| {
-            if scene.breaks_unit_gradient(id) {
-                Some(b.u(1))
-            } else {
-                inner
-            }
-        });
+        .with_tag(
+            &mut b,
+            scene.root,
+            p,
+            &tags::Tagging {
+                zero: &|b| b.u(0),
+                tag: &|b, id, _, inner| {
+                    if scene.breaks_unit_gradient(id) {
+                        Some(b.u(1))
+                    } else {
+                        inner
+                    }
+                },
+            },
+        );
         let l = l.unwrap_or_else(|| b.u(0));
         b.ret(Some(l));
         let f = b.finish();
         mb.add_helper("map_loose", f)
     });
-    tracer::add(&mut mb, scene, map, material, loose, entry, options);
+    // Where a material has a pattern: `map_texture(p)`, the point in the own coordinates of
+    // the shape whose material the surface takes (`eval::surface`).
+    let texture = has_patterns(scene).then(|| {
+        let v3 = mb.vec3();
+        let mut b = FnBuilder::new(&mut mb, "map_texture", &[("p", v3)], Some(v3));
+        let p = b.arg(0);
+        let (_, q) = Walk {
+            scene,
+            named: &named,
+            root_fn: None,
+            trees,
+        }
+        .with_texture(&mut b, scene.root, p);
+        let q = match q {
+            Some(q) => b.swizzle(q, &[0, 1, 2]),
+            None => p,
+        };
+        b.ret(Some(q));
+        let f = b.finish();
+        mb.add_helper("map_texture", f)
+    });
+    tracer::add(
+        &mut mb,
+        scene,
+        map,
+        [material, texture],
+        loose,
+        entry,
+        options,
+    );
     mb.module
+}
+
+/// Whether some material has a pattern.
+pub(crate) fn has_patterns(scene: &Scene) -> bool {
+    scene.materials.iter().any(|m| m.pattern.is_some())
 }
 
 fn has_materials(scene: &Scene, reachable: &[NodeId]) -> bool {
@@ -209,9 +254,6 @@ fn add_let_functions(
     named
 }
 
-/// How a node tags its field given the tag picked from its children (see `Walk::with_tag`).
-type Tag<'a> = dyn Fn(&mut FnBuilder, NodeId, Option<Ex>) -> Option<Ex> + 'a;
-
 /// A walk over the scene graph emitting IR.
 struct Walk<'s> {
     scene: &'s Scene,
@@ -262,102 +304,6 @@ impl Walk<'_> {
                     |b: &mut FnBuilder, i: usize, q: Ex| inner.distance(b, children[i], q);
                 (op.lower)(b, &self.ctx_for(ctx, false), p, &mut child)
             }
-        }
-    }
-
-    /// Field and material id (1-based; 0 the default; `None`: statically no material) of a node.
-    fn with_material(&self, b: &mut FnBuilder, id: NodeId, p: Ex) -> (Ex, Option<Ex>) {
-        let scene = self.scene;
-        self.with_tag(
-            b,
-            id,
-            p,
-            &|b, id, inner| match (scene.nodes[id].material, inner) {
-                (None, m) => m,
-                (Some(k), None) => Some(b.u(k + 1)),
-                (Some(k), Some(inner)) => {
-                    let own = b.u(k + 1);
-                    let zero = b.u(0);
-                    let has = b.bin(naga::BinaryOperator::NotEqual, inner, zero);
-                    Some(b.select(has, inner, own))
-                }
-            },
-        )
-    }
-
-    /// Field and tag of a node: the tag its operator picks from the children by the materials'
-    /// rule, passed through `tag(node, picked)` (as `eval::node_with`).
-    fn with_tag(&self, b: &mut FnBuilder, id: NodeId, p: Ex, tag: &Tag) -> (Ex, Option<Ex>) {
-        let node = &self.scene.nodes[id];
-        let (d, m) = match &node.kind {
-            NodeKind::Operator { op, ctx, children } => {
-                // Every child's field and tag: without a union's bounding-volume tree.
-                let ctx = &*self.ctx_for(ctx, true);
-                let mut seen: Vec<Option<(Ex, Option<Ex>)>> = vec![None; children.len()];
-                // A child lowered more than once (the copies of a `repeat`) gives the material
-                // of its nearest evaluation, as in `eval::node`.
-                let mut child = |b: &mut FnBuilder, i: usize, q: Ex| {
-                    let (d, m) = self.with_tag(b, children[i], q, tag);
-                    seen[i] = Some(match seen[i] {
-                        None => (d, m),
-                        Some((d0, m0)) => {
-                            let nearer = b.lt(d, d0);
-                            let m = match (m, m0) {
-                                (None, None) => None,
-                                (m, m0) => {
-                                    let m = m.unwrap_or_else(|| b.u(0));
-                                    let m0 = m0.unwrap_or_else(|| b.u(0));
-                                    Some(b.select(nearer, m, m0))
-                                }
-                            };
-                            (b.select(nearer, d, d0), m)
-                        }
-                    });
-                    d
-                };
-                let d = (op.lower)(b, ctx, p, &mut child);
-                let seen: Vec<(Ex, Option<Ex>)> = seen
-                    .into_iter()
-                    .map(|s| s.expect("every child lowered"))
-                    .collect();
-                (d, pick_material(b, op.materials, ctx, &seen))
-            }
-            _ => (self.distance(b, id, p), None),
-        };
-        (d, tag(b, id, m))
-    }
-}
-
-/// The material rule of `catalog::MatRule::pick`, in IR.
-fn pick_material(
-    b: &mut FnBuilder,
-    rule: MatRule,
-    ctx: &crate::catalog::Ctx,
-    seen: &[(Ex, Option<Ex>)],
-) -> Option<Ex> {
-    if seen.iter().all(|(_, m)| m.is_none()) {
-        return None;
-    }
-    let mat = |b: &mut FnBuilder, i: usize| seen[i].1.unwrap_or_else(|| b.u(0));
-    match rule {
-        MatRule::Pass => seen[0].1,
-        MatRule::Weighted => Some(mat(b, usize::from(ctx.num(0) >= 0.5))),
-        MatRule::Nearest | MatRule::Farthest | MatRule::Cut => {
-            let sign = if rule == MatRule::Cut { -1.0 } else { 1.0 };
-            let mut d = ops::scale_by(b, seen[0].0, 1.0 / ctx.child_lambda[0]);
-            let mut m = mat(b, 0);
-            for (i, &(di, _)) in seen.iter().enumerate().skip(1) {
-                let di = ops::scale_by(b, di, sign / ctx.child_lambda[i]);
-                let better = if rule == MatRule::Nearest {
-                    b.lt(di, d)
-                } else {
-                    b.gt(di, d)
-                };
-                let mi = mat(b, i);
-                m = b.select(better, mi, m);
-                d = b.select(better, di, d);
-            }
-            Some(m)
         }
     }
 }

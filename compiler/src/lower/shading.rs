@@ -55,9 +55,10 @@ pub(super) fn add_normal(mb: &mut ModuleBuilder, map: Handle<Function>) -> Handl
 pub(super) fn add_shade(
     mb: &mut ModuleBuilder,
     scene: &Scene,
-    map: Handle<Function>,
+    (map, texture): (Handle<Function>, Option<Handle<Function>>),
     fixed_offset: Option<f64>,
 ) -> Handle<Function> {
+    let textures = texture.map(|t| super::texture::Textures::new(mb, scene, t));
     let shadow = has_shadows(scene).then(|| add_shadow(mb, map, fixed_offset));
     let occlusion = scene.occlusion.map(|o| add_occlusion(mb, map, &o));
     let v3 = mb.vec3();
@@ -72,10 +73,18 @@ pub(super) fn add_shade(
     // Scene colours are sRGB; lighting is linear (the conversion folds at compile time).
     let mut base = b.vec3_lit(crate::color::linear(DEFAULT_COLOR));
     let mut spec = None;
+    // Patterned materials' colours at this point (procedural textures, Liktor §4).
+    let patterned = match &textures {
+        Some(t) => t.colors(&mut b, scene, p, n),
+        None => Vec::new(),
+    };
     for (i, m) in scene.materials.iter().enumerate() {
         let id = b.u(i as u32 + 1);
         let is = b.bin(naga::BinaryOperator::Equal, mat, id);
-        let c = b.vec3_lit(crate::color::linear(m.color));
+        let c = match patterned.iter().find(|(k, _)| *k == i) {
+            Some(&(_, c)) => c,
+            None => b.vec3_lit(crate::color::linear(m.color)),
+        };
         base = b.select(is, c, base);
         if m.specular > 0.0 || spec.is_some() {
             let prev = match spec {
@@ -157,7 +166,7 @@ pub(super) fn call_shade(
 }
 
 /// `v` normalised, or zero for the zero vector (no NaN): `crate::shading::unit_or_zero`.
-fn unit_or_zero(b: &mut FnBuilder, v: Ex) -> Ex {
+pub(super) fn unit_or_zero(b: &mut FnBuilder, v: Ex) -> Ex {
     let unit = b.math(M::Normalize, &[v]);
     let len2 = b.dot(v, v);
     let zero = b.f(0.0);
