@@ -58,6 +58,30 @@ fn readme_reference_table_is_current() {
     );
 }
 
+/// Every scene in the README's tutorial (its ```sdf blocks) compiles without a diagnostic.
+#[test]
+fn readme_tutorial_scenes_compile() {
+    let readme = std::fs::read_to_string(sdfc_tests::root().join("README.md")).unwrap();
+    let blocks: Vec<&str> = readme
+        .split("```sdf\n")
+        .skip(1)
+        .map(|b| b.split("```").next().unwrap())
+        .collect();
+    assert!(
+        blocks.len() >= 3,
+        "the tutorial has {} scenes",
+        blocks.len()
+    );
+    for block in blocks {
+        let checked = sdfc_compiler::check::compile(block);
+        assert!(
+            checked.scene.is_some() && checked.diagnostics.is_empty(),
+            "{}",
+            sdfc_compiler::diag::render(&checked.diagnostics, "README.md", block)
+        );
+    }
+}
+
 /// The README's table of texture patterns is the one the texture module documents.
 #[test]
 fn readme_pattern_table_is_current() {
