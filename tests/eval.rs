@@ -227,10 +227,9 @@ fn patterns_follow_their_shapes_transforms() {
     let here = sdfc_tests::scene("here", &format!("{marble}sphere(1) : m"));
     let moved = sdfc_tests::scene(
         "moved",
-        &format!("{marble}(sphere(1) : m) |> rotate(x, 40deg) |> translate((3, -1, 2))"),
+        &format!("{marble}(sphere(1) : m) |> rotate(z, 40deg) |> translate((3, -1, 2))"),
     );
-    let turn = DMat3::from_rotation_x(40f64.to_radians());
-    let mut checked = 0;
+    let turn = DMat3::from_rotation_z(40f64.to_radians());
     for k in 0..200 {
         let a = k as f64 * 0.7;
         let p = DVec3::new(
@@ -243,10 +242,35 @@ fn patterns_follow_their_shapes_transforms() {
         let c1 = sdfc_compiler::shading::albedo(&here, 1, p, p);
         let c2 = sdfc_compiler::shading::albedo(&moved, 1, q, turn * p);
         assert!((c1 - c2).length() < 1e-9, "at {p}: {c1} against {c2}");
-        checked += 1;
+        // The point's material is the one `eval::sample` gives.
+        let id = sdfc_compiler::eval::sample(&moved, q)
+            .mat
+            .map_or(0, |m| m + 1);
+        assert_eq!(sdfc_compiler::eval::surface(&moved, q).0, id);
     }
     // And the pattern is not uniform (the comparison could not fail otherwise).
     let c = |p: DVec3| sdfc_compiler::shading::albedo(&here, 1, p, p);
     assert!((c(DVec3::X) - c(DVec3::Z)).length() > 0.05);
-    assert_eq!(checked, 200);
+}
+
+/// Noise's lattice repeats every 65 536 cells, so that its integer coordinates never leave the
+/// i32 range: far points give the same values as near ones, huge ones a value in [0, 1]
+/// (before, `as i32` saturated and `+ 1` overflowed).
+#[test]
+fn noise_is_periodic_and_defined_everywhere() {
+    use glam::DVec3;
+    use sdfc_compiler::texture::{LATTICE_PERIOD, noise};
+    for k in 0..50 {
+        let q = DVec3::new(k as f64 * 0.37, 1.3 - k as f64 * 0.11, k as f64 * 0.05);
+        let far = q + DVec3::new(3.0, -7.0, 11.0) * LATTICE_PERIOD;
+        assert!((noise(q) - noise(far)).abs() < 1e-6, "{q}");
+    }
+    for q in [
+        DVec3::splat(1e12),
+        DVec3::splat(-1e15),
+        DVec3::new(3e9, -2e9, 7.5),
+    ] {
+        let v = noise(q);
+        assert!((0.0..=1.0).contains(&v), "{q}: {v}");
+    }
 }

@@ -239,21 +239,23 @@ pub struct Pattern {
     pub octaves: u32,
 }
 
-/// The patterns (`crate::texture::PATTERNS` documents each).
+/// The patterns (`crate::texture::PATTERNS` says what each is).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[allow(missing_docs)]
 pub enum PatternKind {
-    /// A solid 3D checker.
     Checker,
-    /// A 2D checker projected along the three axes and blended by the normal (triplanar).
     Tiles,
-    /// Value noise summed over octaves (fractal Brownian motion).
     Noise,
-    /// |2·noise − 1| summed over octaves (Perlin's turbulence).
     Turbulence,
-    /// Bands along x bent by turbulence.
     Marble,
-    /// Rings around the y axis bent by noise.
     Wood,
+}
+
+impl PatternKind {
+    /// Whether the pattern sums octaves of noise.
+    pub fn uses_noise(self) -> bool {
+        !matches!(self, PatternKind::Checker | PatternKind::Tiles)
+    }
 }
 
 impl Material {

@@ -101,7 +101,7 @@ pub fn shade(scene: &Scene, p: DVec3, n: DVec3, rd: DVec3, material: u32, h: f64
 /// or with a pattern (Liktor §4) mix(colour, second, w), w the pattern's weight at the point in
 /// the own coordinates of the shape the material was given to (`eval::surface`), so that the
 /// pattern follows the shape's transforms; a triplanar pattern's normal there is where a step
-/// of `NORMAL_STEP`·scale along `n` goes.
+/// along `n` (`texture::normal_step`) goes.
 pub fn albedo(scene: &Scene, m: u32, p: DVec3, n: DVec3) -> DVec3 {
     let Some(mat) = material_of(scene, m) else {
         return crate::color::linear(DEFAULT_COLOR);
@@ -112,13 +112,14 @@ pub fn albedo(scene: &Scene, m: u32, p: DVec3, n: DVec3) -> DVec3 {
     };
     let q = eval::surface(scene, p).1;
     let nq = if pattern.kind == crate::scene::PatternKind::Tiles {
-        let step = n * (crate::texture::NORMAL_STEP * pattern.scale);
+        let step = n * crate::texture::normal_step(p, pattern.scale);
         unit_or_zero(eval::surface(scene, p + step).1 - q)
     } else {
         DVec3::ZERO
     };
     let w = crate::texture::weight(&pattern, q, nq);
-    first.lerp(crate::color::linear(pattern.other), w)
+    // (As WGSL's mix: a·(1 − w) + b·w.)
+    first * (1.0 - w) + crate::color::linear(pattern.other) * w
 }
 
 /// Material id `m` (0 the default, i + 1 the i-th declared), if declared.

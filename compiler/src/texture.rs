@@ -1,6 +1,8 @@
 //! Procedural textures (Liktor §4) in f64: the weight w ∈ [0, 1] of each pattern at a point of
-//! the shape's own space, the reference the emitted `pattern_*` functions (`lower/texture.rs`)
-//! mirror operation for operation.
+//! the shape's own space, the reference the emitted code (`lower/texture.rs`) mirrors
+//! operation for operation (the same products by reciprocals, the same integer hash); f32 and
+//! f64 then differ by rounding only, and in the lattice cell only where a cell is narrower than
+//! f32's spacing at the point.
 
 use crate::scene::{Pattern, PatternKind};
 use glam::DVec3;
@@ -43,8 +45,22 @@ pub const PATTERNS: &[(&str, PatternKind, &str)] = &[
 pub const MAX_OCTAVES: u32 = 8;
 
 /// How far along the normal the second sample for a triplanar pattern's own-space normal lies,
-/// relative to the pattern's scale.
+/// relative to the pattern's scale (at least [`NORMAL_STEP_FLOOR`] of the point's distance from
+/// the origin, which f32 resolves).
 pub const NORMAL_STEP: f64 = 0.01;
+
+/// The least step for a triplanar normal, relative to |p| (2⁻¹⁰: well above f32's 2⁻²³).
+pub const NORMAL_STEP_FLOOR: f64 = 1.0 / 1024.0;
+
+/// The noise lattice repeats every this many cells along each axis: lattice coordinates are
+/// taken modulo it before they become integers, so they never leave the i32 range (and f32
+/// and f64 agree on them while a cell is wider than f32's spacing at the point).
+pub const LATTICE_PERIOD: f64 = 65536.0;
+
+/// The step along the normal `n` at `p` for a triplanar pattern of scale `scale`.
+pub fn normal_step(p: DVec3, scale: f64) -> f64 {
+    (NORMAL_STEP * scale).max(NORMAL_STEP_FLOOR * p.length())
+}
 
 /// A lattice point's pseudo-random value in [0, 1): an integer hash of its coordinates (u32
 /// arithmetic, so the shader computes the same bits), its top 24 bits over 2²⁴ (exact in f32).
@@ -65,7 +81,9 @@ pub fn noise(q: DVec3) -> f64 {
     let i = q.floor();
     let f = q - i;
     let u = f * f * (DVec3::splat(3.0) - 2.0 * f);
-    let c = [i.x as i32, i.y as i32, i.z as i32];
+    // The lattice cell modulo the period: 0 ≤ c < 65536, whatever q.
+    let cell = i - LATTICE_PERIOD * (i * (1.0 / LATTICE_PERIOD)).floor();
+    let c = [cell.x as i32, cell.y as i32, cell.z as i32];
     let at = |dx: i32, dy: i32, dz: i32| hash([c[0] + dx, c[1] + dy, c[2] + dz]);
     let lerp = |a: f64, b: f64, t: f64| a + (b - a) * t;
     let x00 = lerp(at(0, 0, 0), at(1, 0, 0), u.x);
@@ -85,7 +103,7 @@ fn octaves(q: DVec3, octaves: u32, layer: impl Fn(f64) -> f64) -> f64 {
         a *= 0.5;
         f *= 2.0;
     }
-    sum / total
+    sum * (1.0 / total)
 }
 
 /// Fractal noise in [0, 1].
@@ -100,14 +118,17 @@ pub fn turbulence(q: DVec3, n: u32) -> f64 {
 
 /// 1 on odd cells of the checker of cell size `s` in the given coordinates, else 0.
 fn parity(coords: &[f64], s: f64) -> f64 {
-    let sum: f64 = coords.iter().map(|c| (c / s).floor()).sum();
-    sum.rem_euclid(2.0)
+    let inv = 1.0 / s;
+    let sum: f64 = coords.iter().map(|c| (c * inv).floor()).sum();
+    sum - 2.0 * (sum * 0.5).floor()
 }
 
 /// The pattern's weight at `q` (the shape's own coordinates), `nq` its normal there (for
 /// triplanar projection).
 pub fn weight(pattern: &Pattern, q: DVec3, nq: DVec3) -> f64 {
     let s = pattern.scale;
+    let inv = 1.0 / s;
+    let qs = q * inv;
     let k = pattern.octaves;
     match pattern.kind {
         PatternKind::Checker => parity(&[q.x, q.y, q.z], s),
@@ -127,15 +148,15 @@ pub fn weight(pattern: &Pattern, q: DVec3, nq: DVec3) -> f64 {
                 planes[1]
             }
         }
-        PatternKind::Noise => fbm(q / s, k),
-        PatternKind::Turbulence => turbulence(q / s, k),
+        PatternKind::Noise => fbm(qs, k),
+        PatternKind::Turbulence => turbulence(qs, k),
         PatternKind::Marble => {
-            let t = turbulence(q / s, k);
-            0.5 + 0.5 * (std::f64::consts::TAU * q.x / s + 6.0 * t).sin()
+            let t = turbulence(qs, k);
+            0.5 + 0.5 * (std::f64::consts::TAU * q.x * inv + 6.0 * t).sin()
         }
         PatternKind::Wood => {
-            let r = (q.x * q.x + q.z * q.z).sqrt() / s;
-            let n = fbm(q / s, k);
+            let r = (q.x * q.x + q.z * q.z).sqrt() * inv;
+            let n = fbm(qs, k);
             0.5 + 0.5 * (std::f64::consts::TAU * (r + 0.4 * n)).sin()
         }
     }

@@ -71,6 +71,19 @@ impl Checker<'_> {
             self.diags.push(d);
             return None;
         }
+        if crate::texture::PATTERNS.iter().any(|p| p.0 == name) {
+            self.diags.push(
+                Diagnostic::error(
+                    call.name.span,
+                    format!("`{name}` is a pattern, not a value"),
+                )
+                .label("a pattern is only a material's colour")
+                .help(format!(
+                    "give it directly as a colour: `material m {{ color {name}(#fff, #000) }}`"
+                )),
+            );
+            return None;
+        }
         let mut d = Diagnostic::error(
             call.name.span,
             format!("unknown function or shape `{name}`"),

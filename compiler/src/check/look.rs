@@ -195,6 +195,13 @@ impl Checker<'_> {
                 self.failed.insert(name.name.clone());
                 return;
             };
+            if let Some(block) = &call.block {
+                let at = block.first().map_or(call.span, |e| e.span);
+                self.diags.push(
+                    Diagnostic::error(at, format!("the pattern `{pname}` takes no block"))
+                        .label("remove this block"),
+                );
+            }
             let Some(v) = self.bind(pname, PATTERN, &call.args, call.span) else {
                 self.failed.insert(name.name.clone());
                 return;

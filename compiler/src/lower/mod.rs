@@ -111,7 +111,7 @@ pub fn lower(scene: &Scene, entry: Entry, options: &tracer::Options) -> naga::Mo
     });
     // Where a material has a pattern: `map_texture(p)`, the point in the own coordinates of
     // the shape whose material the surface takes (`eval::surface`).
-    let texture = has_patterns(scene).then(|| {
+    let texture = (!used_patterns(scene).is_empty()).then(|| {
         let v3 = mb.vec3();
         let mut b = FnBuilder::new(&mut mb, "map_texture", &[("p", v3)], Some(v3));
         let p = b.arg(0);
@@ -122,8 +122,15 @@ pub fn lower(scene: &Scene, entry: Entry, options: &tracer::Options) -> naga::Mo
             trees,
         }
         .with_texture(&mut b, scene.root, p);
+        // The point itself where no material was given (as `eval::surface`).
         let q = match q {
-            Some(q) => b.swizzle(q, &[0, 1, 2]),
+            Some(q) => {
+                let xyz = b.swizzle(q, &[0, 1, 2]);
+                let w = b.at(q, 3);
+                let zero = b.f(0.0);
+                let given = b.gt(w, zero);
+                b.select(given, xyz, p)
+            }
             None => p,
         };
         b.ret(Some(q));
@@ -142,9 +149,18 @@ pub fn lower(scene: &Scene, entry: Entry, options: &tracer::Options) -> naga::Mo
     mb.module
 }
 
-/// Whether some material has a pattern.
-pub(crate) fn has_patterns(scene: &Scene) -> bool {
-    scene.materials.iter().any(|m| m.pattern.is_some())
+/// The materials given to some reachable shape that have a pattern, by index.
+pub(crate) fn used_patterns(scene: &Scene) -> Vec<usize> {
+    let mut used: Vec<usize> = scene
+        .reachable()
+        .iter()
+        .filter_map(|&n| scene.nodes[n].material)
+        .map(|m| m as usize)
+        .filter(|&m| scene.materials[m].pattern.is_some())
+        .collect();
+    used.sort_unstable();
+    used.dedup();
+    used
 }
 
 fn has_materials(scene: &Scene, reachable: &[NodeId]) -> bool {

@@ -4,13 +4,15 @@
 
 use super::builder::{Ex, FnBuilder, ModuleBuilder};
 use crate::scene::{Pattern, PatternKind, Scene};
-use crate::texture::NORMAL_STEP;
+use crate::texture::{LATTICE_PERIOD, NORMAL_STEP, NORMAL_STEP_FLOOR};
 use naga::{BinaryOperator as Op, Expression, Function, Handle, MathFunction as M, ScalarKind};
 
 /// The texture functions a module has.
 pub(super) struct Textures {
     /// `map_texture(p)`: the point in the tagged shape's own coordinates.
     map_texture: Handle<Function>,
+    /// The patterned materials some shape has, by index.
+    used: Vec<usize>,
     /// `value_noise(q)`, when a pattern uses noise.
     noise: Option<Handle<Function>>,
 }
@@ -18,12 +20,15 @@ pub(super) struct Textures {
 impl Textures {
     /// Adds the noise functions if some pattern needs them.
     pub fn new(mb: &mut ModuleBuilder, scene: &Scene, map_texture: Handle<Function>) -> Textures {
-        let noisy = scene.materials.iter().any(|m| {
-            m.pattern
-                .is_some_and(|p| !matches!(p.kind, PatternKind::Checker | PatternKind::Tiles))
+        let used = super::used_patterns(scene);
+        let noisy = used.iter().any(|&m| {
+            scene.materials[m]
+                .pattern
+                .is_some_and(|p| p.kind.uses_noise())
         });
         Textures {
             map_texture,
+            used,
             noise: noisy.then(|| add_noise(mb)),
         }
     }
@@ -34,11 +39,17 @@ impl Textures {
         super::count::count(b, 1);
         let q = b.call(self.map_texture, vec![p]);
         let mut out = Vec::new();
-        for (i, m) in scene.materials.iter().enumerate() {
+        for &i in &self.used {
+            let m = &scene.materials[i];
             let Some(pattern) = m.pattern else { continue };
             let nq = (pattern.kind == PatternKind::Tiles).then(|| {
-                // The normal in the shape's own coordinates: where a step along n goes there.
+                // The normal in the shape's own coordinates: where a step along n goes there,
+                // the step at least NORMAL_STEP_FLOOR·|p| (`texture::normal_step`).
                 let e = b.f(NORMAL_STEP * pattern.scale);
+                let len = b.length(p);
+                let floor = b.f(NORMAL_STEP_FLOOR);
+                let least = b.mul(floor, len);
+                let e = b.max(e, least);
                 let step = b.mul(n, e);
                 let p2 = b.add(p, step);
                 super::count::count(b, 1);
@@ -191,11 +202,16 @@ fn add_noise(mb: &mut ModuleBuilder) -> Handle<Function> {
     let u = b.sub(three, tf);
     let ff = b.mul(f, f);
     let u = b.mul(ff, u);
-    let c = b.expr(Expression::As {
-        expr: i,
-        kind: ScalarKind::Sint,
-        convert: Some(4),
-    });
+    // The lattice cell modulo the period (`crate::texture::noise`): 0 ≤ c < 65536.
+    let inv = b.f(1.0 / LATTICE_PERIOD);
+    let inv3 = b.splat(inv, naga::VectorSize::Tri);
+    let wraps = b.mul(i, inv3);
+    let wraps = b.math(M::Floor, &[wraps]);
+    let period = b.f(LATTICE_PERIOD);
+    let period3 = b.splat(period, naga::VectorSize::Tri);
+    let back = b.mul(period3, wraps);
+    let cell = b.sub(i, back);
+    let c = b.cast(cell, ScalarKind::Sint);
     let [ux, uy, uz] = b.xyz(u);
     let corner = |b: &mut FnBuilder, dx: i32, dy: i32, dz: i32| {
         let ty = ivec3(b.m);
