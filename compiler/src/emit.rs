@@ -102,6 +102,44 @@ fn glsl_bindings(module: &naga::Module) -> back::glsl::BindingMap {
         .collect()
 }
 
+/// The Metal argument-buffer slot of the buffer that holds the sizes of runtime-sized
+/// storage arrays (naga's `_mslBufferSizes`), after every binding's own slot.
+pub const MSL_SIZES_SLOT: u8 = 30;
+
+/// The MSL resource map of the entry point `main`: binding n of group 0 is `[[buffer(n)]]`
+/// (writable for storage buffers), the array sizes at [`MSL_SIZES_SLOT`]; no fake bindings.
+fn msl_bindings(module: &naga::Module) -> back::msl::EntryPointResourceMap {
+    let resources = module
+        .global_variables
+        .iter()
+        .filter_map(|(_, g)| g.binding.map(|rb| (rb, g.space)))
+        .map(|(rb, space)| {
+            let mutable = matches!(
+                space,
+                naga::AddressSpace::Storage { access } if access.contains(naga::StorageAccess::STORE)
+            );
+            (
+                rb,
+                back::msl::BindTarget {
+                    buffer: Some(rb.binding as u8),
+                    mutable,
+                    ..Default::default()
+                },
+            )
+        })
+        .collect();
+    let mut map = back::msl::EntryPointResourceMap::new();
+    map.insert(
+        "main".to_string(),
+        back::msl::EntryPointResources {
+            resources,
+            sizes_buffer: Some(MSL_SIZES_SLOT),
+            ..Default::default()
+        },
+    );
+    map
+}
+
 /// Writes a validated module in the target language.
 pub fn write(
     module: &naga::Module,
@@ -117,12 +155,47 @@ pub fn write(
 pub struct Settings {
     /// SPIR-V version (major, minor): 1.0 to 1.6; 1.3 by default (Vulkan 1.1).
     pub spirv_version: (u8, u8),
+    /// The GLSL dialect.
+    pub glsl_version: GlslVersion,
 }
 
 impl Default for Settings {
     fn default() -> Settings {
         Settings {
             spirv_version: (1, 3),
+            glsl_version: GlslVersion::Core450,
+        }
+    }
+}
+
+/// The GLSL dialect written.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum GlslVersion {
+    /// Desktop GLSL 4.50 core, Vulkan-style bindings.
+    Core450,
+    /// GLSL ES 3.10 (OpenGL ES 3.1: compute shaders and storage buffers).
+    Es310,
+    /// GLSL ES 3.00 (WebGL 2, OpenGL ES 3.0): fragment shaders only; no compute.
+    Es300,
+}
+
+impl GlslVersion {
+    /// Whether the dialect has compute shaders.
+    pub fn has_compute(self) -> bool {
+        self != GlslVersion::Es300
+    }
+
+    fn naga(self) -> back::glsl::Version {
+        match self {
+            GlslVersion::Core450 => back::glsl::Version::Desktop(450),
+            GlslVersion::Es310 => back::glsl::Version::Embedded {
+                version: 310,
+                is_webgl: false,
+            },
+            GlslVersion::Es300 => back::glsl::Version::Embedded {
+                version: 300,
+                is_webgl: true,
+            },
         }
     }
 }
@@ -142,15 +215,21 @@ pub fn write_with(
         _ => naga::ShaderStage::Fragment,
     };
     match target {
-        // SPIR-V for Vulkan and GLSL need an entry point: add an empty compute `main`; the
-        // library functions are written beside it.
+        // SPIR-V for Vulkan and GLSL need an entry point: add an empty compute `main` (an
+        // empty fragment one for GLSL ES 3.00, which has no compute); the library functions are
+        // written beside it.
         Target::Glsl | Target::Spirv if entry == Entry::Library => {
             let mut m = module.clone();
+            let fragment = target == Target::Glsl && !settings.glsl_version.has_compute();
             m.entry_points.push(naga::EntryPoint {
                 name: "main".into(),
-                stage: naga::ShaderStage::Compute,
+                stage: if fragment {
+                    naga::ShaderStage::Fragment
+                } else {
+                    naga::ShaderStage::Compute
+                },
                 early_depth_test: None,
-                workgroup_size: [1, 1, 1],
+                workgroup_size: if fragment { [0, 0, 0] } else { [1, 1, 1] },
                 workgroup_size_overrides: None,
                 function: naga::Function::default(),
                 mesh_info: None,
@@ -158,7 +237,12 @@ pub fn write_with(
                 incoming_ray_payload: None,
             });
             let info = validate(&m)?;
-            write_with(&m, &info, target, Entry::Compute, settings)
+            let as_entry = if fragment {
+                Entry::Fragment
+            } else {
+                Entry::Compute
+            };
+            write_with(&m, &info, target, as_entry, settings)
         }
         Target::Wgsl => back::wgsl::write_string(module, info, back::wgsl::WriterFlags::empty())
             .map(Output::Text)
@@ -178,7 +262,7 @@ pub fn write_with(
         }
         Target::Glsl => {
             let options = back::glsl::Options {
-                version: back::glsl::Version::Desktop(450),
+                version: settings.glsl_version.naga(),
                 binding_map: glsl_bindings(module),
                 ..Default::default()
             };
@@ -201,7 +285,11 @@ pub fn write_with(
             Ok(Output::Text(s))
         }
         Target::Msl => {
-            let options = back::msl::Options::default();
+            let options = back::msl::Options {
+                per_entry_point_map: msl_bindings(module),
+                fake_missing_bindings: false,
+                ..Default::default()
+            };
             let pipeline = back::msl::PipelineOptions::default();
             back::msl::write_string(module, info, &options, &pipeline)
                 .map(|(s, _)| Output::Text(s))

@@ -77,6 +77,10 @@ enum Command {
         /// the SPV_KHR_storage_buffer_storage_class extension) to 1.6.
         #[arg(long, value_enum, default_value = "1.3")]
         spirv_version: SpirvVersion,
+        /// GLSL dialect: 450 (desktop core, Vulkan-style bindings), 310es (OpenGL ES 3.1) or
+        /// 300es (WebGL 2 / OpenGL ES 3.0: fragment and library entries only).
+        #[arg(long, value_enum, default_value = "450")]
+        glsl_version: crate::emit_cmd::GlslVersionArg,
         #[command(flatten)]
         tracer: TracerArgs,
     },
@@ -271,6 +275,7 @@ pub fn run() -> i32 {
             entry,
             output,
             spirv_version,
+            glsl_version,
             tracer,
         } => crate::emit_cmd::run(
             &file,
@@ -278,6 +283,7 @@ pub fn run() -> i32 {
             output.as_deref(),
             &sdfc_compiler::emit::Settings {
                 spirv_version: spirv_version.pair(),
+                glsl_version: glsl_version.into(),
             },
             &tracer,
         ),

@@ -20,6 +20,15 @@ pub fn run(
         say!("{e}");
         return 1;
     }
+    if target == Target::Glsl
+        && !settings.glsl_version.has_compute()
+        && matches!(entry, Entry::Compute | Entry::Trace)
+    {
+        say!(
+            "error: GLSL ES 3.00 has no compute shaders: `--glsl-version 300es` is for `--entry fragment` or `--entry library`\nhelp: `--glsl-version 310es` (OpenGL ES 3.1) has them"
+        );
+        return 1;
+    }
     let Some((name, _, mut scene)) = load_scene(file) else {
         return 1;
     };
@@ -62,6 +71,30 @@ pub fn run(
         ));
     }
     code
+}
+
+/// `--glsl-version`.
+#[derive(Clone, Copy, clap::ValueEnum)]
+pub enum GlslVersionArg {
+    /// Desktop GLSL 4.50 core.
+    #[value(name = "450")]
+    Core450,
+    /// GLSL ES 3.10.
+    #[value(name = "310es")]
+    Es310,
+    /// GLSL ES 3.00.
+    #[value(name = "300es")]
+    Es300,
+}
+
+impl From<GlslVersionArg> for emit::GlslVersion {
+    fn from(v: GlslVersionArg) -> Self {
+        match v {
+            GlslVersionArg::Core450 => emit::GlslVersion::Core450,
+            GlslVersionArg::Es310 => emit::GlslVersion::Es310,
+            GlslVersionArg::Es300 => emit::GlslVersion::Es300,
+        }
+    }
 }
 
 /// The file extensions each target's output may have (an extension-less path, a device or a

@@ -189,3 +189,37 @@ fn version_completions_and_man_page() {
     );
     let _ = std::fs::remove_dir_all(dir);
 }
+
+/// `--glsl-version 300es` writes GLSL ES 3.00 for the fragment entry and refuses the compute
+/// entry (ES 3.00 has no compute shaders), saying which version has them.
+#[test]
+fn glsl_es_versions() {
+    let scene = root().join("examples/gem.sdf");
+    let scene = scene.to_str().unwrap();
+    let o = sdfc(&[
+        "emit",
+        scene,
+        "--target",
+        "glsl",
+        "--glsl-version",
+        "300es",
+        "--entry",
+        "fragment",
+    ]);
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert!(o.stdout.starts_with(b"#version 300 es"));
+    let o = sdfc(&["emit", scene, "--target", "glsl", "--glsl-version", "300es"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(
+        err.starts_with("error: GLSL ES 3.00 has no compute shaders") && err.contains("310es"),
+        "{err}"
+    );
+    let o = sdfc(&["emit", scene, "--target", "glsl", "--glsl-version", "310es"]);
+    assert!(o.stdout.starts_with(b"#version 310 es"));
+}
