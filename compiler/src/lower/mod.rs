@@ -13,6 +13,7 @@ mod entry;
 mod handoff;
 mod hybrid;
 pub mod march;
+mod math;
 pub mod ops;
 pub mod prims;
 mod probes;
