@@ -194,7 +194,8 @@ fn only_what_the_scene_requires() {
     assert!(text(&steps, Target::Wgsl, Entry::Compute).contains(">= 77u"));
 }
 
-/// Shadows, occlusion, fog, mirrors and transparent solids, and patterns each add their own
+/// Shadows, occlusion, fog, mirrors and transparent solids, patterns and a material blend each
+/// add their own
 /// functions and nothing else (no function of the plain scene goes); a scene without them has none of them (issue 17: each feature
 /// emitted only when used).
 #[test]
@@ -221,7 +222,7 @@ fn each_shading_feature_adds_only_its_function() {
     }
     let light = "light { direction (0, 1, 0) }";
     let material = "material m { color #fff }";
-    let cases: [(&str, &str, &[&str]); 8] = [
+    let cases: [(&str, &str, &[&str]); 9] = [
         (
             light,
             "light { direction (0, 1, 0)  shadow hard }",
@@ -261,6 +262,13 @@ fn each_shading_feature_adds_only_its_function() {
             material,
             "material m { color marble(#fff, #000) }",
             &["map_texture", "lattice_hash", "value_noise"],
+        ),
+        // (A smooth union also brings its blend function and, its field not being a distance
+        // everywhere, the tracer's `map_loose`.)
+        (
+            "union {",
+            "smooth_union(0.2) {",
+            &["op_smooth_union", "map_loose", "map_blend"],
         ),
     ];
     for (from, to, expected) in cases {

@@ -1,7 +1,8 @@
 //! The CPU reference evaluator: the scene's field and material at a point, in f64. It is the
 //! ground truth the GPU output is checked against.
 
-use crate::catalog::Sample;
+use crate::blend::Blend;
+use crate::catalog::{Ctx, MatRule, Sample};
 use crate::scene::{NodeId, NodeKind, Scene};
 use glam::DVec3;
 
@@ -46,6 +47,42 @@ pub fn node_seen<F: FnMut(NodeId, DVec3)>(
     Sample { d, mat }
 }
 
+/// A tag the walk carries up the graph, picked at each operator by its material rule.
+pub trait Tag: Copy {
+    /// The tag of an operator's result from its children's raw fields and tags.
+    fn pick(rule: MatRule, ctx: &Ctx, children: &[(f64, Option<Self>)]) -> Option<Self>;
+}
+
+impl Tag for u32 {
+    fn pick(rule: MatRule, ctx: &Ctx, children: &[(f64, Option<u32>)]) -> Option<u32> {
+        rule.pick(ctx, children)
+    }
+}
+
+impl Tag for (u32, DVec3) {
+    fn pick(rule: MatRule, ctx: &Ctx, children: &[(f64, Option<Self>)]) -> Option<Self> {
+        rule.pick(ctx, children)
+    }
+}
+
+impl Tag for Blend {
+    fn pick(rule: MatRule, ctx: &Ctx, children: &[(f64, Option<Blend>)]) -> Option<Blend> {
+        crate::blend::pick(rule, ctx, children)
+    }
+}
+
+/// The materials blended at `p` by the smooth operators and `mix` (`crate::blend`); one
+/// material where none blends.
+pub fn blend(scene: &Scene, p: DVec3) -> Blend {
+    let tag = |n: NodeId, _: DVec3, inner: Option<Blend>| match scene.nodes[n].material {
+        None => inner,
+        Some(m) => Some(inner.map_or(Blend::plain(m + 1), |b| b.under(m + 1))),
+    };
+    node_with(scene, scene.root, p, &mut |_, _| {}, &tag, true)
+        .1
+        .unwrap_or(Blend::plain(0))
+}
+
 /// The material id at `p` (0 the default, i + 1 the i-th declared) and the point in the own
 /// coordinates of the node that gave it (where a material's pattern is evaluated, so that it
 /// follows the shape's transforms); `p` itself for the default material.
@@ -79,7 +116,7 @@ pub fn loose(scene: &Scene, p: DVec3) -> bool {
 /// the material with the point where it was given. With `tags`, the children a union's
 /// bounding-volume tree skipped are evaluated after all, so that the tag is picked from every
 /// child as without the tree. Returns the raw field and the tag.
-fn node_with<F: FnMut(NodeId, DVec3), T: Copy>(
+fn node_with<F: FnMut(NodeId, DVec3), T: Tag>(
     scene: &Scene,
     id: NodeId,
     p: DVec3,
@@ -116,7 +153,7 @@ fn node_with<F: FnMut(NodeId, DVec3), T: Copy>(
                 .into_iter()
                 .map(|s| s.unwrap_or((d, None)))
                 .collect();
-            (d, op.materials.pick(ctx, &nearest))
+            (d, T::pick(op.materials, ctx, &nearest))
         }
     };
     (d, tag(id, p, inner))

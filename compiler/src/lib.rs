@@ -1,6 +1,7 @@
 //! sdfc's compiler: the scene language's syntax, checker, catalog, Lipschitz bounds and CPU
 //! reference evaluator (and, in later stages, lowering to naga IR).
 
+pub mod blend;
 pub mod catalog;
 pub mod check;
 pub mod color;

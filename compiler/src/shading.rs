@@ -70,8 +70,18 @@ pub fn occlusion(scene: &Scene, o: &Occlusion, p: DVec3, n: DVec3) -> f64 {
 /// Lambert (Munini §2.3) scaled by the occlusion, Blinn–Phong highlights, each shadowing
 /// light's terms scaled by [`shadow`] (`h`: the hit threshold there).
 pub fn shade(scene: &Scene, p: DVec3, n: DVec3, rd: DVec3, material: u32, h: f64) -> DVec3 {
-    let specular = material_of(scene, material).map_or(0.0, |m| m.specular);
-    let base = albedo(scene, material, p, n);
+    let spec_of = |m: u32| material_of(scene, m).map_or(0.0, |m| m.specular);
+    let (base, specular) = if crate::blend::has_blends(scene) {
+        // Across a smooth operator's seam, two materials by its weight (`crate::blend`).
+        let bl = eval::blend(scene, p);
+        let (a, b) = (albedo(scene, bl.a, p, n), albedo(scene, bl.b, p, n));
+        (
+            a * (1.0 - bl.t) + b * bl.t,
+            spec_of(bl.a) * (1.0 - bl.t) + spec_of(bl.b) * bl.t,
+        )
+    } else {
+        (albedo(scene, material, p, n), spec_of(material))
+    };
     let ao = scene.occlusion.map_or(1.0, |o| occlusion(scene, &o, p, n));
     let mut color = base * AMBIENT * ao;
     for light in &scene.lights {

@@ -266,16 +266,25 @@ pub enum MatRule {
     /// The first child, unless a later one's negated field is larger (subtraction: cut faces
     /// take the cutter's material).
     Cut,
-    /// The first child below weight 0.5, else the second (`mix`; the weight is argument 0).
+    /// The first child below weight 0.5, else the second (`mix`; the weight is argument 0);
+    /// shading blends the two by the weight.
     Weighted,
     /// The only child's.
     Pass,
+    /// As `Nearest`; shading blends the children's materials over the smooth minimum's radius
+    /// (argument 0) by its mix factor (`crate::blend`).
+    SmoothNearest,
+    /// As `Farthest`, blended over the smooth maximum's radius.
+    SmoothFarthest,
+    /// As `Cut`, blended over the smooth maximum's radius.
+    SmoothCut,
 }
 
 impl MatRule {
     /// The material (or any tag) of an operator's result from its children's raw fields and
     /// tags, in child order.
     pub fn pick<T: Copy>(self, ctx: &Ctx, children: &[(f64, Option<T>)]) -> Option<T> {
+        let rule = self.sharp();
         let norm = |i: usize| children[i].0 / ctx.child_lambda[i];
         let fold = |better: &dyn Fn(f64, f64) -> bool, sign: f64| {
             let (mut d, mut m) = (norm(0), children[0].1);
@@ -287,13 +296,29 @@ impl MatRule {
             }
             m
         };
-        match self {
+        match rule {
             MatRule::Pass => children[0].1,
             MatRule::Weighted => children[usize::from(ctx.num(0) >= 0.5)].1,
             MatRule::Nearest => fold(&|a, b| a < b, 1.0),
             MatRule::Farthest => fold(&|a, b| a > b, 1.0),
             MatRule::Cut => fold(&|a, b| a > b, -1.0),
+            _ => unreachable!("sharp rules only"),
         }
+    }
+
+    /// The rule that picks one material (the smooth rules' sharp ones).
+    pub fn sharp(self) -> MatRule {
+        match self {
+            MatRule::SmoothNearest => MatRule::Nearest,
+            MatRule::SmoothFarthest => MatRule::Farthest,
+            MatRule::SmoothCut => MatRule::Cut,
+            r => r,
+        }
+    }
+
+    /// Whether shading blends the children's materials.
+    pub fn blends(self) -> bool {
+        self.sharp() != self || self == MatRule::Weighted
     }
 }
 

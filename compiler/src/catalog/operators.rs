@@ -171,12 +171,12 @@ pub static OPERATORS: &[Operator] = &[
     },
     Operator {
         name: "smooth_union",
-        materials: MatRule::Nearest,
+        materials: MatRule::SmoothNearest,
         unit_gradient: SHORTENS,
         keeps_exact: SHORTENS,
         lower: ir::smooth_union,
-        doc: "Union blended over `radius` by IQ's polynomial smooth minimum (λ = 1); the nearer \
-              shape's material.",
+        doc: "Union blended over `radius` by IQ's polynomial smooth minimum (λ = 1); the \
+              materials blend across the seam by its mix factor.",
         params: &[req("radius", Ty::Length)],
         arity: Arity::AtLeast(1),
         lipschitz: ONE,
@@ -186,7 +186,7 @@ pub static OPERATORS: &[Operator] = &[
     },
     Operator {
         name: "smooth_intersect",
-        materials: MatRule::Farthest,
+        materials: MatRule::SmoothFarthest,
         unit_gradient: SHORTENS,
         keeps_exact: SHORTENS,
         lower: ir::smooth_intersect,
@@ -200,7 +200,7 @@ pub static OPERATORS: &[Operator] = &[
     },
     Operator {
         name: "smooth_subtract",
-        materials: MatRule::Cut,
+        materials: MatRule::SmoothCut,
         unit_gradient: SHORTENS,
         keeps_exact: SHORTENS,
         lower: ir::smooth_subtract,
@@ -219,7 +219,7 @@ pub static OPERATORS: &[Operator] = &[
         keeps_exact: SHORTENS,
         lower: ir::mix,
         doc: "Metamorphosis (Liktor Fig. 9): (1 − `weight`)·a + `weight`·b of the raw fields, \
-              λ = (1 − w)·λa + w·λb; the heavier shape's material (the second at w = 0.5).",
+              λ = (1 − w)·λa + w·λb; the materials blend by the weight too.",
         params: &[req("weight", Ty::Fraction)],
         arity: Arity::Exactly(2),
         lipschitz: |c| (1.0 - c.num(0)) * c.child_lambda[0] + c.num(0) * c.child_lambda[1],

@@ -96,6 +96,7 @@ pub fn lower(scene: &Scene, entry: Entry, options: &tracer::Options) -> naga::Mo
             p,
             &tags::Tagging {
                 zero: &|b| b.u(0),
+                blends: false,
                 tag: &|b, id, _, inner| {
                     if scene.breaks_unit_gradient(id) {
                         Some(b.u(1))
@@ -138,11 +139,29 @@ pub fn lower(scene: &Scene, entry: Entry, options: &tracer::Options) -> naga::Mo
         let f = b.finish();
         mb.add_helper("map_texture", f)
     });
+    // Where a smooth operator or `mix` blends materials: `map_blend(p)`, vec3(first id, second
+    // id, weight of the second) (`crate::blend`, `eval::blend`).
+    let blend = crate::blend::has_blends(scene).then(|| {
+        let v3 = mb.vec3();
+        let mut b = FnBuilder::new(&mut mb, "map_blend", &[("p", v3)], Some(v3));
+        let p = b.arg(0);
+        let (_, bl) = Walk {
+            scene,
+            named: &named,
+            root_fn: None,
+            trees,
+        }
+        .with_blend(&mut b, scene.root, p);
+        let bl = bl.unwrap_or_else(|| b.splat3(0.0));
+        b.ret(Some(bl));
+        let f = b.finish();
+        mb.add_helper("map_blend", f)
+    });
     tracer::add(
         &mut mb,
         scene,
         map,
-        [material, texture],
+        [material, texture, blend],
         loose,
         entry,
         options,

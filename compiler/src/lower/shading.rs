@@ -6,7 +6,7 @@ use super::builder::{Ex, FnBuilder, ModuleBuilder};
 use super::probes::{add_occlusion, add_shadow};
 use crate::scene::{LightKind, Scene, Shadow};
 use crate::shading::{AMBIENT, DEFAULT_COLOR, SHININESS, has_shadows};
-use naga::{Function, Handle, MathFunction as M};
+use naga::{Function, Handle, MathFunction as M, ScalarKind};
 
 /// `normal(p, h)`: the field's gradient from four samples at the corners of a tetrahedron
 /// around `p`, each at distance `h` (see [`crate::eval::TETRAHEDRON`]), normalised: four
@@ -55,7 +55,11 @@ pub(super) fn add_normal(mb: &mut ModuleBuilder, map: Handle<Function>) -> Handl
 pub(super) fn add_shade(
     mb: &mut ModuleBuilder,
     scene: &Scene,
-    (map, texture): (Handle<Function>, Option<Handle<Function>>),
+    (map, texture, blend): (
+        Handle<Function>,
+        Option<Handle<Function>>,
+        Option<Handle<Function>>,
+    ),
     fixed_offset: Option<f64>,
 ) -> Handle<Function> {
     let textures = texture.map(|t| super::texture::Textures::new(mb, scene, t));
@@ -71,30 +75,30 @@ pub(super) fn add_shade(
     let mut b = FnBuilder::new(mb, "shade", &args, Some(v3));
     let (p, n, rd, mat) = (b.arg(0), b.arg(1), b.arg(2), b.arg(3));
     // Scene colours are sRGB; lighting is linear (the conversion folds at compile time).
-    let mut base = b.vec3_lit(crate::color::linear(DEFAULT_COLOR));
-    let mut spec = None;
     // Patterned materials' colours at this point (procedural textures, Liktor §4).
     let patterned = match &textures {
         Some(t) => t.colors(&mut b, scene, p, n),
         None => Vec::new(),
     };
-    for (i, m) in scene.materials.iter().enumerate() {
-        let id = b.u(i as u32 + 1);
-        let is = b.bin(naga::BinaryOperator::Equal, mat, id);
-        let c = match patterned.iter().find(|(k, _)| *k == i) {
-            Some(&(_, c)) => c,
-            None => b.vec3_lit(crate::color::linear(m.color)),
-        };
-        base = b.select(is, c, base);
-        if m.specular > 0.0 || spec.is_some() {
-            let prev = match spec {
-                Some(s) => s,
-                None => b.f(0.0),
+    let (base, spec) = match blend {
+        None => material_props(&mut b, scene, mat, &patterned),
+        Some(f) => {
+            // Across a smooth operator's seam, two materials by its weight (`crate::blend`).
+            super::count::count(&mut b, 1);
+            let bl = b.call(f, vec![p]);
+            let [x, y, t] = b.xyz(bl);
+            let (ia, ib) = (b.cast(x, ScalarKind::Uint), b.cast(y, ScalarKind::Uint));
+            let (ca, sa) = material_props(&mut b, scene, ia, &patterned);
+            let (cb, sb) = material_props(&mut b, scene, ib, &patterned);
+            let t3 = b.splat(t, naga::VectorSize::Tri);
+            let base = b.math(M::Mix, &[ca, cb, t3]);
+            let spec = match (sa, sb) {
+                (Some(sa), Some(sb)) => Some(b.math(M::Mix, &[sa, sb, t])),
+                _ => None,
             };
-            let s = b.f(m.specular);
-            spec = Some(b.select(is, s, prev));
+            (base, spec)
         }
-    }
+    };
     // Occlusion darkens the light that reaches the surface from all around, and the diffuse.
     let lit_base = match occlusion {
         Some(f) => {
@@ -148,6 +152,36 @@ pub(super) fn add_shade(
     b.ret(Some(color));
     let f = b.finish();
     mb.add_function(f)
+}
+
+/// The linear base colour of material `id` (patterned ones from `patterned`) and its specular
+/// strength, if some material is specular: select chains over the declared materials.
+fn material_props(
+    b: &mut FnBuilder,
+    scene: &Scene,
+    id: Ex,
+    patterned: &[(usize, Ex)],
+) -> (Ex, Option<Ex>) {
+    let mut base = b.vec3_lit(crate::color::linear(DEFAULT_COLOR));
+    let mut spec = None;
+    for (i, m) in scene.materials.iter().enumerate() {
+        let k = b.u(i as u32 + 1);
+        let is = b.bin(naga::BinaryOperator::Equal, id, k);
+        let c = match patterned.iter().find(|(j, _)| *j == i) {
+            Some(&(_, c)) => c,
+            None => b.vec3_lit(crate::color::linear(m.color)),
+        };
+        base = b.select(is, c, base);
+        if m.specular > 0.0 || spec.is_some() {
+            let prev = match spec {
+                Some(s) => s,
+                None => b.f(0.0),
+            };
+            let s = b.f(m.specular);
+            spec = Some(b.select(is, s, prev));
+        }
+    }
+    (base, spec)
 }
 
 /// `shade(p, n, rd, material[, h])`: `h` only where the scene has shadows (`add_shade`).

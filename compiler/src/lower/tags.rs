@@ -21,6 +21,8 @@ pub(super) struct Tagging<'a> {
     pub tag: &'a TagFn<'a>,
     /// An absent tag's value.
     pub zero: &'a Zero<'a>,
+    /// Whether blending operators blend the tags (`map_blend`) rather than pick one.
+    pub blends: bool,
 }
 
 impl Walk<'_> {
@@ -33,6 +35,7 @@ impl Walk<'_> {
             p,
             &Tagging {
                 zero: &|b| b.u(0),
+                blends: false,
                 tag: &|b, id, _, inner| match (scene.nodes[id].material, inner) {
                     (None, m) => m,
                     (Some(k), None) => Some(b.u(k + 1)),
@@ -62,6 +65,7 @@ impl Walk<'_> {
                     let z = b.f(0.0);
                     b.compose(v4, vec![z, z, z, z])
                 },
+                blends: false,
                 tag: &|b, id, q, inner| {
                     if scene.nodes[id].material.is_none() {
                         return inner;
@@ -77,6 +81,45 @@ impl Walk<'_> {
                             let zero = b.f(0.0);
                             let has = b.gt(w, zero);
                             b.select(has, inner, own)
+                        }
+                    })
+                },
+            },
+        )
+    }
+
+    /// Field and `vec3(first id, second id, weight of the second)` of a node: the materials a
+    /// blending operator mixes (`crate::blend`, `eval::blend`); `vec3(0)` where none was given.
+    pub(super) fn with_blend(&self, b: &mut FnBuilder, id: NodeId, p: Ex) -> (Ex, Option<Ex>) {
+        let scene = self.scene;
+        self.with_tag(
+            b,
+            id,
+            p,
+            &Tagging {
+                zero: &|b| b.splat3(0.0),
+                blends: true,
+                tag: &|b, id, _, inner| {
+                    let Some(m) = scene.nodes[id].material else {
+                        return inner;
+                    };
+                    let own = b.f(m as f64 + 1.0);
+                    Some(match inner {
+                        None => {
+                            let zero = b.f(0.0);
+                            let v3 = b.m.vec3();
+                            b.compose(v3, vec![own, own, zero])
+                        }
+                        // Parts without a material of their own take this one (`Blend::under`).
+                        Some(v) => {
+                            let [x, y, t] = b.xyz(v);
+                            let zero = b.f(0.0);
+                            let xe = b.bin(naga::BinaryOperator::Equal, x, zero);
+                            let ye = b.bin(naga::BinaryOperator::Equal, y, zero);
+                            let x = b.select(xe, own, x);
+                            let y = b.select(ye, own, y);
+                            let v3 = b.m.vec3();
+                            b.compose(v3, vec![x, y, t])
                         }
                     })
                 },
@@ -125,7 +168,12 @@ impl Walk<'_> {
                     .into_iter()
                     .map(|s| s.expect("every child lowered"))
                     .collect();
-                (d, pick_material(b, op.materials, ctx, &seen, tag.zero))
+                let picked = if tag.blends && op.materials.blends() {
+                    pick_blend(b, op.materials, ctx, &seen)
+                } else {
+                    pick_material(b, op.materials, ctx, &seen, tag.zero)
+                };
+                (d, picked)
             }
             _ => (self.distance(b, id, p), None),
         };
@@ -145,6 +193,7 @@ fn pick_material(
         return None;
     }
     let mat = |b: &mut FnBuilder, i: usize| seen[i].1.unwrap_or_else(|| zero(b));
+    let rule = rule.sharp();
     match rule {
         MatRule::Pass => seen[0].1,
         MatRule::Weighted => Some(mat(b, usize::from(ctx.num(0) >= 0.5))),
@@ -165,5 +214,104 @@ fn pick_material(
             }
             Some(m)
         }
+        _ => unreachable!("sharp rules only"),
     }
+}
+
+/// The blend of a blending operator's children in IR, as `crate::blend::pick` computes it.
+fn pick_blend(
+    b: &mut FnBuilder,
+    rule: MatRule,
+    ctx: &crate::catalog::Ctx,
+    seen: &[(Ex, Option<Ex>)],
+) -> Option<Ex> {
+    if seen.iter().all(|(_, m)| m.is_none()) {
+        return None;
+    }
+    // The dominant material of a blend: the first up to weight ½.
+    let dominant = |b: &mut FnBuilder, v: Ex| {
+        let [x, y, t] = b.xyz(v);
+        let half = b.f(0.5);
+        let first = b.bin(naga::BinaryOperator::LessEqual, t, half);
+        b.select(first, x, y)
+    };
+    let tag = |b: &mut FnBuilder, i: usize| match seen[i].1 {
+        None => b.f(0.0),
+        Some(v) => dominant(b, v),
+    };
+    let v3 = b.m.vec3();
+    if rule == MatRule::Weighted {
+        let (a, c) = (tag(b, 0), tag(b, 1));
+        let w = b.f(ctx.num(0));
+        return Some(b.compose(v3, vec![a, c, w]));
+    }
+    let k = ctx.num(0);
+    let mut d = ops::scale_by(b, seen[0].0, 1.0 / ctx.child_lambda[0]);
+    let mut blend = seen[0].1.unwrap_or_else(|| b.splat3(0.0));
+    for (i, &(di, _)) in seen.iter().enumerate().skip(1) {
+        let di = ops::scale_by(b, di, 1.0 / ctx.child_lambda[i]);
+        // smax(a, b) = −smin(−a, −b); the cut is smax(d, −dᵢ).
+        let (x, y) = match rule {
+            MatRule::SmoothNearest => (d, di),
+            MatRule::SmoothFarthest => (b.neg(d), b.neg(di)),
+            _ => (b.neg(d), di),
+        };
+        let t = smin_weight(b, x, y, k);
+        let first = dominant(b, blend);
+        let second = tag(b, i);
+        let mixed = b.compose(v3, vec![first, second, t]);
+        // Outside the seam one side is whole, blend included (`crate::blend::pick`).
+        let whole = seen[i].1.unwrap_or_else(|| b.splat3(0.0));
+        let (zero, one) = (b.f(0.0), b.f(1.0));
+        let none = b.bin(naga::BinaryOperator::Equal, t, zero);
+        let all = b.bin(naga::BinaryOperator::Equal, t, one);
+        let mixed = b.select(all, whole, mixed);
+        blend = b.select(none, blend, mixed);
+        let m = smin(b, x, y, k);
+        d = match rule {
+            MatRule::SmoothNearest => m,
+            _ => b.neg(m),
+        };
+    }
+    Some(blend)
+}
+
+/// IQ's quadratic smooth minimum of radius `k` (`catalog::operators::smin`).
+fn smin(b: &mut FnBuilder, x: Ex, y: Ex, k: f64) -> Ex {
+    let low = b.min(x, y);
+    if k <= 0.0 {
+        return low;
+    }
+    let h = smin_h(b, x, y, k);
+    let hh = b.mul(h, h);
+    let kq = b.f(k * 0.25);
+    let dent = b.mul(hh, kq);
+    b.sub(low, dent)
+}
+
+/// max(k − |x − y|, 0)/k.
+fn smin_h(b: &mut FnBuilder, x: Ex, y: Ex, k: f64) -> Ex {
+    let diff = b.sub(x, y);
+    let diff = b.abs(diff);
+    let kk = b.f(k);
+    let h = b.sub(kk, diff);
+    let zero = b.f(0.0);
+    let h = b.max(h, zero);
+    b.div(h, kk)
+}
+
+/// The weight of `y` in the smooth minimum of `x` and `y` (`crate::blend::smin_weight`).
+fn smin_weight(b: &mut FnBuilder, x: Ex, y: Ex, k: f64) -> Ex {
+    let first = b.bin(naga::BinaryOperator::LessEqual, x, y);
+    if k <= 0.0 {
+        let (zero, one) = (b.f(0.0), b.f(1.0));
+        return b.select(first, zero, one);
+    }
+    let h = smin_h(b, x, y, k);
+    let half = b.f(0.5);
+    let hh = b.mul(h, h);
+    let m = b.mul(half, hh);
+    let one = b.f(1.0);
+    let rest = b.sub(one, m);
+    b.select(first, m, rest)
 }

@@ -138,7 +138,7 @@ pub fn add(
     mb: &mut ModuleBuilder,
     scene: &Scene,
     map: Handle<Function>,
-    [material, texture]: [Option<Handle<Function>>; 2],
+    [material, texture, blend]: [Option<Handle<Function>>; 3],
     loose: Option<Handle<Function>>,
     entry: Entry,
     options: &Options,
@@ -177,7 +177,7 @@ pub fn add(
     let fixed = options
         .fixed_offset
         .then(|| 2.0 * scene.camera.epsilon_floor());
-    let shade = shading::add_shade(mb, scene, (map, texture), fixed);
+    let shade = shading::add_shade(mb, scene, (map, texture, blend), fixed);
     let fog = shading::add_fog(mb, scene);
     let path = match material {
         Some(material) if crate::shading::has_paths(scene) => {
