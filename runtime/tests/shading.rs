@@ -251,8 +251,8 @@ fn anti_aliasing_samples_average_the_cpu_reference_at_their_points() {
 /// Refraction (Keinert §3.3): a glass ball and a diamond-like octahedron in front of a checker
 /// floor, against the CPU reference pixel by pixel; their rays really pass through (the
 /// picture differs from the same solids opaque), total internal reflection happens inside the
-/// octahedron (counted by the reference), and the reference's colours are finite. (The GPU's
-/// are bytes: a NaN there would show only as a pixel that disagrees.)
+/// octahedron (counted by the reference), and the reference's colours are finite (the GPU's
+/// raw colours: `runtime/tests/nan.rs`).
 #[test]
 fn refraction_through_glass_and_a_gem_matches_the_cpu_reference() {
     let gpu = gpu();
@@ -396,8 +396,8 @@ fn shadows_have_no_acne_and_no_leaks_with_the_dynamic_offset() {
 
 /// Every shading feature at once (soft shadows, occlusion, fog, a mirror, a glass ball) on the
 /// extremes suite's scene scaled from 1e-4 to 1e4: the CPU reference's colours are finite and
-/// the GPU's agree with them on 97% of the pixels at least (a NaN or Inf reaching the image
-/// would show as a pixel that disagrees; the rest are left to f32 against f64).
+/// the GPU's agree with them on 97% of the pixels at least (the rest are left to f32 against
+/// f64; the GPU's raw colours are checked finite in `runtime/tests/nan.rs`).
 #[test]
 fn every_feature_stays_finite_at_every_scale() {
     let gpu = gpu();
