@@ -110,9 +110,37 @@ impl Diagnostic {
     }
 }
 
+/// Appends one rendered diagnostic to `out`, coloured or plain. (Writing to memory cannot
+/// fail; a failure would only drop a message.)
+fn emit(
+    out: &mut String,
+    config: &term::Config,
+    file: &SimpleFile<&str, &str>,
+    diagnostic: &cs::Diagnostic<()>,
+    color: bool,
+) {
+    if color {
+        let mut buffer = term::termcolor::Buffer::ansi();
+        let _ = term::emit_to_write_style(&mut buffer, config, file, diagnostic);
+        out.push_str(&String::from_utf8_lossy(buffer.as_slice()));
+    } else {
+        let _ = term::emit_to_string(out, config, file, diagnostic);
+    }
+}
+
 /// Renders diagnostics as the user sees them: `error: ...`, `--> file:line:col`, the source line
 /// and a caret under the span.
 pub fn render(diagnostics: &[Diagnostic], file_name: &str, source: &str) -> String {
+    render_styled(diagnostics, file_name, source, false)
+}
+
+/// [`render`], with ANSI colours (codespan's styles) if `color`.
+pub fn render_styled(
+    diagnostics: &[Diagnostic],
+    file_name: &str,
+    source: &str,
+    color: bool,
+) -> String {
     // Control characters are shown as `?` (same length, so spans still fit): echoed raw they
     // would act on the terminal.
     let shown: String = source
@@ -146,7 +174,7 @@ pub fn render(diagnostics: &[Diagnostic], file_name: &str, source: &str) -> Stri
                     .chain(d.notes.iter().map(|n| shorten(n)))
                     .collect(),
             );
-            let _ = term::emit_to_string(&mut out, &config, &file, &diagnostic);
+            emit(&mut out, &config, &file, &diagnostic, color);
             continue;
         }
         let mut labels =
@@ -163,8 +191,7 @@ pub fn render(diagnostics: &[Diagnostic], file_name: &str, source: &str) -> Stri
         .with_message(shorten(&d.message))
         .with_labels(labels)
         .with_notes(d.notes.iter().map(|n| shorten(n)).collect());
-        // Writing to a String cannot fail; a failure here would only drop a message.
-        let _ = term::emit_to_string(&mut out, &config, &file, &diagnostic);
+        emit(&mut out, &config, &file, &diagnostic, color);
     }
     if diagnostics.len() > MAX_SHOWN {
         let rest = &diagnostics[MAX_SHOWN..];

@@ -3,7 +3,7 @@
 pub use crate::tracer_args::TracerArgs;
 use clap::{Parser, Subcommand};
 use sdfc_compiler::check::{self, Checked};
-use sdfc_compiler::diag::{self, Diagnostic};
+use sdfc_compiler::diag::Diagnostic;
 use sdfc_compiler::emit::Target;
 use sdfc_compiler::lipschitz::{self, Effort};
 use sdfc_compiler::lower::Entry;
@@ -34,6 +34,12 @@ pub struct Cli {
     /// Print nothing on success (errors and warnings still go to standard error).
     #[arg(short, long, global = true)]
     quiet: bool,
+    /// Diagnostics as a report with the source and a caret, or one JSON object per line.
+    #[arg(long, value_enum, global = true, default_value = "human")]
+    message_format: crate::messages::Format,
+    /// Colour the report: on a terminal unless `NO_COLOR` is set, always, or never.
+    #[arg(long, value_enum, global = true, default_value = "auto")]
+    color: crate::messages::Color,
 }
 
 /// Whether `-q/--quiet` was given.
@@ -245,6 +251,7 @@ pub fn run() -> i32 {
         }
     };
     QUIET.store(cli.quiet, std::sync::atomic::Ordering::Relaxed);
+    crate::messages::configure(cli.message_format, cli.color);
     match cli.command {
         Command::Completions { shell, output } => {
             crate::shell::completions(shell, output.as_deref())
@@ -412,7 +419,7 @@ pub fn load_scene(path: &Path) -> Option<(String, String, sdfc_compiler::scene::
     if let Some(scene) = &scene {
         diagnostics.extend(lipschitz::verify_annotations(scene, Effort::Fast));
     }
-    say_raw!("{}", diag::render(&diagnostics, &name, &source));
+    say_raw!("{}", crate::messages::report(&diagnostics, &name, &source));
     scene.map(|s| (name, source, s))
 }
 
@@ -489,7 +496,7 @@ fn check_command(path: &Path, effort: Effort) -> i32 {
     if let Some(scene) = &scene {
         diagnostics.extend(lipschitz::verify_annotations(scene, effort));
     }
-    say_raw!("{}", diag::render(&diagnostics, &name, &source));
+    say_raw!("{}", crate::messages::report(&diagnostics, &name, &source));
     let Some(scene) = scene else { return 1 };
     let warnings = diagnostics
         .iter()

@@ -96,7 +96,7 @@ pub fn check_driver_size(
             "sdfc renders at most {MAX_DRIVER_CALLS} calls: on lavapipe a flat union of 2 048 shapes took 21 s to compile and 4 096 took 113 s, growing quadratically"
         ))
         .help("share repeated shapes with `let` or `repeat`, or pass `--allow-slow-compile` to wait; `sdfc emit` writes the shader for other engines");
-        say_raw!("{}", sdfc_compiler::diag::render(&[d], name, source));
+        say_raw!("{}", crate::messages::report(&[d], name, source));
         return Err(String::new());
     }
     Ok(calls)

@@ -223,3 +223,54 @@ fn glsl_es_versions() {
     let o = sdfc(&["emit", scene, "--target", "glsl", "--glsl-version", "310es"]);
     assert!(o.stdout.starts_with(b"#version 310 es"));
 }
+
+/// Diagnostics for editors and CI: `--message-format json` prints one JSON object per
+/// diagnostic (file, severity, message, byte range, line and column, label, other places,
+/// notes); the report is coloured with `--color always`, and plain when piped (the default).
+#[test]
+fn diagnostics_as_json_and_in_colour() {
+    let dir = scratch("json");
+    let file = dir.join("bad.sdf");
+    std::fs::write(
+        &file,
+        "sphere(1)\nmaterial m { color #zz }\nsphere(1) : n\n",
+    )
+    .unwrap();
+    let file = file.to_str().unwrap();
+    let o = sdfc(&["check", file, "--message-format", "json"]);
+    assert_eq!(o.status.code(), Some(1));
+    let lines: Vec<serde_json::Value> = String::from_utf8_lossy(&o.stderr)
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap_or_else(|e| panic!("{e}: {l}")))
+        .collect();
+    assert_eq!(lines.len(), 2, "{lines:?}");
+    let colour = &lines[0];
+    assert_eq!(colour["file"], file);
+    assert_eq!(colour["severity"], "error");
+    assert_eq!(colour["message"], "`#zz` is not a colour");
+    let span = &colour["span"];
+    assert_eq!(
+        (span["line"].as_u64(), span["column"].as_u64()),
+        (Some(2), Some(20))
+    );
+    assert_eq!(
+        (span["start"].as_u64(), span["end"].as_u64()),
+        (Some(29), Some(32))
+    );
+    assert!(
+        lines[1]["message"].as_str().unwrap().contains("`n`"),
+        "{}",
+        lines[1]
+    );
+    let plain = sdfc(&["check", file]);
+    assert!(
+        !plain.stderr.contains(&0x1b),
+        "escape codes in piped output"
+    );
+    let coloured = sdfc(&["check", file, "--color", "always"]);
+    assert!(
+        coloured.stderr.windows(2).any(|w| w == b"\x1b["),
+        "no colour"
+    );
+    let _ = std::fs::remove_dir_all(dir);
+}

@@ -1,0 +1,88 @@
+//! How diagnostics reach the user: codespan's report, coloured on a terminal (`--color`,
+//! honouring `NO_COLOR`), or one JSON object per diagnostic (`--message-format json`) for
+//! editors and CI.
+
+use sdfc_compiler::diag::{self, Diagnostic, Severity, Span};
+use std::io::IsTerminal;
+use std::sync::OnceLock;
+
+/// `--message-format`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum Format {
+    /// The report with the source line and a caret.
+    Human,
+    /// One JSON object per line and diagnostic.
+    Json,
+}
+
+/// `--color`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum Color {
+    /// Colour when standard error is a terminal and `NO_COLOR` is not set.
+    Auto,
+    /// Always colour.
+    Always,
+    /// Never colour.
+    Never,
+}
+
+static STYLE: OnceLock<(Format, bool)> = OnceLock::new();
+
+/// Chooses the format and whether to colour, once, from the flags and the environment.
+pub fn configure(format: Format, color: Color) {
+    let colored = match color {
+        Color::Always => true,
+        Color::Never => false,
+        Color::Auto => {
+            std::io::stderr().is_terminal()
+                && std::env::var_os("NO_COLOR").is_none_or(|v| v.is_empty())
+        }
+    };
+    let _ = STYLE.set((format, colored));
+}
+
+/// The diagnostics of `source` (named `name`) as the user asked for them.
+pub fn report(diagnostics: &[Diagnostic], name: &str, source: &str) -> String {
+    let (format, colored) = STYLE.get().copied().unwrap_or((Format::Human, false));
+    match format {
+        Format::Human => diag::render_styled(diagnostics, name, source, colored),
+        Format::Json => diagnostics
+            .iter()
+            .map(|d| json(d, name, source).to_string() + "\n")
+            .collect(),
+    }
+}
+
+/// Line and column (1-based; the column in characters) of byte `offset`.
+fn line_column(source: &str, offset: usize) -> (usize, usize) {
+    let offset = offset.min(source.len());
+    let before = source.get(..offset).unwrap_or(source);
+    let line = before.matches('\n').count() + 1;
+    let start = before.rfind('\n').map_or(0, |i| i + 1);
+    (line, before[start..].chars().count() + 1)
+}
+
+fn place(source: &str, span: Span) -> serde_json::Value {
+    let (line, column) = line_column(source, span.start);
+    let (end_line, end_column) = line_column(source, span.end);
+    serde_json::json!({
+        "start": span.start, "end": span.end,
+        "line": line, "column": column, "end_line": end_line, "end_column": end_column,
+    })
+}
+
+/// One diagnostic as JSON: file, severity, message, its span (bytes, line and column), the
+/// label under the caret, the other places with their labels, and the notes.
+fn json(d: &Diagnostic, name: &str, source: &str) -> serde_json::Value {
+    serde_json::json!({
+        "file": name,
+        "severity": match d.severity { Severity::Error => "error", Severity::Warning => "warning" },
+        "message": d.message,
+        "span": place(source, d.span),
+        "label": d.label,
+        "secondary": d.secondary.iter().map(|(s, l)| {
+            serde_json::json!({ "span": place(source, *s), "label": l })
+        }).collect::<Vec<_>>(),
+        "notes": d.notes,
+    })
+}
