@@ -1,13 +1,13 @@
 //! Command-line parsing and the subcommands' drivers.
 
+use crate::input::check_command;
+pub use crate::input::{exit_code, load_scene, print_out};
 pub use crate::tracer_args::TracerArgs;
 use clap::{Parser, Subcommand};
-use sdfc_compiler::check::{self, Checked};
-use sdfc_compiler::diag::Diagnostic;
 use sdfc_compiler::emit::Target;
-use sdfc_compiler::lipschitz::{self, Effort};
+use sdfc_compiler::lipschitz::Effort;
 use sdfc_compiler::lower::Entry;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 /// The version `--version` prints: the package's, and the commit it was built from when the
 /// build could ask git (`build.rs`).
@@ -384,124 +384,4 @@ impl From<EntryArg> for Entry {
             EntryArg::Trace => Entry::Trace,
         }
     }
-}
-
-/// The exit code of a command: 0, or 1 after printing its error (empty when the diagnostics
-/// were printed already).
-pub fn exit_code(result: Result<(), String>) -> i32 {
-    match result {
-        Ok(()) => 0,
-        Err(e) => {
-            // Every error says so first (messages from the GPU layers do not).
-            match e.as_str() {
-                "" => {}
-                e if e.starts_with("error") => say!("{e}"),
-                e => say!("error: {e}"),
-            }
-            1
-        }
-    }
-}
-
-/// Reads and checks a scene, printing diagnostics; `None` (after printing) when it has errors.
-pub fn load_scene(path: &Path) -> Option<(String, String, sdfc_compiler::scene::Scene)> {
-    let (name, source) = match read_source(path) {
-        Ok(x) => x,
-        Err(e) => {
-            say!("{e}");
-            return None;
-        }
-    };
-    let Checked {
-        scene,
-        mut diagnostics,
-    } = check::compile(&source);
-    if let Some(scene) = &scene {
-        diagnostics.extend(lipschitz::verify_annotations(scene, Effort::Fast));
-    }
-    say_raw!("{}", crate::messages::report(&diagnostics, &name, &source));
-    scene.map(|s| (name, source, s))
-}
-
-/// Reads a scene file or standard input; the error is a message for the user. At most the
-/// source limit and one byte more are read (`/dev/zero` is refused, not read until memory runs
-/// out), and a UTF-8 byte-order mark, which Windows editors write, is dropped.
-pub fn read_source(path: &Path) -> Result<(String, String), String> {
-    use std::io::Read;
-    let limit = sdfc_compiler::syntax::MAX_SOURCE_BYTES;
-    let (name, reader): (String, Box<dyn Read>) = if path == Path::new("-") {
-        ("<stdin>".into(), Box::new(std::io::stdin()))
-    } else {
-        let name = path.display().to_string();
-        let file =
-            std::fs::File::open(path).map_err(|e| format!("error: cannot read `{name}`: {e}"))?;
-        (name, Box::new(file))
-    };
-    let mut bytes = Vec::new();
-    reader
-        .take(limit as u64 + 1)
-        .read_to_end(&mut bytes)
-        .map_err(|e| format!("error: cannot read `{name}`: {e}"))?;
-    if bytes.len() > limit {
-        return Err(format!(
-            "error: `{name}` is larger than the source limit of {limit} bytes (4 MiB)"
-        ));
-    }
-    let text = String::from_utf8(bytes).map_err(|e| {
-        let at = e.utf8_error().valid_up_to();
-        let before = String::from_utf8_lossy(&e.as_bytes()[..at]);
-        let line = before.matches('\n').count() + 1;
-        let column = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
-        format!(
-            "error: cannot read `{name}`: it is not UTF-8 text (an invalid byte at {line}:{column}, offset {at})"
-        )
-    })?;
-    let text = match text.strip_prefix('\u{feff}') {
-        Some(rest) => rest.to_string(),
-        None => text,
-    };
-    Ok((name, text))
-}
-
-/// Writes command output to standard output: a closed pipe (`sdfc check x.sdf | head -1`) ends
-/// quietly, any other failure (a full device) is an error; `Err` holds the exit code.
-pub fn print_out(text: &str) -> Result<(), i32> {
-    use std::io::Write;
-    let mut stdout = std::io::stdout().lock();
-    match stdout
-        .write_all(text.as_bytes())
-        .and_then(|_| stdout.flush())
-    {
-        Ok(()) => Ok(()),
-        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Err(0),
-        Err(e) => {
-            say!("error: cannot write to standard output: {e}");
-            Err(1)
-        }
-    }
-}
-
-fn check_command(path: &Path, effort: Effort) -> i32 {
-    let (name, source) = match read_source(path) {
-        Ok(x) => x,
-        Err(e) => {
-            say!("{e}");
-            return 1;
-        }
-    };
-    let Checked {
-        scene,
-        mut diagnostics,
-    } = check::compile(&source);
-    if let Some(scene) = &scene {
-        diagnostics.extend(lipschitz::verify_annotations(scene, effort));
-    }
-    say_raw!("{}", crate::messages::report(&diagnostics, &name, &source));
-    let Some(scene) = scene else { return 1 };
-    let warnings = diagnostics
-        .iter()
-        .filter(|d| !Diagnostic::is_error(d))
-        .count();
-    let summary = sdfc_compiler::docs::summary(&name, &scene, warnings);
-    print_out(&format!("{summary}\n")).err().unwrap_or(0)
 }

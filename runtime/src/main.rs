@@ -20,6 +20,7 @@ macro_rules! say_raw {
 mod bench_cmd;
 mod cli;
 mod emit_cmd;
+mod input;
 mod messages;
 mod render_cmd;
 mod shell;
