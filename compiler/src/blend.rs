@@ -94,11 +94,14 @@ pub fn pick(rule: MatRule, ctx: &Ctx, children: &[(f64, Option<Blend>)]) -> Opti
             _ => (-d, di, smax(d, -di, k)),
         };
         let t = smin_weight(x, y, k);
-        // Outside the seam one side is whole, blend included; in it, two dominants.
-        blend = if t == 0.0 {
-            blend
-        } else if t == 1.0 {
-            child.1.unwrap_or(Blend::plain(0))
+        // Outside the seam (|x − y| ≥ k) one side is whole, blend included; in it, two
+        // dominants.
+        blend = if (x - y).abs() >= k {
+            if x <= y {
+                blend
+            } else {
+                child.1.unwrap_or(Blend::plain(0))
+            }
         } else {
             Blend {
                 a: blend.dominant(),

@@ -1,6 +1,7 @@
 //! How diagnostics reach the user: codespan's report, coloured on a terminal (`--color`,
 //! honouring `NO_COLOR`), or one JSON object per diagnostic (`--message-format json`) for
-//! editors and CI.
+//! editors and CI. (Only the scene's diagnostics: other errors — a file that cannot be read,
+//! a bad flag — stay `error: …` lines.)
 
 use sdfc_compiler::diag::{self, Diagnostic, Severity, Span};
 use std::io::IsTerminal;
@@ -55,14 +56,20 @@ pub fn report(diagnostics: &[Diagnostic], name: &str, source: &str) -> String {
 
 /// Line and column (1-based; the column in characters) of byte `offset`.
 fn line_column(source: &str, offset: usize) -> (usize, usize) {
-    let offset = offset.min(source.len());
-    let before = source.get(..offset).unwrap_or(source);
+    let mut offset = offset.min(source.len());
+    while !source.is_char_boundary(offset) {
+        offset -= 1;
+    }
+    let before = &source[..offset];
     let line = before.matches('\n').count() + 1;
     let start = before.rfind('\n').map_or(0, |i| i + 1);
     (line, before[start..].chars().count() + 1)
 }
 
 fn place(source: &str, span: Span) -> serde_json::Value {
+    // Clamped to the source, as the report clamps it.
+    let end = span.end.min(source.len());
+    let span = Span::new(span.start.min(end), end);
     let (line, column) = line_column(source, span.start);
     let (end_line, end_column) = line_column(source, span.end);
     serde_json::json!({

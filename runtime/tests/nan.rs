@@ -37,11 +37,7 @@ fn host(scene: &Scene, poison: bool) -> String {
     } else {
         "0u"
     };
-    let shade_h = if lib.contains("fn shade(")
-        && lib
-            .lines()
-            .any(|l| l.starts_with("fn shade(") && l.matches(':').count() > 4)
-    {
+    let shade_h = if sdfc_compiler::shading::has_shadows(scene) {
         ", h"
     } else {
         ""
@@ -95,6 +91,21 @@ fn host(scene: &Scene, poison: bool) -> String {
 /// (pixels whose colour is not finite, hit pixels) of `scene` through the host shader.
 fn run(gpu: &sdfc::gpu::Gpu, scene: &Scene, poison: bool) -> (usize, usize) {
     let text = host(scene, poison);
+    // This scene has all of them: none may be skipped for want of its function.
+    for f in [
+        "map_material",
+        "path",
+        "fog",
+        "map_blend",
+        "map_texture",
+        "shadow",
+        "occlusion",
+    ] {
+        assert!(
+            text.contains(&format!("fn {f}(")),
+            "the library has no `{f}`"
+        );
+    }
     let view = View::new(&scene.camera, 64, 40);
     let prepared = gpu
         .prepare(

@@ -266,7 +266,7 @@ pub enum MatRule {
     /// The first child, unless a later one's negated field is larger (subtraction: cut faces
     /// take the cutter's material).
     Cut,
-    /// The first child below weight 0.5, else the second (`mix`; the weight is argument 0);
+    /// The first child up to weight 0.5, else the second (`mix`; the weight is argument 0);
     /// shading blends the two by the weight.
     Weighted,
     /// The only child's.
@@ -298,7 +298,7 @@ impl MatRule {
         };
         match rule {
             MatRule::Pass => children[0].1,
-            MatRule::Weighted => children[usize::from(ctx.num(0) >= 0.5)].1,
+            MatRule::Weighted => children[usize::from(ctx.num(0) > 0.5)].1,
             MatRule::Nearest => fold(&|a, b| a < b, 1.0),
             MatRule::Farthest => fold(&|a, b| a > b, 1.0),
             MatRule::Cut => fold(&|a, b| a > b, -1.0),

@@ -118,7 +118,10 @@ fn blend_term(b: &mut FnBuilder) -> (Ex, Ex, Ex) {
     let kd = b.sub(k, diff);
     let zero = b.f(0.0);
     let kd = b.max(kd, zero);
-    let h = b.div(kd, k);
+    // (k = 0 is a sharp min: kd is 0 there, and 0/max(k, tiny) is 0, not NaN.)
+    let tiny = b.f(1e-30);
+    let kk = b.max(k, tiny);
+    let h = b.div(kd, kk);
     let hh = b.mul(h, h);
     let hhk = b.mul(hh, k);
     let quarter = b.f(0.25);

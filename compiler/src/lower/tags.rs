@@ -196,7 +196,7 @@ fn pick_material(
     let rule = rule.sharp();
     match rule {
         MatRule::Pass => seen[0].1,
-        MatRule::Weighted => Some(mat(b, usize::from(ctx.num(0) >= 0.5))),
+        MatRule::Weighted => Some(mat(b, usize::from(ctx.num(0) > 0.5))),
         MatRule::Nearest | MatRule::Farthest | MatRule::Cut => {
             let sign = if rule == MatRule::Cut { -1.0 } else { 1.0 };
             let mut d = ops::scale_by(b, seen[0].0, 1.0 / ctx.child_lambda[0]);
@@ -260,13 +260,16 @@ fn pick_blend(
         let first = dominant(b, blend);
         let second = tag(b, i);
         let mixed = b.compose(v3, vec![first, second, t]);
-        // Outside the seam one side is whole, blend included (`crate::blend::pick`).
+        // Outside the seam (|x − y| ≥ k) one side is whole, blend included
+        // (`crate::blend::pick`).
         let whole = seen[i].1.unwrap_or_else(|| b.splat3(0.0));
-        let (zero, one) = (b.f(0.0), b.f(1.0));
-        let none = b.bin(naga::BinaryOperator::Equal, t, zero);
-        let all = b.bin(naga::BinaryOperator::Equal, t, one);
-        let mixed = b.select(all, whole, mixed);
-        blend = b.select(none, blend, mixed);
+        let gap = b.sub(x, y);
+        let gap = b.abs(gap);
+        let kk = b.f(k);
+        let outside = b.ge(gap, kk);
+        let first_side = b.bin(naga::BinaryOperator::LessEqual, x, y);
+        let side = b.select(first_side, blend, whole);
+        blend = b.select(outside, side, mixed);
         let m = smin(b, x, y, k);
         d = match rule {
             MatRule::SmoothNearest => m,
