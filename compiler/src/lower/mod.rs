@@ -43,119 +43,58 @@ pub fn lower(scene: &Scene, entry: Entry, options: &tracer::Options) -> naga::Mo
     add_operator_helpers(&mut mb, scene, &reachable);
     let trees = options.bounding_volumes;
     let named = add_let_functions(&mut mb, scene, &reachable, trees);
-    let map = {
-        let v3 = mb.vec3();
-        let f32t = mb.f32();
-        let mut b = FnBuilder::new(&mut mb, "map", &[("p", v3)], Some(f32t));
-        let p = b.arg(0);
-        let d = Walk {
-            scene,
-            named: &named,
-            root_fn: None,
-            trees,
-        }
-        .distance(&mut b, scene.root, p);
-        let d = ops::scale_by(&mut b, d, 1.0 / scene.root_node().lambda);
-        b.ret(Some(d));
-        let f = b.finish();
-        mb.add_helper("map", f)
+    let walk = Walk {
+        scene,
+        named: &named,
+        root_fn: None,
+        trees,
     };
+    let f32t = mb.f32();
+    let map = point_function(&mut mb, "map", f32t, |b, p| {
+        let d = walk.distance(b, scene.root, p);
+        ops::scale_by(b, d, 1.0 / scene.root_node().lambda)
+    });
+    let u32t = mb.u32();
     let material = has_materials(scene, &reachable).then(|| {
-        let v3 = mb.vec3();
-        let u32t = mb.u32();
-        let mut b = FnBuilder::new(&mut mb, "map_material", &[("p", v3)], Some(u32t));
-        let p = b.arg(0);
-        let (_, m) = Walk {
-            scene,
-            named: &named,
-            root_fn: None,
-            trees,
-        }
-        .with_material(&mut b, scene.root, p);
-        let m = m.unwrap_or_else(|| b.u(0));
-        b.ret(Some(m));
-        let f = b.finish();
-        mb.add_helper("map_material", f)
+        point_function(&mut mb, "map_material", u32t, |b, p| {
+            let (_, m) = walk.with_material(b, scene.root, p);
+            m.unwrap_or_else(|| b.u(0))
+        })
     });
     // Where the scene's f/λ is not a distance to first order everywhere: `map_loose(p)`, 1 where
     // the nearest part is loose (`eval::loose`), for the tracer's hit confirmation.
     let loose = (!scene.root_node().unit_gradient).then(|| {
-        let v3 = mb.vec3();
-        let u32t = mb.u32();
-        let mut b = FnBuilder::new(&mut mb, "map_loose", &[("p", v3)], Some(u32t));
-        let p = b.arg(0);
-        let (_, l) = Walk {
-            scene,
-            named: &named,
-            root_fn: None,
-            trees,
-        }
-        .with_tag(
-            &mut b,
-            scene.root,
-            p,
-            &tags::Tagging {
-                zero: &|b| b.u(0),
-                blends: false,
-                tag: &|b, id, _, inner| {
-                    if scene.breaks_unit_gradient(id) {
-                        Some(b.u(1))
-                    } else {
-                        inner
-                    }
-                },
-            },
-        );
-        let l = l.unwrap_or_else(|| b.u(0));
-        b.ret(Some(l));
-        let f = b.finish();
-        mb.add_helper("map_loose", f)
+        point_function(&mut mb, "map_loose", u32t, |b, p| {
+            let (_, l) = walk.with_loose(b, scene.root, p);
+            l.unwrap_or_else(|| b.u(0))
+        })
     });
+    let v3 = mb.vec3();
     // Where a material has a pattern: `map_texture(p)`, the point in the own coordinates of
     // the shape whose material the surface takes (`eval::surface`).
     let texture = (!used_patterns(scene).is_empty()).then(|| {
-        let v3 = mb.vec3();
-        let mut b = FnBuilder::new(&mut mb, "map_texture", &[("p", v3)], Some(v3));
-        let p = b.arg(0);
-        let (_, q) = Walk {
-            scene,
-            named: &named,
-            root_fn: None,
-            trees,
-        }
-        .with_texture(&mut b, scene.root, p);
-        // The point itself where no material was given (as `eval::surface`).
-        let q = match q {
-            Some(q) => {
-                let xyz = b.swizzle(q, &[0, 1, 2]);
-                let w = b.at(q, 3);
-                let zero = b.f(0.0);
-                let given = b.gt(w, zero);
-                b.select(given, xyz, p)
+        point_function(&mut mb, "map_texture", v3, |b, p| {
+            let (_, q) = walk.with_texture(b, scene.root, p);
+            // The point itself where no material was given (as `eval::surface`).
+            match q {
+                Some(q) => {
+                    let xyz = b.swizzle(q, &[0, 1, 2]);
+                    let w = b.at(q, 3);
+                    let zero = b.f(0.0);
+                    let given = b.gt(w, zero);
+                    b.select(given, xyz, p)
+                }
+                None => p,
             }
-            None => p,
-        };
-        b.ret(Some(q));
-        let f = b.finish();
-        mb.add_helper("map_texture", f)
+        })
     });
     // Where a smooth operator or `mix` blends materials: `map_blend(p)`, vec3(first id, second
     // id, weight of the second) (`crate::blend`, `eval::blend`).
     let blend = crate::blend::has_blends(scene).then(|| {
-        let v3 = mb.vec3();
-        let mut b = FnBuilder::new(&mut mb, "map_blend", &[("p", v3)], Some(v3));
-        let p = b.arg(0);
-        let (_, bl) = Walk {
-            scene,
-            named: &named,
-            root_fn: None,
-            trees,
-        }
-        .with_blend(&mut b, scene.root, p);
-        let bl = bl.unwrap_or_else(|| b.splat3(0.0));
-        b.ret(Some(bl));
-        let f = b.finish();
-        mb.add_helper("map_blend", f)
+        point_function(&mut mb, "map_blend", v3, |b, p| {
+            let (_, bl) = walk.with_blend(b, scene.root, p);
+            bl.unwrap_or_else(|| b.splat3(0.0))
+        })
     });
     tracer::add(
         &mut mb,
@@ -167,6 +106,22 @@ pub fn lower(scene: &Scene, entry: Entry, options: &tracer::Options) -> naga::Mo
         options,
     );
     mb.module
+}
+
+/// Adds the helper `name(p: vec3<f32>) -> ret` returning `body(p)`.
+fn point_function(
+    mb: &mut ModuleBuilder,
+    name: &str,
+    ret: Handle<Type>,
+    body: impl FnOnce(&mut FnBuilder, Ex) -> Ex,
+) -> Handle<Function> {
+    let v3 = mb.vec3();
+    let mut b = FnBuilder::new(mb, name, &[("p", v3)], Some(ret));
+    let p = b.arg(0);
+    let value = body(&mut b, p);
+    b.ret(Some(value));
+    let f = b.finish();
+    mb.add_helper(name, f)
 }
 
 /// The materials given to some reachable shape that have a pattern, by index.

@@ -50,6 +50,28 @@ impl Walk<'_> {
         )
     }
 
+    /// Field and looseness of a node: 1 where the part the materials' rule picks is loose
+    /// (`Scene::breaks_unit_gradient`, `eval::loose`), 0 or `None` where not.
+    pub(super) fn with_loose(&self, b: &mut FnBuilder, id: NodeId, p: Ex) -> (Ex, Option<Ex>) {
+        let scene = self.scene;
+        self.with_tag(
+            b,
+            id,
+            p,
+            &Tagging {
+                zero: &|b| b.u(0),
+                blends: false,
+                tag: &|b, id, _, inner| {
+                    if scene.breaks_unit_gradient(id) {
+                        Some(b.u(1))
+                    } else {
+                        inner
+                    }
+                },
+            },
+        )
+    }
+
     /// Field and `vec4(q, 1)` of a node, q the point in the own coordinates of the node whose
     /// material the surface takes (`eval::surface`); `vec4(0)` where no material was given.
     /// The same picks as [`Walk::with_material`], so the point belongs to the same material.
