@@ -3,17 +3,9 @@
 
 mod common;
 
-use common::{compile, gpu};
-use sdfc_compiler::color::to_srgb;
-use sdfc_compiler::emit;
-use sdfc_compiler::lower::{Entry, tracer::Options};
+use common::{compile, gpu, off_by, render, srgb8};
 use sdfc_compiler::shading;
 use sdfc_compiler::view::View;
-
-/// The compute entry's 8-bit sRGB for the CPU reference's linear colour `c`.
-fn srgb8(c: glam::DVec3) -> [i32; 3] {
-    [c.x, c.y, c.z].map(|v| (to_srgb(v.clamp(0.0, 1.0)) * 255.0).round() as i32)
-}
 
 /// A smooth union of two spheres and a box (three materials), a smooth intersection and a
 /// smooth subtraction of two tagged shapes, a `mix` of a tagged ball and box, and a part of a
@@ -40,8 +32,7 @@ fn blended_materials_match_the_cpu_reference() {
     let gpu = gpu();
     let scene = compile(SCENE);
     let view = View::new(&scene.camera, 128, 72);
-    let (module, _) = emit::module(&scene, Entry::Compute, &Options::from_scene(&scene)).unwrap();
-    let frame = gpu.render(&module, &view, None, |_, _| {}).unwrap();
+    let frame = render(&gpu, &scene, &view);
     let (mut within, mut worst, mut blended) = (0, 0, 0);
     for i in 0..frame.color.len() {
         let (x, y) = (
@@ -49,12 +40,7 @@ fn blended_materials_match_the_cpu_reference() {
             (i as u32 / view.width) as f64 + 0.5,
         );
         let c = shading::pixel(&scene, &scene.trace, &view, x, y);
-        let want = srgb8(c);
-        let got = frame.color[i].to_le_bytes();
-        let d = (0..3)
-            .map(|k| (got[k] as i32 - want[k]).abs())
-            .max()
-            .unwrap();
+        let d = off_by(frame.color[i], srgb8(c));
         worst = worst.max(d);
         within += (d <= 2) as u32;
         if frame.depth[i] >= 0.0 {

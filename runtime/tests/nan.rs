@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::{compile, gpu};
+use common::{compile, every_feature_scene, gpu};
 use sdfc::frames::{Layout, Source, TILE};
 use sdfc_compiler::emit::{self, Output, Target};
 use sdfc_compiler::lower::{Entry, tracer::Options};
@@ -129,35 +129,14 @@ fn no_colour_is_nan_or_infinite_at_any_scale() {
     let gpu = gpu();
     let mut report = String::new();
     for s in [1e-4, 1e-2, 1.0, 1e2, 1e4] {
-        let scene = compile(&format!(
-            "camera {{ eye (0, {}, {})  target (0, {}, 0) }}\n\
-             trace basic {{ max_distance {} }}\n\
-             light {{ direction (-0.4, 1, -0.5)  shadow soft }}\n\
-             light point {{ position ({}, {}, {})  shadow hard }}\n\
-             occlusion {{ distance {} }}\n\
-             fog {{ density {} }}\n\
-             material chrome {{ reflect 0.7 }}\n\
-             material glass {{ transparent 0.9  ior 1.5 }}\n\
-             material stone {{ color marble(#fff, #345, {}) }}\n\
-             material red {{ color #d03020 }}\n\
-             scale({s}) {{ union {{\n\
-               smooth_union(0.4) {{ sphere(1) at (0, 1, 0) : stone  box(0.8) at (0.9, 0.4, 0) : red }}\n\
-               torus(0.8, 0.2) at (-2, 0.2, 0.5)\n\
-               sphere(0.6) at (1.5, 0.6, -1.5) : chrome\n\
-               sphere(0.6) at (-1.5, 0.6, -1.5) : glass\n\
-               plane(y, 0)\n\
-             }} }}",
-            3.0 * s,
-            -7.0 * s,
-            0.5 * s,
-            100.0 * s,
-            2.0 * s,
-            4.0 * s,
-            -3.0 * s,
-            0.5 * s,
-            0.02 / s,
-            0.5 * s,
-        ));
+        let materials = format!(
+            "material stone {{ color marble(#fff, #345, {}) }}\nmaterial red {{ color #d03020 }}",
+            0.5 * s
+        );
+        let shapes = "smooth_union(0.4) { sphere(1) at (0, 1, 0) : stone  box(0.8) at (0.9, 0.4, 0) : red }\n\
+                      torus(0.8, 0.2) at (-2, 0.2, 0.5)\n\
+                      plane(y, 0)";
+        let scene = compile(&every_feature_scene(s, &materials, shapes));
         let (bad, hits) = run(&gpu, &scene, false);
         report += &format!("× {s:e}: {bad} non-finite colours of {hits} hits\n");
         assert!(hits > 500, "× {s:e}: only {hits} hits\n{report}");

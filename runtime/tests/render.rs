@@ -2,13 +2,11 @@
 //! against the f64 CPU reference tracer on the same rays, and Vulkan against GL.
 
 use sdfc::gpu::{BackendChoice, Frame, Gpu};
-use sdfc_compiler::emit;
-use sdfc_compiler::lower::{Entry, tracer::Options};
 use sdfc_compiler::scene::{Epsilon, Scene};
 use sdfc_compiler::trace::{self, Traced};
 use sdfc_compiler::view::View;
 mod common;
-use common::examples;
+use common::{examples, render};
 use std::path::PathBuf;
 
 const W: u32 = 96;
@@ -19,12 +17,6 @@ fn scene(path: &PathBuf) -> Scene {
     sdfc_compiler::check::compile(&source)
         .scene
         .expect("example compiles")
-}
-
-fn render(gpu: &Gpu, scene: &Scene, view: &View) -> Frame {
-    let (module, _) = emit::module(scene, Entry::Compute, &Options::from_scene(scene))
-        .unwrap_or_else(|e| panic!("{}", e.0));
-    gpu.render(&module, view, None, |_, _| {}).unwrap()
 }
 
 fn gpu(choice: BackendChoice) -> Gpu {

@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::{compile, gpu};
+use common::{EXTREMES_BASE, compile, every_feature_scene, gpu, off_by, render, srgb8};
 use sdfc_compiler::color::to_srgb;
 use sdfc_compiler::emit;
 use sdfc_compiler::lower::{Entry, tracer::Options};
@@ -19,31 +19,6 @@ const LEVELS: i32 = 2;
 /// ray grazes a surface and f32 and f64 decide a hit (of the camera or a shadow ray)
 /// differently.
 const SHARE: f64 = 0.995;
-
-/// The compute entry's 8-bit sRGB for the CPU reference's linear colour `c`.
-fn srgb8(c: glam::DVec3) -> [i32; 3] {
-    [c.x, c.y, c.z].map(|v| (to_srgb(v.clamp(0.0, 1.0)) * 255.0).round() as i32)
-}
-
-/// The largest difference over the three channels between a frame's packed pixel and `want`.
-fn off_by(px: u32, want: [i32; 3]) -> i32 {
-    let got = px.to_le_bytes();
-    (0..3)
-        .map(|k| (got[k] as i32 - want[k]).abs())
-        .max()
-        .unwrap()
-}
-
-/// `scene` rendered on the GPU with its own settings.
-fn render(
-    gpu: &sdfc::gpu::Gpu,
-    scene: &sdfc_compiler::scene::Scene,
-    view: &View,
-) -> sdfc::gpu::Frame {
-    let (module, _) = emit::module(scene, Entry::Compute, &Options::from_scene(scene))
-        .unwrap_or_else(|e| panic!("{}", e.0));
-    gpu.render(&module, view, None, |_, _| {}).unwrap()
-}
 
 /// A box on a floor with a ball beside it, lit from above and the side; `extra` adds the
 /// feature under test.
@@ -319,30 +294,7 @@ fn every_feature_stays_finite_at_every_scale() {
     let gpu = gpu();
     let mut report = String::new();
     for s in [1e-4, 1e-2, 1.0, 1e2, 1e4] {
-        let source = format!(
-            "camera {{ eye (0, {}, {})  target (0, {}, 0) }}\n\
-             trace basic {{ max_distance {} }}\n\
-             light {{ direction (-0.4, 1, -0.5)  shadow soft }}\n\
-             light point {{ position ({}, {}, {})  shadow hard }}\n\
-             occlusion {{ distance {} }}\n\
-             fog {{ density {} }}\n\
-             material chrome {{ reflect 0.7 }}\n\
-             material glass {{ transparent 0.9  ior 1.5 }}\n\
-             scale({s}) {{ union {{\n{}\n\
-               sphere(0.6) at (1.5, 0.6, -1.5) : chrome\n\
-               sphere(0.6) at (-1.5, 0.6, -1.5) : glass\n\
-             }} }}",
-            3.0 * s,
-            -7.0 * s,
-            0.5 * s,
-            100.0 * s,
-            2.0 * s,
-            4.0 * s,
-            -3.0 * s,
-            0.5 * s,
-            0.02 / s,
-            extremes_base()
-        );
+        let source = every_feature_scene(s, "", EXTREMES_BASE);
         let scene = compile(&source);
         let (w, h) = (64, 40);
         let view = View::new(&scene.camera, w, h);
@@ -365,11 +317,6 @@ fn every_feature_stays_finite_at_every_scale() {
         );
     }
     println!("{report}");
-}
-
-/// The extremes suite's scene (a sphere, a rotated box, a torus on a plane).
-fn extremes_base() -> &'static str {
-    "sphere(1) at (0, 1, 0)\nbox((1.5, 1, 1)) |> rotate(y, 30deg) at (2, 0.5, 1)\ntorus(0.8, 0.2) at (-2, 0.2, 0.5)\nplane(y, 0)"
 }
 
 /// The compute entry counts shading's evaluations of the field (`Frame::shading`, what `sdfc

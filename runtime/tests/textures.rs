@@ -3,40 +3,12 @@
 
 mod common;
 
-use common::{compile, gpu};
-use sdfc_compiler::color::to_srgb;
-use sdfc_compiler::emit;
-use sdfc_compiler::lower::{Entry, tracer::Options};
+use common::{compile, gpu, off_by, render, srgb8};
 use sdfc_compiler::shading;
 use sdfc_compiler::view::View;
 
 /// Most 8-bit levels a channel may differ by (f32 against f64).
 const LEVELS: i32 = 2;
-
-/// The compute entry's 8-bit sRGB for the CPU reference's linear colour `c`.
-fn srgb8(c: glam::DVec3) -> [i32; 3] {
-    [c.x, c.y, c.z].map(|v| (to_srgb(v.clamp(0.0, 1.0)) * 255.0).round() as i32)
-}
-
-/// The largest difference over the three channels between a frame's packed pixel and `want`.
-fn off_by(px: u32, want: [i32; 3]) -> i32 {
-    let got = px.to_le_bytes();
-    (0..3)
-        .map(|k| (got[k] as i32 - want[k]).abs())
-        .max()
-        .unwrap()
-}
-
-/// `scene` rendered on the GPU with its own settings.
-fn render(
-    gpu: &sdfc::gpu::Gpu,
-    scene: &sdfc_compiler::scene::Scene,
-    view: &View,
-) -> sdfc::gpu::Frame {
-    let (module, _) = emit::module(scene, Entry::Compute, &Options::from_scene(scene))
-        .unwrap_or_else(|e| panic!("{}", e.0));
-    gpu.render(&module, view, None, |_, _| {}).unwrap()
-}
 
 /// Procedural textures (Liktor §4): every pattern — a solid checker, triplanar tiles on a
 /// turned box touching an untagged one, noise, turbulence, marble and wood on turned and moved

@@ -163,3 +163,58 @@ pub fn write(dir: &std::path::Path, name: &str, text: &str) -> String {
     std::fs::write(&p, text).unwrap();
     p.display().to_string()
 }
+
+/// The compute entry's 8-bit sRGB for the CPU reference shader's linear colour `c`.
+pub fn srgb8(c: glam::DVec3) -> [i32; 3] {
+    use sdfc_compiler::color::to_srgb;
+    [c.x, c.y, c.z].map(|v| (to_srgb(v.clamp(0.0, 1.0)) * 255.0).round() as i32)
+}
+
+/// The largest difference over the three channels between a frame's packed pixel and `want`.
+pub fn off_by(px: u32, want: [i32; 3]) -> i32 {
+    let got = px.to_le_bytes();
+    (0..3)
+        .map(|k| (got[k] as i32 - want[k]).abs())
+        .max()
+        .unwrap()
+}
+
+/// `scene` rendered on `gpu` by the compute entry with the scene's own settings.
+pub fn render(gpu: &Gpu, scene: &Scene, view: &sdfc_compiler::view::View) -> sdfc::gpu::Frame {
+    let (module, _) = emit::module(scene, Entry::Compute, &Options::from_scene(scene))
+        .unwrap_or_else(|e| panic!("{}", e.0));
+    gpu.render(&module, view, None, |_, _| {}).unwrap()
+}
+
+/// The extremes suite's scene: a sphere, a rotated box and a torus on a ground plane.
+pub const EXTREMES_BASE: &str = "sphere(1) at (0, 1, 0)\nbox((1.5, 1, 1)) |> rotate(y, 30deg) at (2, 0.5, 1)\ntorus(0.8, 0.2) at (-2, 0.2, 0.5)\nplane(y, 0)";
+
+/// Every shading feature at once — soft and hard shadows, occlusion, fog, a mirror ball and a
+/// glass ball — with `shapes` (and the `materials` they use), the whole scaled by `s` with its
+/// camera, lights and distances, as the extremes suite scales its scene.
+pub fn every_feature_scene(s: f64, materials: &str, shapes: &str) -> String {
+    format!(
+        "camera {{ eye (0, {}, {})  target (0, {}, 0) }}\n\
+         trace basic {{ max_distance {} }}\n\
+         light {{ direction (-0.4, 1, -0.5)  shadow soft }}\n\
+         light point {{ position ({}, {}, {})  shadow hard }}\n\
+         occlusion {{ distance {} }}\n\
+         fog {{ density {} }}\n\
+         material chrome {{ reflect 0.7 }}\n\
+         material glass {{ transparent 0.9  ior 1.5 }}\n\
+         {materials}\n\
+         scale({s}) {{ union {{\n{shapes}\n\
+           sphere(0.6) at (1.5, 0.6, -1.5) : chrome\n\
+           sphere(0.6) at (-1.5, 0.6, -1.5) : glass\n\
+         }} }}",
+        3.0 * s,
+        -7.0 * s,
+        0.5 * s,
+        100.0 * s,
+        2.0 * s,
+        4.0 * s,
+        -3.0 * s,
+        0.5 * s,
+        0.02 / s,
+    )
+}

@@ -35,7 +35,7 @@ impl Case {
 }
 
 /// The test scene: a sphere, a rotated box and a torus on a ground plane.
-pub const BASE: &str = "sphere(1) at (0, 1, 0)\nbox((1.5, 1, 1)) |> rotate(y, 30deg) at (2, 0.5, 1)\ntorus(0.8, 0.2) at (-2, 0.2, 0.5)\nplane(y, 0)";
+pub const BASE: &str = crate::common::EXTREMES_BASE;
 
 /// [`BASE`] seen from the default viewpoint, with `trace` as its trace block.
 fn base(trace: &str) -> String {
