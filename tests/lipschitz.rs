@@ -16,7 +16,8 @@ use sdfc_compiler::catalog::{PRIMITIVES, Param, Ty};
 use sdfc_compiler::eval;
 use sdfc_compiler::scene::{NodeId, NodeKind, Scene};
 use sdfc_tests::Rng;
-use std::collections::BTreeMap;
+use std::cell::RefCell;
+use std::collections::{BTreeMap, HashMap};
 
 /// Scenes per CI run (each contributes sampled points at every node).
 const SCENES: usize = 700;
@@ -62,8 +63,61 @@ fn vec3(r: &mut Rng, g: impl Fn(&mut Rng) -> f64) -> String {
     format!("({}, {}, {})", f(a), f(b), f(c))
 }
 
-/// An argument of the given type for `name` of operator or primitive `owner`.
+thread_local! {
+    /// While building a parametric scene: the `param` declarations made so far (arguments
+    /// become parameters with ranges around their values).
+    static PARAMS: RefCell<Option<Vec<String>>> = const { RefCell::new(None) };
+}
+
+/// In a parametric scene, now and then: a parameter declared with default `v` and range
+/// `lo..hi` (`unit` after each number), used in place of the value.
+fn maybe_param(r: &mut Rng, v: f64, (lo, hi): (f64, f64), unit: &str) -> Option<String> {
+    PARAMS.with(|p| {
+        let mut p = p.borrow_mut();
+        let list = p.as_mut()?;
+        if r.below(2) == 0 {
+            return None;
+        }
+        let name = format!("p{}", list.len());
+        list.push(format!(
+            "param {name} = {}{unit} in {}{unit}..{}{unit}",
+            f(v),
+            f(lo),
+            f(hi)
+        ));
+        Some(name)
+    })
+}
+
+/// An argument of the given type for `name` of operator or primitive `owner`; in a parametric
+/// scene, numbers of the types a parameter may take are sometimes parameters.
 fn value(r: &mut Rng, owner: &str, p: &Param) -> String {
+    let fixed = ["repeat", "twist", "bend"].contains(&owner);
+    let smooth = owner.starts_with("smooth_") && p.name == "radius";
+    let text = plain_value(r, owner, p);
+    let Ok(v) = text.trim_end_matches("deg").parse::<f64>() else {
+        return text;
+    };
+    let v = (v * 1e4).round() / 1e4;
+    let range = match p.ty {
+        _ if fixed => None,
+        _ if smooth => Some((0.0, v * 2.0 + 0.1)),
+        Ty::Number => Some((v - 1.0, v + 1.0)),
+        Ty::Length | Ty::Size => Some((v * 0.5, v * 1.5 + 0.1)),
+        Ty::Positive | Ty::Scale => Some((v * 0.5, v * 2.0)),
+        Ty::Fraction => Some(((v - 0.3).max(0.0), (v + 0.3).min(1.0))),
+        Ty::Angle => Some((v - 90.0, v + 90.0)),
+        Ty::Range(lo, hi) => Some((lo.max(v - 1.0), v + (hi.min(lo + 8.0) - v) * 0.5)),
+        _ => None,
+    };
+    let unit = if p.ty == Ty::Angle { "deg" } else { "" };
+    match range.and_then(|range| maybe_param(r, v, range, unit)) {
+        Some(name) => name,
+        None => text,
+    }
+}
+
+fn plain_value(r: &mut Rng, owner: &str, p: &Param) -> String {
     match (owner, p.name) {
         ("twist" | "bend", "rate") => return f(*r.pick(&[0.5, 3.0, -10.0, 100.0])),
         ("scale", "factor") => {
@@ -164,7 +218,15 @@ fn shape(r: &mut Rng, depth: usize) -> String {
     };
     // Children placed off-centre and turned, so that `repeat` and `mirror` see asymmetric shapes.
     match r.below(5) {
-        0 => format!("{s} at {}", vec3(r, |r| r.range(-0.8, 0.8))),
+        0 => {
+            let x = (r.range(-0.8, 0.8) * 1e4).round() / 1e4;
+            let x = maybe_param(r, x, (x - 0.5, x + 0.5), "").unwrap_or_else(|| f(x));
+            format!(
+                "{s} at ({x}, {}, {})",
+                f(r.range(-0.8, 0.8)),
+                f(r.range(-0.8, 0.8))
+            )
+        }
         1 => format!(
             "{s} |> rotate({}, {}deg)",
             r.pick(&["x", "y", "z", "(1, 2, 3)"]),
@@ -178,6 +240,14 @@ fn scene_source(seed: u64) -> String {
     let mut r = Rng::new(seed);
     let depth = 1 + r.below(3);
     format!("{}\n", shape(&mut r, depth))
+}
+
+/// A random scene whose arguments are sometimes parameters with ranges, and its declarations.
+fn parametric_source(seed: u64) -> String {
+    PARAMS.with(|p| *p.borrow_mut() = Some(Vec::new()));
+    let body = scene_source(seed);
+    let decls = PARAMS.with(|p| p.borrow_mut().take()).unwrap_or_default();
+    format!("{}\n{body}", decls.join("\n"))
 }
 
 /// What the sampling found, per rule.
@@ -347,6 +417,136 @@ fn every_rule_is_a_true_bound_where_sampled() {
         );
     });
 }
+
+/// Scenes whose arguments are parameters (`param`, with ranges): λ, bounds and symmetries hold
+/// for every value of the range, so the sampling test passes at the range's ends and at random
+/// values inside: the scene as checked with its defaults, its parameters then set to those
+/// values (`Scene::with_values`, what the shader does with the uniform).
+#[test]
+fn bounds_hold_over_parameter_ranges() {
+    sdfc_tests::with_stack(|| {
+        let scenes =
+            sdfc_tests::env_number("SDFC_LIPSCHITZ_SCENES").map_or(PARAMETRIC, |n: usize| n / 4);
+        let seed = sdfc_tests::fuzz_seed(0x9a4a_3e71);
+        let mut tally = Tally::default();
+        let (mut valid, mut with_params, mut settings) = (0, 0, 0);
+        let mut r = Rng::new(seed);
+        let fixed = FIXED_PARAMETRIC.iter().map(|s| s.to_string());
+        let random: Vec<String> = (0..scenes).map(|_| parametric_source(r.bits())).collect();
+        for (k, source) in fixed.chain(random).enumerate() {
+            let Some(scene) = sdfc_compiler::check::compile(&source).scene else {
+                assert!(k >= FIXED_PARAMETRIC.len(), "{source}\ndoes not check");
+                continue;
+            };
+            valid += 1;
+            let ranged: Vec<_> = scene.params.iter().filter(|p| p.range.is_some()).collect();
+            if ranged.is_empty() {
+                continue;
+            }
+            with_params += 1;
+            // The low ends, the high ends, and two random points of the box of ranges.
+            for k in 0..4 {
+                let values: HashMap<String, Vec<f64>> = ranged
+                    .iter()
+                    .map(|p| {
+                        let (lo, hi) = p.range.expect("ranged");
+                        let v = match k {
+                            0 => lo.x,
+                            1 => hi.x,
+                            _ => lo.x + (hi.x - lo.x) * r.unit(),
+                        };
+                        (p.name.clone(), vec![v.clamp(lo.x, hi.x)])
+                    })
+                    .collect();
+                // The values are valid ones (checked as `render --param` checks them)...
+                let at = sdfc_compiler::check::compile_with(&source, &values);
+                assert!(
+                    at.scene.is_some(),
+                    "{source}\nfails to check at {values:?}: {:?}",
+                    at.diagnostics
+                );
+                // ...and the field there is the default scene's, as the shader computes it:
+                // λ, bounds and `repeat`'s copies from the check, the arguments from the values.
+                let here = scene.with_values(&values);
+                settings += 1;
+                let note = format!("{source}\n(at {values:?})");
+                for id in here.reachable() {
+                    sample_node(&here, id, &mut r, &note, &mut tally);
+                }
+            }
+        }
+        println!(
+            "{valid} of {scenes} parametric scenes valid, {with_params} with parameters, checked at {settings} settings; {} points sampled",
+            tally.points
+        );
+        let shown: Vec<&String> = tally.violations.iter().take(3).collect();
+        assert!(
+            tally.violations.is_empty(),
+            "{} violations, first ones:\n{}",
+            tally.violations.len(),
+            shown
+                .iter()
+                .map(|s| s.as_str())
+                .collect::<Vec<_>>()
+                .join("\n\n")
+        );
+        assert!(
+            with_params * 10 >= scenes * 4,
+            "too few scenes with parameters: {with_params} of {scenes}"
+        );
+        assert!(tally.points >= 20_000, "only {} points", tally.points);
+    });
+}
+
+/// Scenes whose bounds depend on their parameters, tightly: `mix`'s λ is (1 − w)·3 + w·1
+/// (the implicit's gradient is 3 everywhere), largest at w = 0, the default being 1; a
+/// `repeat` must look at enough copies for the largest radius and offset; a turned bar.
+const FIXED_PARAMETRIC: &[&str] = &[
+    "param w = 1 in 0..1\nmix(w) { implicit { 3 * (length(x, y, z) - 1) }  sphere(1) }",
+    "param r = 0.3 in 0.2..1.4\nparam d = 0 in -1..1\nrepeat(spacing = (3, 3, 3)) { sphere(r) at (d, 0, 0) }",
+    "param a = 0deg in 0deg..90deg\nrepeat(spacing = (3, 0, 0)) { box((2.4, 0.3, 0.3)) |> rotate(z, a) }",
+];
+
+/// `repeat` looks at the copies the bound of its shape over the whole range calls for: with
+/// the shape's radius and offset at other values than the defaults, the repeated field is
+/// still the union of every copy (an exact field, so they agree to rounding).
+#[test]
+fn repeat_of_a_parametric_shape_is_the_union_of_its_copies() {
+    let source = "param r = 0.2 in 0.2..0.95\nparam d = 0 in -1.5..1.5\nrepeat(spacing = (2, 0, 0)) { sphere(r) at (d, 0, 0) }";
+    let scene = sdfc_compiler::check::compile(source).scene.expect("checks");
+    let mut rng = Rng::new(7);
+    let mut compared = 0;
+    for (r, d) in [
+        (0.95, 1.5),
+        (0.95, -1.5),
+        (0.6, 1.2),
+        (0.2, -1.5),
+        (0.9, 0.9),
+    ] {
+        let values = HashMap::from([("r".to_string(), vec![r]), ("d".to_string(), vec![d])]);
+        let here = scene.with_values(&values);
+        for _ in 0..2000 {
+            let p = DVec3::new(
+                rng.range(-4.0, 4.0),
+                rng.range(-1.5, 1.5),
+                rng.range(-1.5, 1.5),
+            );
+            let union = (-6..=6)
+                .map(|k| (p - DVec3::new(f64::from(k) * 2.0 + d, 0.0, 0.0)).length() - r)
+                .fold(f64::INFINITY, f64::min);
+            let field = eval::distance(&here, p);
+            assert!(
+                (field - union).abs() < 1e-9,
+                "at r = {r}, d = {d}, p = {p}: repeat gives {field}, the copies {union}"
+            );
+            compared += 1;
+        }
+    }
+    assert_eq!(compared, 10_000);
+}
+
+/// Parametric scenes per CI run.
+const PARAMETRIC: usize = 400;
 
 /// A union of 5–16 random shapes scattered over a few units (exact and loose, bounded and not):
 /// what a union's bounding-volume tree groups.

@@ -85,11 +85,56 @@ pub fn summary(name: &str, scene: &Scene, warnings: usize) -> String {
         let convex = if c.convex { ", convex object" } else { "" };
         bound += &format!("; rays clipped to a {shape}{convex}");
     }
-    format!(
+    let mut text = format!(
         "{name}: ok\n  nodes: {reachable}\n  materials: {}\n  root λ: {}\n  bound: {bound}\n  lights: {}\n  tracer: {method} ({} steps, ε {eps})\n  warnings: {warnings}",
         scene.materials.len(),
         scene.root_node().lambda,
         scene.lights.len(),
         t.steps,
+    );
+    if !scene.params.is_empty() {
+        text += "\n  parameters:";
+        for p in &scene.params {
+            text += &format!("\n    {}", describe_param(p));
+        }
+    }
+    text
+}
+
+/// `r = 1 in 0.5..1.5 (number)`: a parameter as `sdfc check` lists it.
+pub fn describe_param(p: &crate::scene::ParamDecl) -> String {
+    use crate::scene::ParamKind;
+    let n = p.kind.components();
+    let show = |v: glam::DVec3| match p.kind {
+        ParamKind::Angle => format!("{}deg", short(v.x.to_degrees())),
+        _ if n == 1 => short(v.x),
+        _ => format!("({}, {}, {})", short(v.x), short(v.y), short(v.z)),
+    };
+    let range = match p.range {
+        Some((lo, hi)) => format!(" in {}..{}", show(lo), show(hi)),
+        None => String::new(),
+    };
+    let set = if p.value != p.default {
+        format!(" (set to {})", show(p.value))
+    } else {
+        String::new()
+    };
+    let builtin = if p.name == crate::check::TIME && p.span.start == p.span.end {
+        ", built in"
+    } else {
+        ""
+    };
+    format!(
+        "{} = {}{range}{set} ({}{builtin})",
+        p.name,
+        show(p.default),
+        p.kind.name()
     )
+}
+
+/// A number printed with at most 6 decimals, trailing zeros dropped.
+fn short(x: f64) -> String {
+    let s = format!("{x:.6}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    if s == "-0" { "0".into() } else { s.into() }
 }

@@ -32,6 +32,9 @@ pub struct Scene {
     pub occlusion: Option<Occlusion>,
     /// Distance fog, if the file asks for it (`fog { .. }`).
     pub fog: Option<Fog>,
+    /// The parameters the scene reads at run time (`param`, and `time` if used), in the order
+    /// of the shader's `Params` uniform.
+    pub params: Vec<ParamDecl>,
 }
 
 impl Scene {
@@ -43,6 +46,35 @@ impl Scene {
         for n in &mut s.nodes {
             if let NodeKind::Operator { ctx, .. } = &mut n.kind {
                 ctx.prune = None;
+            }
+        }
+        s
+    }
+
+    /// The scene as the shader draws it when the host sets parameters to `values` (name →
+    /// components; others keep theirs): every argument and field that reads a parameter
+    /// recomputed, everything decided when the scene was checked (λ, bounds, `repeat`'s copies,
+    /// bounding volumes) kept. Values are not checked against ranges here
+    /// (`check::compile_with` does).
+    pub fn with_values(&self, values: &std::collections::HashMap<String, Vec<f64>>) -> Scene {
+        let mut s = self.clone();
+        for p in &mut s.params {
+            if let Some(v) = values.get(&p.name) {
+                for (i, x) in v.iter().take(p.kind.components()).enumerate() {
+                    p.value[i] = *x;
+                }
+            }
+        }
+        let params = s.params.clone();
+        let value = |r: &ParamRef| params[r.index].value[r.comp];
+        for n in &mut s.nodes {
+            match &mut n.kind {
+                NodeKind::Primitive { ctx, .. } | NodeKind::Operator { ctx, .. } => {
+                    if !ctx.sym.is_empty() {
+                        *ctx = ctx.at_values(&value);
+                    }
+                }
+                NodeKind::Implicit { field } => *field = field.with_values(&value),
             }
         }
         s
@@ -173,6 +205,87 @@ pub enum Field {
     Binary(BinOp, Box<Field>, Box<Field>),
     /// f(args)
     Call(&'static MathFn, Vec<Field>),
+    /// A component of a parameter, read from the `Params` uniform at run time.
+    Param(ParamRef),
+}
+
+/// A use of one component of a parameter in an expression.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ParamRef {
+    /// Index into [`Scene::params`].
+    pub index: usize,
+    /// The component (0 for numbers).
+    pub comp: usize,
+    /// Its value where the scene was checked (the default, or the value asked for).
+    pub value: f64,
+    /// The lowest value it may take (−∞ without a declared range).
+    pub lo: f64,
+    /// The highest value it may take (+∞ without a declared range).
+    pub hi: f64,
+}
+
+impl ParamRef {
+    /// Whether the parameter was declared with a range.
+    pub fn ranged(&self) -> bool {
+        self.lo.is_finite() && self.hi.is_finite()
+    }
+}
+
+/// What kind of value a parameter holds.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ParamKind {
+    /// A plain number.
+    Number,
+    /// An angle, in radians.
+    Angle,
+    /// A vector.
+    Vector,
+    /// A colour (sRGB, 0..1).
+    Color,
+}
+
+impl ParamKind {
+    /// Components: 1 for numbers and angles, 3 for vectors and colours.
+    pub fn components(self) -> usize {
+        match self {
+            ParamKind::Number | ParamKind::Angle => 1,
+            _ => 3,
+        }
+    }
+
+    /// How the manifest and `sdfc check` name it.
+    pub fn name(self) -> &'static str {
+        match self {
+            ParamKind::Number => "number",
+            ParamKind::Angle => "angle",
+            ParamKind::Vector => "vector",
+            ParamKind::Color => "color",
+        }
+    }
+}
+
+/// A declared parameter (`param name = default in lo..hi`) or the built-in `time`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ParamDecl {
+    /// Its name (a field of the `Params` uniform).
+    pub name: String,
+    /// Number, angle, vector or colour.
+    pub kind: ParamKind,
+    /// The declared default (numbers in `x`).
+    pub default: DVec3,
+    /// The value the scene was checked at: the default unless another was asked for.
+    pub value: DVec3,
+    /// The declared range, each end included (per component).
+    pub range: Option<(DVec3, DVec3)>,
+    /// Where it was declared (the whole file's start for the built-in `time`).
+    pub span: Span,
+}
+
+impl ParamDecl {
+    /// The values of its components, in order.
+    pub fn values(&self) -> Vec<f64> {
+        self.value.to_array()[..self.kind.components()].to_vec()
+    }
 }
 
 impl Field {
@@ -187,6 +300,53 @@ impl Field {
                 let v: Vec<f64> = args.iter().map(|a| a.eval(p)).collect();
                 (f.eval)(&v)
             }
+            Field::Param(r) => r.value,
+        }
+    }
+
+    /// The same expression with every parameter's value replaced by `value(use)`.
+    pub fn with_values(&self, value: &dyn Fn(&ParamRef) -> f64) -> Field {
+        match self {
+            Field::Param(r) => Field::Param(ParamRef {
+                value: value(r),
+                ..*r
+            }),
+            Field::Neg(a) => Field::Neg(Box::new(a.with_values(value))),
+            Field::Binary(op, a, b) => Field::Binary(
+                *op,
+                Box::new(a.with_values(value)),
+                Box::new(b.with_values(value)),
+            ),
+            Field::Call(f, args) => {
+                Field::Call(f, args.iter().map(|a| a.with_values(value)).collect())
+            }
+            other => other.clone(),
+        }
+    }
+
+    /// Calls `each` on every parameter use in the expression.
+    pub fn params(&self, each: &mut dyn FnMut(&ParamRef)) {
+        match self {
+            Field::Param(r) => each(r),
+            Field::Neg(a) => a.params(each),
+            Field::Binary(_, a, b) => {
+                a.params(each);
+                b.params(each);
+            }
+            Field::Call(_, args) => args.iter().for_each(|a| a.params(each)),
+            _ => {}
+        }
+    }
+
+    /// Whether the expression reads the coordinates (an `implicit` body) rather than only
+    /// parameters and constants.
+    pub fn has_coords(&self) -> bool {
+        match self {
+            Field::Coord(_) => true,
+            Field::Neg(a) => a.has_coords(),
+            Field::Binary(_, a, b) => a.has_coords() || b.has_coords(),
+            Field::Call(_, args) => args.iter().any(Field::has_coords),
+            _ => false,
         }
     }
 }

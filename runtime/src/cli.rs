@@ -117,6 +117,13 @@ enum Command {
         /// 4 096 calls of distance functions; docs/stability.md).
         #[arg(long)]
         allow_slow_compile: bool,
+        /// Set a scene parameter: `NAME=VALUE` (a number, an angle with `deg`, `x,y,z` or
+        /// `#rrggbb`); repeat for several. It must be within the parameter's range.
+        #[arg(long = "param", value_name = "NAME=VALUE")]
+        params: Vec<String>,
+        /// The scene's `time`, in seconds (default 0).
+        #[arg(long, allow_hyphen_values = true)]
+        time: Option<f64>,
     },
     /// Measure every tracer × step budget on the GPU against an f64 ground truth: time,
     /// evaluations per pixel, depth error, hit/miss agreement.
@@ -303,6 +310,8 @@ pub fn run() -> i32 {
             kind,
             samples,
             allow_slow_compile,
+            params,
+            time,
         } => crate::render_cmd::run(&crate::render_cmd::RenderArgs {
             file: &file,
             output: &output,
@@ -312,6 +321,8 @@ pub fn run() -> i32 {
             channel: kind,
             samples,
             allow_slow_compile,
+            params: &params,
+            time,
         }),
         Command::Bench {
             file,

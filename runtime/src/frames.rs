@@ -106,6 +106,8 @@ pub struct Prepared<'g> {
     /// Output buffers, their sizes and bindings, in binding order.
     outputs: Vec<(wgpu::Buffer, u64, u32)>,
     hand_over: Vec<wgpu::Buffer>,
+    /// The `Params` uniform, if the module reads one.
+    params: Option<wgpu::Buffer>,
     /// Two timestamps per pass, resolved into a buffer.
     queries: Option<(wgpu::QuerySet, wgpu::Buffer)>,
     layout: Layout,
@@ -152,6 +154,7 @@ impl Gpu {
             }
         };
         let pipeline = self.pipeline(module);
+        let params = self.params_buffer(module);
         // (bytes per pixel, binding)
         let sizes: Vec<(u64, u32)> = match layout {
             Layout::Full { .. } => vec![(4, 1), (4, 2), (16, 3), (4, 4), (4, 5), (4, 8)],
@@ -215,6 +218,12 @@ impl Gpu {
                             resource: b.as_entire_binding(),
                         });
                     }
+                    if let Some((buffer, binding)) = &params {
+                        entries.push(wgpu::BindGroupEntry {
+                            binding: *binding,
+                            resource: buffer.as_entire_binding(),
+                        });
+                    }
                     if with_passes {
                         for (binding, b) in [(6, k % 2), (7, 1 - k % 2)] {
                             entries.push(wgpu::BindGroupEntry {
@@ -275,6 +284,7 @@ impl Gpu {
             passes: runs,
             outputs,
             hand_over,
+            params: params.map(|(b, _)| b),
             queries,
             layout,
             width: w,
@@ -288,6 +298,16 @@ impl Prepared<'_> {
     /// Dispatches how many tiles there are in all passes.
     pub fn dispatches(&self) -> u32 {
         self.passes.iter().map(|p| p.len() as u32).sum()
+    }
+
+    /// Sets the scene parameters' values of the next frames
+    /// (`sdfc_compiler::lower::params::bytes`); nothing for a module without parameters.
+    pub fn set_params(&self, bytes: &[u8]) {
+        if let Some(buffer) = &self.params {
+            let mut bytes = bytes.to_vec();
+            bytes.resize(buffer.size() as usize, 0);
+            self.gpu.queue.write_buffer(buffer, 0, &bytes);
+        }
     }
 
     /// Moves the rays of the next frames to `jitter` within their pixels (`View::jitter`), in

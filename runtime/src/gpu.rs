@@ -31,6 +31,9 @@ pub struct Gpu {
     /// What went wrong outside an error scope, checked after every wait so that a render ends
     /// with it instead of a panic or a hang.
     trouble: Arc<Mutex<Trouble>>,
+    /// The bytes of the `Params` uniform the next prepared modules start with
+    /// ([`Gpu::set_params`]).
+    params: Mutex<Vec<u8>>,
 }
 
 const NO_ADAPTER: &str = "no GPU adapter was found (tried Vulkan and GL).\n\
@@ -96,6 +99,7 @@ impl Gpu {
                 limits,
                 features,
                 trouble,
+                params: Mutex::new(Vec::new()),
             });
         }
         Err(match choice {
@@ -103,6 +107,38 @@ impl Gpu {
             BackendChoice::Vulkan => "no Vulkan adapter was found.\nhelp: `apt-get install mesa-vulkan-drivers` gives lavapipe".into(),
             BackendChoice::Gl => "no GL adapter was found.\nhelp: `apt-get install libegl1 libegl-mesa0 libgl1-mesa-dri` gives llvmpipe over EGL".into(),
         })
+    }
+
+    /// Sets the scene parameters' values (`sdfc_compiler::lower::params::bytes`) the modules
+    /// prepared from now on read, until set again; a prepared frame changes its own with
+    /// `Prepared::set_params`.
+    pub fn set_params(&self, bytes: &[u8]) {
+        *lock(&self.params) = bytes.to_vec();
+    }
+
+    /// The `Params` uniform for a module that reads one (binding
+    /// `sdfc_compiler::lower::params::PARAMS_BINDING`), holding the values last set, padded
+    /// with zeros to the struct's size.
+    pub(crate) fn params_buffer(&self, module: &naga::Module) -> Option<(wgpu::Buffer, u32)> {
+        let binding = sdfc_compiler::lower::params::PARAMS_BINDING;
+        let global = module
+            .global_variables
+            .iter()
+            .find(|(_, g)| g.binding == Some(naga::ResourceBinding { group: 0, binding }))?;
+        let size = match module.types[global.1.ty].inner {
+            naga::TypeInner::Struct { span, .. } => span,
+            _ => return None,
+        };
+        let mut bytes = lock(&self.params).clone();
+        bytes.resize(size as usize, 0);
+        let buffer = self.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("params"),
+            size: u64::from(size),
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        self.queue.write_buffer(&buffer, 0, &bytes);
+        Some((buffer, binding))
     }
 
     /// The backend in use, as a word.
@@ -244,19 +280,27 @@ impl Gpu {
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
             mapped_at_creation: false,
         });
+        let params = self.params_buffer(module);
+        let mut entries = vec![
+            wgpu::BindGroupEntry {
+                binding: 0,
+                resource: input_buf.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 1,
+                resource: output.as_entire_binding(),
+            },
+        ];
+        if let Some((buffer, binding)) = &params {
+            entries.push(wgpu::BindGroupEntry {
+                binding: *binding,
+                resource: buffer.as_entire_binding(),
+            });
+        }
         let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some(input_label),
             layout: &pipeline.get_bind_group_layout(0),
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: input_buf.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: output.as_entire_binding(),
-                },
-            ],
+            entries: &entries,
         });
         let mut enc = device.create_command_encoder(&Default::default());
         {
@@ -366,6 +410,6 @@ struct Trouble {
     error: Option<String>,
 }
 
-fn lock(trouble: &Mutex<Trouble>) -> std::sync::MutexGuard<'_, Trouble> {
-    trouble.lock().unwrap_or_else(|e| e.into_inner())
+fn lock<T>(m: &Mutex<T>) -> std::sync::MutexGuard<'_, T> {
+    m.lock().unwrap_or_else(|e| e.into_inner())
 }

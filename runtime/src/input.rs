@@ -25,6 +25,15 @@ pub fn exit_code(result: Result<(), String>) -> i32 {
 
 /// Reads and checks a scene, printing diagnostics; `None` (after printing) when it has errors.
 pub fn load_scene(path: &Path) -> Option<(String, String, sdfc_compiler::scene::Scene)> {
+    load_scene_with(path, &std::collections::HashMap::new())
+}
+
+/// [`load_scene`] with parameters set to `values` (`sdfc render --param`) instead of their
+/// defaults.
+pub fn load_scene_with(
+    path: &Path,
+    values: &std::collections::HashMap<String, Vec<f64>>,
+) -> Option<(String, String, sdfc_compiler::scene::Scene)> {
     let (name, source) = match read_source(path) {
         Ok(x) => x,
         Err(e) => {
@@ -35,12 +44,94 @@ pub fn load_scene(path: &Path) -> Option<(String, String, sdfc_compiler::scene::
     let Checked {
         scene,
         mut diagnostics,
-    } = check::compile(&source);
+    } = check::compile_with(&source, values);
     if let Some(scene) = &scene {
         diagnostics.extend(lipschitz::verify_annotations(scene, Effort::Fast));
     }
     say_raw!("{}", crate::messages::report(&diagnostics, &name, &source));
-    scene.map(|s| (name, source, s))
+    let scene = scene?;
+    let unknown = check::unknown_params(&scene, values);
+    if let Some((bad, near)) = unknown.first() {
+        let help = match near {
+            Some(n) => format!("help: did you mean `{n}`?"),
+            None if scene.params.is_empty() => "note: the scene declares no parameters".into(),
+            None => format!(
+                "note: its parameters are {}",
+                scene
+                    .params
+                    .iter()
+                    .map(|p| format!("`{}`", p.name))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+        };
+        say!("error: `--param {bad}`: `{name}` has no parameter `{bad}`\n{help}");
+        return None;
+    }
+    Some((name, source, scene))
+}
+
+/// `--param NAME=VALUE`s and `--time T` as values for [`load_scene_with`]: a VALUE is a number
+/// (an angle in radians, or with `deg`), `x,y,z` for a vector, or `#rrggbb` for a colour.
+pub fn param_values(
+    params: &[String],
+    time: Option<f64>,
+) -> Result<std::collections::HashMap<String, Vec<f64>>, String> {
+    let mut out = std::collections::HashMap::new();
+    for p in params {
+        let bad = |why: &str| {
+            format!(
+                "error: `--param {p}`: {why}\nhelp: write NAME=VALUE: `r=1.5`, `spin=30deg`, `offset=0,1,0` or `tint=#ff8800`"
+            )
+        };
+        let (name, value) = p.split_once('=').ok_or_else(|| bad("no `=`"))?;
+        let name = name.trim();
+        let value = value.trim();
+        let parsed: Vec<f64> = if let Some(hex) = value.strip_prefix('#') {
+            let digits: Option<Vec<u32>> = hex.chars().map(|c| c.to_digit(16)).collect();
+            match (digits, hex.len()) {
+                (Some(d), 6) => [0, 2, 4]
+                    .map(|i| f64::from(d[i] * 16 + d[i + 1]) / 255.0)
+                    .to_vec(),
+                (Some(d), 3) => [0, 1, 2].map(|i| f64::from(d[i] * 17) / 255.0).to_vec(),
+                _ => return Err(bad("not a colour `#rrggbb`")),
+            }
+        } else {
+            value
+                .split(',')
+                .map(|x| {
+                    let x = x.trim();
+                    let (x, factor) = match x.strip_suffix("deg") {
+                        Some(x) => (x, std::f64::consts::PI / 180.0),
+                        None => (x.strip_suffix("rad").unwrap_or(x), 1.0),
+                    };
+                    x.trim()
+                        .parse::<f64>()
+                        .ok()
+                        .filter(|v| v.is_finite())
+                        .map(|v| v * factor)
+                        .ok_or_else(|| bad(&format!("`{x}` is not a number")))
+                })
+                .collect::<Result<_, _>>()?
+        };
+        if out.insert(name.to_string(), parsed).is_some() {
+            return Err(format!("error: `--param {name}` is given twice"));
+        }
+    }
+    if let Some(t) = time {
+        if !t.is_finite() {
+            return Err(format!(
+                "error: `--time {t}` is not a finite number of seconds"
+            ));
+        }
+        if out
+            .insert(sdfc_compiler::check::TIME.to_string(), vec![t])
+            .is_some()
+        {
+            return Err("error: give the time with `--time` or `--param time=`, not both".into());
+        }
+    }
+    Ok(out)
 }
 
 /// Reads a scene file or standard input; the error is a message for the user. At most the

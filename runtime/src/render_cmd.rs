@@ -1,6 +1,5 @@
 //! `sdfc render`: a scene file in, a PNG (or `.npy` depth) out, through the wgpu runtime.
 
-use crate::cli::load_scene;
 use crate::emit_cmd::write_output;
 use sdfc::gpu::{BackendChoice, Gpu};
 use sdfc::images::{self, Channel};
@@ -29,6 +28,10 @@ pub struct RenderArgs<'a> {
     pub samples: Option<u32>,
     /// Go on with a shader above [`MAX_DRIVER_CALLS`].
     pub allow_slow_compile: bool,
+    /// `--param NAME=VALUE`s.
+    pub params: &'a [String],
+    /// `--time T`.
+    pub time: Option<f64>,
 }
 
 /// Parses `WxH`.
@@ -138,7 +141,8 @@ fn render(args: &RenderArgs) -> Result<(), String> {
             "error: `.npy` output is for `--channel depth` with one sample per pixel".into(),
         );
     }
-    let Some((name, source, mut scene)) = load_scene(args.file) else {
+    let values = crate::input::param_values(args.params, args.time)?;
+    let Some((name, source, mut scene)) = crate::input::load_scene_with(args.file, &values) else {
         return Err(String::new());
     };
     let options = args.tracer.settle(&mut scene)?;
@@ -146,6 +150,7 @@ fn render(args: &RenderArgs) -> Result<(), String> {
         .map_err(|e| format!("{INTERNAL}: {}", e.0))?;
     let calls = check_driver_size(&module, (&name, &source, &scene), args.allow_slow_compile)?;
     let gpu = Gpu::new(args.backend)?;
+    gpu.set_params(&sdfc_compiler::lower::params::bytes(&scene.params));
     if calls >= SLOW_COMPILE {
         // The driver compiles the shader at pipeline creation, silently.
         say!(

@@ -113,7 +113,8 @@ fn cases() -> Vec<(String, Scene)> {
 #[test]
 fn code_generation_keeps_every_picture() {
     let gpu = gpu();
-    let write = std::env::var("SDFC_GOLDEN").is_ok_and(|v| v == "write");
+    let mode = std::env::var("SDFC_GOLDEN").unwrap_or_default();
+    let write = mode == "write";
     let mut report = String::new();
     let mut failures = Vec::new();
     // Each example again with bounding volumes in `map` (`--bvh`): the same field, so the
@@ -127,6 +128,7 @@ fn code_generation_keeps_every_picture() {
         let (module, _) = emit::module(&scene, Entry::Compute, &options)
             .unwrap_or_else(|e| panic!("{name}: {}", e.0));
         let name = if bvh { format!("{name} (bvh)") } else { name };
+        gpu.set_params(&sdfc_compiler::lower::params::bytes(&scene.params));
         let frame = gpu.render(&module, &view, None, |_, _| {}).unwrap();
         // The trace-only entry `sdfc bench` times traces the same rays: the same hits, t and
         // steps as the full frame, pixel for pixel.
@@ -153,6 +155,8 @@ fn code_generation_keeps_every_picture() {
         }
         let now = pixels(&frame);
         let file = golden(name.trim_end_matches(" (bvh)"));
+        // A new example is recorded on its own, the others kept.
+        let write = write || (mode == "missing" && !file.exists());
         if write && !bvh {
             std::fs::create_dir_all(file.parent().unwrap()).unwrap();
             std::fs::write(&file, encode(&now)).unwrap();

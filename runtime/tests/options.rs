@@ -157,6 +157,7 @@ fn gpu_passes_agree_with_the_cpu_reference() {
     for path in examples() {
         let scene = compile(&std::fs::read_to_string(&path).unwrap());
         let module = passes_module(&scene);
+        gpu.set_params(&sdfc_compiler::lower::params::bytes(&scene.params));
         for count in [2, 4] {
             let (w, h) = (64, 40);
             let plan = passes::plan(&scene, w, h, scene.trace.steps, count).unwrap();
@@ -217,15 +218,23 @@ fn passes_miss_nothing_the_ground_truth_hits() {
                 let (got, work) = passes::trace_image(&scene, &plan);
                 let mut tally = Tally::default();
                 for (i, r) in got.iter().enumerate() {
-                    safety.judge(&mut tally, (&view, rays[i]), r, &truth[i]);
+                    // The first pass's pixels are the widest.
+                    let footprint = plan[0].view.pixel;
+                    safety.judge(
+                        &mut tally,
+                        (&view, rays[i], &scene.trace, footprint),
+                        r,
+                        &truth[i],
+                    );
                 }
                 let Tally {
                     missed,
                     grazed,
                     exhausted,
+                    slivers,
                 } = tally;
                 row += &format!(
-                    "  {count}× {:.1} evals/px (missed {missed}, grazed {grazed}, budget out {exhausted})",
+                    "  {count}× {:.1} evals/px (missed {missed}, grazed {grazed}, budget out {exhausted}, slivers {slivers})",
                     work as f64 / got.len() as f64
                 );
                 assert_eq!(missed, 0, "{row}");
@@ -276,6 +285,7 @@ fn cone_antialiasing_agrees_on_cpu_and_gpu() {
         .collect();
     let rays = camera_rays(&view, &pts);
     let (module, _) = emit::module(&scene, Entry::Rays, &Options::from_scene(&scene)).unwrap();
+    gpu.set_params(&sdfc_compiler::lower::params::bytes(&scene.params));
     let on_gpu = gpu.trace_rays_full(&module, &rays).unwrap();
     let (mut covered, mut differ, mut worst) = (0, 0, 0.0f64);
     for (i, &(x, y)) in pts.iter().enumerate() {

@@ -206,7 +206,14 @@ pub struct Ctx {
     /// A union's bounding-volume tree (see [`prune`]), built once at check time; `None`
     /// evaluates every child.
     pub prune: Option<std::sync::Arc<prune::Tree>>,
+    /// Per argument, its components as expressions of parameters when it reads any (the
+    /// shader computes it at run time; `args` holds its value where the scene was checked);
+    /// empty when no argument does.
+    pub sym: ArgSyms,
 }
+
+/// Per argument, its components as expressions of parameters if it reads any.
+pub type ArgSyms = Vec<Option<Vec<crate::scene::Field>>>;
 
 impl Ctx {
     /// The bound of the children's surfaces grown by `by`, where the part that grows is
@@ -230,6 +237,30 @@ impl Ctx {
     /// Argument `i` as a vector.
     pub fn vec(&self, i: usize) -> DVec3 {
         self.args[i].vec()
+    }
+
+    /// The context with every parameter use valued by `value` (the arguments that read
+    /// parameters recomputed).
+    pub fn at_values(&self, value: &dyn Fn(&crate::scene::ParamRef) -> f64) -> Ctx {
+        let mut c = self.clone();
+        for (i, sym) in self.sym.iter().enumerate() {
+            let Some(comps) = sym else { continue };
+            let v: Vec<f64> = comps
+                .iter()
+                .map(|f| f.with_values(value).eval(DVec3::ZERO))
+                .collect();
+            c.args[i] = match c.args[i] {
+                Val::Vec3(_) => Val::Vec3(DVec3::new(v[0], v[1], v[2])),
+                _ => Val::Num(v[0]),
+            };
+            c.sym[i] = Some(comps.iter().map(|f| f.with_values(value)).collect());
+        }
+        c
+    }
+
+    /// Argument `i`'s components as expressions of parameters, if it reads any.
+    pub fn sym(&self, i: usize) -> Option<&[crate::scene::Field]> {
+        self.sym.get(i).and_then(|s| s.as_deref())
     }
 }
 
@@ -378,6 +409,9 @@ pub struct Operator {
     pub keeps_exact: fn(&Ctx) -> bool,
     /// How materials propagate.
     pub materials: MatRule,
+    /// Whether its arguments must be constants: its lowering shapes the code by their values
+    /// (`repeat`'s copies, a warp's stretch), so they cannot be parameters.
+    pub fixed_args: bool,
     /// The same field in naga IR.
     pub lower: crate::lower::ops::OpLower,
 }

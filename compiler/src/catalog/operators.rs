@@ -110,6 +110,7 @@ pub const FALLOFF_SLOPE: f64 = 1.717_300_316_677_839_6;
 pub static OPERATORS: &[Operator] = &[
     Operator {
         name: "union",
+        fixed_args: false,
         materials: MatRule::Nearest,
         unit_gradient: KEEPS,
         keeps_exact: KEEPS,
@@ -128,6 +129,7 @@ pub static OPERATORS: &[Operator] = &[
     },
     Operator {
         name: "intersect",
+        fixed_args: false,
         materials: MatRule::Farthest,
         unit_gradient: KEEPS,
         keeps_exact: SHORTENS,
@@ -142,6 +144,7 @@ pub static OPERATORS: &[Operator] = &[
     },
     Operator {
         name: "subtract",
+        fixed_args: false,
         materials: MatRule::Cut,
         unit_gradient: KEEPS,
         keeps_exact: SHORTENS,
@@ -157,6 +160,7 @@ pub static OPERATORS: &[Operator] = &[
     },
     Operator {
         name: "complement",
+        fixed_args: false,
         materials: MatRule::Pass,
         unit_gradient: KEEPS,
         keeps_exact: SHORTENS,
@@ -171,6 +175,7 @@ pub static OPERATORS: &[Operator] = &[
     },
     Operator {
         name: "smooth_union",
+        fixed_args: false,
         materials: MatRule::SmoothNearest,
         unit_gradient: SHORTENS,
         keeps_exact: SHORTENS,
@@ -186,6 +191,7 @@ pub static OPERATORS: &[Operator] = &[
     },
     Operator {
         name: "smooth_intersect",
+        fixed_args: false,
         materials: MatRule::SmoothFarthest,
         unit_gradient: SHORTENS,
         keeps_exact: SHORTENS,
@@ -200,6 +206,7 @@ pub static OPERATORS: &[Operator] = &[
     },
     Operator {
         name: "smooth_subtract",
+        fixed_args: false,
         materials: MatRule::SmoothCut,
         unit_gradient: SHORTENS,
         keeps_exact: SHORTENS,
@@ -214,6 +221,7 @@ pub static OPERATORS: &[Operator] = &[
     },
     Operator {
         name: "mix",
+        fixed_args: false,
         materials: MatRule::Weighted,
         unit_gradient: SHORTENS,
         keeps_exact: SHORTENS,
@@ -232,6 +240,7 @@ pub static OPERATORS: &[Operator] = &[
     },
     Operator {
         name: "blob",
+        fixed_args: false,
         materials: MatRule::Nearest,
         unit_gradient: SHORTENS,
         keeps_exact: SHORTENS,
@@ -263,6 +272,7 @@ pub static OPERATORS: &[Operator] = &[
     },
     Operator {
         name: "translate",
+        fixed_args: false,
         materials: MatRule::Pass,
         unit_gradient: KEEPS,
         keeps_exact: KEEPS,
@@ -277,6 +287,7 @@ pub static OPERATORS: &[Operator] = &[
     },
     Operator {
         name: "rotate",
+        fixed_args: false,
         materials: MatRule::Pass,
         unit_gradient: KEEPS,
         keeps_exact: KEEPS,
@@ -291,6 +302,7 @@ pub static OPERATORS: &[Operator] = &[
     },
     Operator {
         name: "scale",
+        fixed_args: false,
         materials: MatRule::Pass,
         unit_gradient: |c| c.vec(0).min_element() == c.vec(0).max_element(),
         keeps_exact: |c| c.vec(0).min_element() == c.vec(0).max_element(),
@@ -310,6 +322,7 @@ pub static OPERATORS: &[Operator] = &[
     },
     Operator {
         name: "repeat",
+        fixed_args: true,
         materials: MatRule::Pass,
         unit_gradient: KEEPS,
         keeps_exact: KEEPS,
@@ -345,6 +358,7 @@ pub static OPERATORS: &[Operator] = &[
     },
     Operator {
         name: "mirror",
+        fixed_args: false,
         materials: MatRule::Pass,
         unit_gradient: KEEPS,
         keeps_exact: SHORTENS,
@@ -376,6 +390,7 @@ pub static OPERATORS: &[Operator] = &[
     },
     Operator {
         name: "twist",
+        fixed_args: true,
         materials: MatRule::Pass,
         unit_gradient: SHORTENS,
         keeps_exact: SHORTENS,
@@ -404,6 +419,7 @@ pub static OPERATORS: &[Operator] = &[
     },
     Operator {
         name: "bend",
+        fixed_args: true,
         materials: MatRule::Pass,
         unit_gradient: SHORTENS,
         keeps_exact: SHORTENS,
@@ -430,6 +446,7 @@ pub static OPERATORS: &[Operator] = &[
     },
     Operator {
         name: "round",
+        fixed_args: false,
         materials: MatRule::Pass,
         unit_gradient: KEEPS,
         keeps_exact: KEEPS,
@@ -444,6 +461,7 @@ pub static OPERATORS: &[Operator] = &[
     },
     Operator {
         name: "onion",
+        fixed_args: false,
         materials: MatRule::Pass,
         unit_gradient: KEEPS,
         keeps_exact: KEEPS,
@@ -458,6 +476,7 @@ pub static OPERATORS: &[Operator] = &[
     },
     Operator {
         name: "elongate",
+        fixed_args: false,
         materials: MatRule::Pass,
         unit_gradient: |c| (0..3).all(|i| c.vec(0)[i] == 0.0 || c.child_mirror[0][i]),
         keeps_exact: SHORTENS,

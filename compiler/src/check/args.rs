@@ -3,6 +3,7 @@
 use super::{Checker, Dim, Value};
 use crate::catalog::{self, Param, Ty, Val};
 use crate::diag::{Diagnostic, Span, did_you_mean};
+use crate::scene::Field;
 use crate::syntax::{Arg, Expr, ExprKind};
 use glam::DVec3;
 
@@ -59,7 +60,8 @@ impl Checker<'_> {
         }
     }
 
-    /// Binds positional and named arguments to `params`; reports every problem found.
+    /// Binds positional and named arguments to `params`; reports every problem found. A
+    /// value computed from parameters is an error here (settings are compiled in).
     pub(super) fn bind(
         &mut self,
         what: &str,
@@ -67,6 +69,21 @@ impl Checker<'_> {
         args: &[Arg],
         call_span: Span,
     ) -> Option<Vec<Val>> {
+        self.bind_args(what, params, args, call_span, false)
+            .map(|(v, _)| v)
+    }
+
+    /// As [`Self::bind`]; where `run_time`, arguments may be computed from parameters, and
+    /// each one's components as expressions come back beside the values (none: empty).
+    pub(super) fn bind_args(
+        &mut self,
+        what: &str,
+        params: &[Param],
+        args: &[Arg],
+        call_span: Span,
+        run_time: bool,
+    ) -> Option<(Vec<Val>, catalog::ArgSyms)> {
+        let mut syms: catalog::ArgSyms = vec![None; params.len()];
         let mut slots: Vec<Option<(Val, Span)>> = vec![None; params.len()];
         let mut ok = true;
         let mut seen_named = false;
@@ -136,8 +153,17 @@ impl Checker<'_> {
                 ok = false;
                 continue;
             }
-            match self.convert(&arg.value, param.ty, param.name) {
-                Some(v) => slots[index] = Some((v, arg.value.span)),
+            let converted = if run_time {
+                self.convert_arg(&arg.value, param.ty, param.name, what)
+            } else {
+                self.convert(&arg.value, param.ty, param.name)
+                    .map(|v| (v, None))
+            };
+            match converted {
+                Some((v, sym)) => {
+                    slots[index] = Some((v, arg.value.span));
+                    syms[index] = sym;
+                }
                 None => ok = false,
             }
         }
@@ -158,11 +184,37 @@ impl Checker<'_> {
                 }
             }
         }
-        ok.then_some(out)
+        if syms.iter().all(Option::is_none) {
+            syms.clear();
+        }
+        ok.then_some((out, syms))
     }
 
     /// Converts an expression to a value of type `ty`, checking its range.
     pub(super) fn convert(&mut self, e: &Expr, ty: Ty, param: &str) -> Option<Val> {
+        self.convert_full(e, ty, param, None).map(|(v, _)| v)
+    }
+
+    /// As [`Self::convert`], where the value may be computed from parameters when `call` names
+    /// the primitive or operator it is an argument of: then also its components as
+    /// expressions for the shader.
+    pub(super) fn convert_arg(
+        &mut self,
+        e: &Expr,
+        ty: Ty,
+        param: &str,
+        call: &str,
+    ) -> Option<(Val, Option<Vec<Field>>)> {
+        self.convert_full(e, ty, param, Some(call))
+    }
+
+    fn convert_full(
+        &mut self,
+        e: &Expr,
+        ty: Ty,
+        param: &str,
+        call: Option<&str>,
+    ) -> Option<(Val, Option<Vec<Field>>)> {
         // Words that are not names of bindings: axes and enumerations.
         if let ExprKind::Name(id) = &e.kind
             && !self.lets.contains_key(&id.name)
@@ -170,7 +222,7 @@ impl Checker<'_> {
             match ty {
                 Ty::Axis => {
                     if let Some(i) = ["x", "y", "z"].iter().position(|a| *a == id.name) {
-                        return Some(Val::Vec3(DVec3::AXES[i]));
+                        return Some((Val::Vec3(DVec3::AXES[i]), None));
                     }
                     if !self.declared.contains_key(&id.name) {
                         let d = Diagnostic::error(id.span, format!("unknown axis `{}`", id.name))
@@ -182,7 +234,7 @@ impl Checker<'_> {
                 }
                 Ty::PositiveOr(words) | Ty::Word(words) => {
                     if let Some(i) = words.iter().position(|w| *w == id.name) {
-                        return Some(Val::Word(i));
+                        return Some((Val::Word(i), None));
                     }
                     if !self.declared.contains_key(&id.name) {
                         let mut d = Diagnostic::error(
@@ -205,9 +257,36 @@ impl Checker<'_> {
             && !self.lets.contains_key(&id.name)
             && let Some(i) = ["x", "y", "z"].iter().position(|a| *a == id.name)
         {
-            return Some(Val::Vec3(-DVec3::AXES[i]));
+            return Some((Val::Vec3(-DVec3::AXES[i]), None));
         }
         let value = self.value(e)?;
+        if let (Value::Param(s), Some(call)) = (&value, call) {
+            if let Some(op) = catalog::operator(call)
+                && op.fixed_args
+            {
+                self.diags.push(
+                    Diagnostic::error(e.span, format!("the arguments of `{call}` cannot be parameters"))
+                        .label("computed from parameters")
+                        .note(format!("`{call}` shapes the shader's code by its arguments' values, and the shader is compiled once")),
+                );
+                return None;
+            }
+            let (v, comps) = self.param_arg(e, ty, param, s.clone())?;
+            return Some((v, Some(comps)));
+        }
+        if let Value::Param(_) = &value {
+            self.diags.push(
+                Diagnostic::error(e.span, format!("`{param}` cannot be a parameter"))
+                    .label(format!("this is {}", value.describe()))
+                    .note(format!("the shader is compiled with `{param}` in it: only shapes' and operators' arguments can change at run time")),
+            );
+            return None;
+        }
+        self.convert_checked(e, ty, param, value).map(|v| (v, None))
+    }
+
+    /// [`Self::convert_value`] and the check that the value fits f32.
+    fn convert_checked(&mut self, e: &Expr, ty: Ty, param: &str, value: Value) -> Option<Val> {
         let v = self.convert_value(e, ty, param, value)?;
         let fits = match v {
             Val::Num(x) => catalog::fits_gpu(x),
@@ -230,7 +309,13 @@ impl Checker<'_> {
     }
 
     /// The value of an argument as its parameter's type, or an error.
-    fn convert_value(&mut self, e: &Expr, ty: Ty, param: &str, value: Value) -> Option<Val> {
+    pub(super) fn convert_value(
+        &mut self,
+        e: &Expr,
+        ty: Ty,
+        param: &str,
+        value: Value,
+    ) -> Option<Val> {
         // Described only for an error (a string per argument was 2% of checking 10 000 nodes).
         let shown = value.clone();
         let found = || shown.describe();

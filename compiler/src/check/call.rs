@@ -38,23 +38,30 @@ impl Checker<'_> {
                 );
                 return None;
             }
-            let args = self.bind(name, prim.params, &call.args, call.span)?;
+            let (args, sym) = self.bind_args(name, prim.params, &call.args, call.span, true)?;
             let ctx = Ctx {
                 args,
+                sym,
                 child_lambda: Vec::new(),
                 child_bound: Vec::new(),
                 child_mirror: Vec::new(),
                 child_exact: Vec::new(),
                 prune: None,
             };
-            let lambda = (prim.lipschitz)(&ctx);
-            let bound = (prim.bound)(&ctx);
-            return self
-                .push_node(NodeKind::Primitive { prim, ctx }, lambda, bound, call.span)
-                .map(Value::Shape);
+            let rules = self.rules_over_ranges(&ctx, call.span, name, &|c| {
+                super::ranges::Rules::primitive(prim, c)
+            })?;
+            let id = self.push_node(
+                NodeKind::Primitive { prim, ctx },
+                rules.lambda,
+                rules.bound,
+                call.span,
+            )?;
+            self.narrow_rules(id, &rules);
+            return Some(Value::Shape(id));
         }
         if let Some(op) = catalog::operator(name) {
-            let args = self.bind(name, op.params, &call.args, call.span);
+            let args = self.bind_args(name, op.params, &call.args, call.span, true);
             let children = self.children(call, piped, op.arity)?;
             return self
                 .operator_node(name, args?, children, call.span)

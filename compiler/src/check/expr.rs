@@ -1,6 +1,7 @@
 //! Checking expressions: numbers with units, vectors, colours, names, arithmetic, pipes and
 //! where annotations apply (`call.rs` has calls, `implicit.rs` the `implicit` bodies).
 
+use super::params::{Sym, SymKind};
 use super::{Binding, Checker, Dim, MAX_DEPTH, Value};
 use crate::catalog;
 use crate::diag::{Diagnostic, Span, did_you_mean};
@@ -54,9 +55,15 @@ impl Checker<'_> {
             ExprKind::Vector(parts) => {
                 let mut v = DVec3::ZERO;
                 let mut ok = true;
+                let mut values = Vec::new();
                 for (i, part) in parts.iter().enumerate() {
-                    match self.value(part) {
+                    let value = self.value(part);
+                    if let Some(p) = &value {
+                        values.push(p.clone());
+                    }
+                    match value {
                         Some(Value::Num(x, Dim::None)) => v[i] = x,
+                        Some(Value::Param(s)) if s.kind == SymKind::Num(Dim::None) => {}
                         Some(other) => {
                             self.diags.push(
                                 Diagnostic::error(
@@ -70,6 +77,9 @@ impl Checker<'_> {
                         None => ok = false,
                     }
                 }
+                if ok && values.iter().any(|p| matches!(p, Value::Param(_))) {
+                    return Some(self.param_vector(&values));
+                }
                 ok.then_some(Value::Vec3(v))
             }
             ExprKind::Name(id) => self.name(id),
@@ -78,6 +88,14 @@ impl Checker<'_> {
                 Value::Num(x, d) => Some(Value::Num(-x, d)),
                 Value::Vec3(v) => Some(Value::Vec3(-v)),
                 Value::Field(f) => Some(Value::Field(Field::Neg(Box::new(f)))),
+                Value::Param(s) => Some(Value::Param(Sym {
+                    comps: s
+                        .comps
+                        .into_iter()
+                        .map(|c| Field::Neg(Box::new(c)))
+                        .collect(),
+                    ..s
+                })),
                 other => self.no_arithmetic(e.span, "-", &other),
             },
             ExprKind::Binary(op, a, b) => {
@@ -135,8 +153,10 @@ impl Checker<'_> {
             }
             ExprKind::At(lhs, offset) => {
                 let n = self.shape(lhs);
-                let v = self.convert(offset, catalog::Ty::Vec3, "offset");
-                self.operator_node("translate", vec![v?], vec![n?], e.span)
+                let v = self.convert_arg(offset, catalog::Ty::Vec3, "offset", "translate");
+                let (v, sym) = v?;
+                let sym = if sym.is_some() { vec![sym] } else { Vec::new() };
+                self.operator_node("translate", (vec![v], sym), vec![n?], e.span)
                     .map(Value::Shape)
             }
         }
@@ -197,6 +217,9 @@ impl Checker<'_> {
                 Binding::Value(v) => Some(v.clone()),
                 Binding::Failed => None,
             };
+        }
+        if let Some(v) = self.param_ref(&id.name) {
+            return Some(v);
         }
         if self.failed.contains(&id.name) {
             return None;
@@ -271,7 +294,10 @@ impl Checker<'_> {
         None
     }
 
-    fn binary(&mut self, op: BinOp, a: Value, b: Value, span: Span) -> Option<Value> {
+    pub(super) fn binary(&mut self, op: BinOp, a: Value, b: Value, span: Span) -> Option<Value> {
+        if matches!(a, Value::Param(_)) || matches!(b, Value::Param(_)) {
+            return self.param_binary(op, a, b, span);
+        }
         match (a, b) {
             (Value::Num(x, da), Value::Num(y, db)) => {
                 let dim = match (op, da, db) {
@@ -363,6 +389,7 @@ pub(super) fn as_field(v: Value) -> Field {
     match v {
         Value::Num(x, _) => Field::Const(x),
         Value::Field(f) => f,
+        Value::Param(s) => s.comps[0].clone(),
         _ => Field::Const(f64::NAN),
     }
 }

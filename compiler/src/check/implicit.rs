@@ -1,6 +1,7 @@
 //! Checking math-function calls, `implicit` bodies (their Lipschitz bound inferred, their domain
 //! checked) and `@lipschitz` annotations.
 
+use super::params::{Sym, SymKind};
 use super::{Checker, Dim, Value};
 use crate::catalog::{self};
 use crate::diag::{Diagnostic, Span, did_you_mean};
@@ -29,21 +30,21 @@ impl Checker<'_> {
             args.push(self.value(&a.value));
         }
         let args: Vec<Value> = args.into_iter().collect::<Option<_>>()?;
-        if let Some((bad, arg)) = args
-            .iter()
-            .zip(&call.args)
-            .find(|(a, _)| !matches!(a, Value::Num(..) | Value::Field(_)))
-        {
+        if let Some((bad, arg)) = args.iter().zip(&call.args).find(|(a, _)| {
+            !matches!(a, Value::Num(..) | Value::Field(_))
+                && !matches!(a, Value::Param(s) if matches!(s.kind, SymKind::Num(_)))
+        }) {
             return self.no_arithmetic(arg.value.span, f.name, bad);
         }
         let dims: Vec<Dim> = args
             .iter()
-            .map(|a| {
-                if let Value::Num(_, d) = a {
-                    *d
-                } else {
-                    Dim::None
-                }
+            .map(|a| match a {
+                Value::Num(_, d) => *d,
+                Value::Param(Sym {
+                    kind: SymKind::Num(d),
+                    ..
+                }) => *d,
+                _ => Dim::None,
             })
             .collect();
         let out = match f.units {
@@ -76,10 +77,15 @@ impl Checker<'_> {
                 .finite((f.eval)(&xs), call.span)
                 .map(|r| Value::Num(r, out));
         }
-        Some(Value::Field(Field::Call(
-            f,
-            args.into_iter().map(super::expr::as_field).collect(),
-        )))
+        let field = Field::Call(f, args.into_iter().map(super::expr::as_field).collect());
+        if !field.has_coords() {
+            // Computed from parameters only: a number the shader computes at run time.
+            return Some(Value::Param(Sym {
+                kind: SymKind::Num(out),
+                comps: vec![field],
+            }));
+        }
+        Some(Value::Field(field))
     }
 
     pub(super) fn implicit(&mut self, call: &Call, piped: Option<NodeId>) -> Option<Value> {
@@ -102,6 +108,7 @@ impl Checker<'_> {
         let field = match v? {
             Value::Field(f) => f,
             Value::Num(x, Dim::None) => Field::Const(x),
+            Value::Param(s) if s.kind == SymKind::Num(Dim::None) => s.comps[0].clone(),
             other => {
                 self.diags.push(
                     Diagnostic::error(body.span, "`implicit` needs a number-valued expression")

@@ -6,11 +6,14 @@ mod call;
 mod expr;
 mod implicit;
 mod look;
+mod params;
+mod ranges;
 mod settings;
 pub mod tracer;
 
 pub use args::signature;
 pub use look::LIGHT_KINDS;
+pub use params::TIME;
 pub use tracer::TRACE_METHODS;
 
 use crate::catalog::{Bound, Ctx};
@@ -50,8 +53,16 @@ pub struct Checked {
 
 /// Parses and checks source text.
 pub fn compile(source: &str) -> Checked {
+    compile_with(source, &HashMap::new())
+}
+
+/// Parses and checks source text with parameters set to other values than their defaults
+/// (`name` → components; `time` included): the scene the shader draws when the host sets
+/// them, for the CPU reference. A value outside a parameter's range is an error; names the
+/// scene does not declare are ignored (see [`unknown_params`]).
+pub fn compile_with(source: &str, values: &HashMap<String, Vec<f64>>) -> Checked {
     match syntax::parse(source) {
-        Ok(file) => check_with_lines(&file, source),
+        Ok(file) => check_with_lines(&file, source, values),
         Err(d) => Checked {
             scene: None,
             diagnostics: vec![d],
@@ -59,13 +70,36 @@ pub fn compile(source: &str) -> Checked {
     }
 }
 
-/// Checks a parsed file.
-pub fn check(file: &syntax::File) -> Checked {
-    check_with_lines(file, "")
+/// The names in `values` that are not parameters of `scene` (`time` is one whenever asked
+/// for: a scene that does not read it ignores it), with the closest parameter's name.
+pub fn unknown_params<'v>(
+    scene: &Scene,
+    values: &'v HashMap<String, Vec<f64>>,
+) -> Vec<(&'v str, Option<String>)> {
+    let mut out: Vec<(&str, Option<String>)> = values
+        .keys()
+        .filter(|n| *n != TIME && !scene.params.iter().any(|p| &p.name == *n))
+        .map(|n| {
+            let near = crate::diag::did_you_mean(n, scene.params.iter().map(|p| p.name.as_str()));
+            (n.as_str(), near.map(str::to_string))
+        })
+        .collect();
+    out.sort();
+    out
 }
 
-fn check_with_lines(file: &syntax::File, source: &str) -> Checked {
+/// Checks a parsed file.
+pub fn check(file: &syntax::File) -> Checked {
+    check_with_lines(file, "", &HashMap::new())
+}
+
+fn check_with_lines(
+    file: &syntax::File,
+    source: &str,
+    values: &HashMap<String, Vec<f64>>,
+) -> Checked {
     let mut c = Checker::new(file);
+    c.overrides = values.clone();
     c.line_starts = std::iter::once(0)
         .chain(source.match_indices('\n').map(|(i, _)| i + 1))
         .collect();
@@ -74,6 +108,12 @@ fn check_with_lines(file: &syntax::File, source: &str) -> Checked {
         c.depth_reported = false;
         match item {
             Item::Let { name, value } => c.let_binding(name, value),
+            Item::Param {
+                name,
+                value,
+                range,
+                span,
+            } => c.param_statement(name, value, range.as_deref(), *span),
             Item::Block {
                 keyword,
                 kind,
@@ -105,9 +145,10 @@ fn check_with_lines(file: &syntax::File, source: &str) -> Checked {
             let span = c.nodes[roots[0]]
                 .span
                 .to(c.nodes[*roots.last().unwrap()].span);
-            c.operator_node("union", Vec::new(), roots, span)
+            c.operator_node("union", (Vec::new(), Vec::new()), roots, span)
         }
     };
+    c.unused_params();
     if let Some(root) = root {
         c.check_bounded(root);
         c.check_bound(root);
@@ -131,7 +172,7 @@ fn file_end(file: &syntax::File) -> usize {
             Item::Let { value, .. } | Item::Value { value, .. } | Item::Scene(value) => {
                 value.span.end
             }
-            Item::Block { span, .. } => span.end,
+            Item::Block { span, .. } | Item::Param { span, .. } => span.end,
         })
         .max()
         .unwrap_or(0)
@@ -153,6 +194,8 @@ pub(crate) enum Value {
     Shape(NodeId),
     /// An expression of x, y, z (inside `implicit`).
     Field(Field),
+    /// A number, vector or colour computed from parameters at run time.
+    Param(params::Sym),
 }
 
 impl Value {
@@ -164,6 +207,10 @@ impl Value {
             Value::Color(_) => "a colour".into(),
             Value::Shape(_) => "a shape".into(),
             Value::Field(_) => "an expression of x, y, z".into(),
+            Value::Param(s) => format!(
+                "a value computed from parameters ({})",
+                s.value().describe()
+            ),
         }
     }
 }
@@ -199,6 +246,14 @@ pub(crate) struct Checker<'a> {
     in_implicit: bool,
     depth: usize,
     settings: settings::Settings,
+    /// Declared parameters (and `time` once used), in order.
+    params: Vec<crate::scene::ParamDecl>,
+    /// Their indices by name.
+    param_index: HashMap<String, usize>,
+    /// Whether each is read somewhere.
+    param_used: Vec<bool>,
+    /// Values asked for parameters instead of their defaults (`compile_with`).
+    overrides: HashMap<String, Vec<f64>>,
 }
 
 impl<'a> Checker<'a> {
@@ -207,7 +262,7 @@ impl<'a> Checker<'a> {
         let mut material_spans = Vec::new();
         for item in &file.items {
             match item {
-                Item::Let { name, .. } => {
+                Item::Let { name, .. } | Item::Param { name, .. } => {
                     declared.entry(name.name.clone()).or_insert(name.span);
                 }
                 Item::Block {
@@ -235,6 +290,10 @@ impl<'a> Checker<'a> {
             in_implicit: false,
             depth: 0,
             settings: settings::Settings::default(),
+            params: Vec::new(),
+            param_index: HashMap::new(),
+            param_used: Vec::new(),
+            overrides: HashMap::new(),
         }
     }
 
@@ -244,12 +303,7 @@ impl<'a> Checker<'a> {
             self.failed.insert(name.name.clone());
             return;
         }
-        if let Some((_, first)) = self.lets.get(&name.name) {
-            self.diags.push(
-                Diagnostic::error(name.span, format!("`{}` is defined twice", name.name))
-                    .label("second definition")
-                    .also(*first, "first definition"),
-            );
+        if self.defined_twice(name) {
             return;
         }
         self.defining = Some((&name.name, name.span));
@@ -265,9 +319,32 @@ impl<'a> Checker<'a> {
         self.lets.insert(name.name.clone(), (binding, name.span));
     }
 
+    /// Whether `name` was already defined by a `let` or `param` (reported if so).
+    fn defined_twice(&mut self, name: &syntax::Ident) -> bool {
+        let first = self.lets.get(&name.name).map(|(_, s)| *s).or_else(|| {
+            self.param_index
+                .get(&name.name)
+                .map(|&i| self.params[i].span)
+        });
+        if let Some(first) = first {
+            self.diags.push(
+                Diagnostic::error(name.span, format!("`{}` is defined twice", name.name))
+                    .label("second definition")
+                    .also(first, "first definition"),
+            );
+        }
+        first.is_some()
+    }
+
     /// Names that would be confusing or ambiguous as `let` or material names.
     fn reserved_name(&self, name: &syntax::Ident) -> Option<Diagnostic> {
         let n = name.name.as_str();
+        if n == params::TIME {
+            return Some(
+                Diagnostic::error(name.span, "`time` is reserved")
+                    .label("the built-in parameter: seconds, set by the host"),
+            );
+        }
         if ["x", "y", "z"].contains(&n) {
             return Some(
                 Diagnostic::error(name.span, format!("`{n}` is reserved"))
@@ -347,13 +424,14 @@ impl<'a> Checker<'a> {
     fn operator_node(
         &mut self,
         name: &str,
-        args: Vec<crate::catalog::Val>,
+        (args, sym): (Vec<crate::catalog::Val>, crate::catalog::ArgSyms),
         children: Vec<NodeId>,
         span: Span,
     ) -> Option<NodeId> {
         let op = crate::catalog::operator(name).expect("operator in the catalog");
         let ctx = Ctx {
             args,
+            sym,
             child_lambda: children.iter().map(|&c| self.nodes[c].lambda).collect(),
             child_bound: children.iter().map(|&c| self.nodes[c].bound).collect(),
             child_mirror: children.iter().map(|&c| self.nodes[c].mirror).collect(),
@@ -364,8 +442,9 @@ impl<'a> Checker<'a> {
         if name == "union" {
             ctx.prune = crate::catalog::prune::Tree::build(&ctx).map(std::sync::Arc::new);
         }
-        let lambda = (op.lipschitz)(&ctx);
-        let bound = (op.bound)(&ctx);
+        let rules =
+            self.rules_over_ranges(&ctx, span, name, &|c| ranges::Rules::operator(op, c))?;
+        let (lambda, bound) = (rules.lambda, rules.bound);
         let copies = if name == "repeat" {
             let copies = crate::catalog::repeat::Plan::new(&ctx).copies();
             self.check_repeat_copies(&ctx, copies, span);
@@ -398,7 +477,18 @@ impl<'a> Checker<'a> {
             span,
         )?;
         self.nodes[id].evaluations = evaluations;
+        self.narrow_rules(id, &rules);
         Some(id)
+    }
+
+    /// A node's symmetries, exactness and gradient as every value of its parameters has them.
+    fn narrow_rules(&mut self, id: NodeId, rules: &ranges::Rules) {
+        let n = &mut self.nodes[id];
+        for i in 0..3 {
+            n.mirror[i] &= rules.mirror[i];
+        }
+        n.unit_gradient &= rules.unit;
+        n.exact &= rules.exact;
     }
 
     /// A `repeat` evaluates the copies that can be nearest (see `catalog::repeat`); a shape
@@ -440,6 +530,24 @@ impl<'a> Checker<'a> {
                 )
                 .label("no Lipschitz bound")
                 .help("add `@lipschitz(L)` after it with a bound L on the gradient's length");
+                if let NodeKind::Implicit { field } = &node.kind {
+                    let mut free = Vec::new();
+                    field.params(&mut |r| {
+                        if !r.ranged() && !free.contains(&r.index) {
+                            free.push(r.index);
+                        }
+                    });
+                    if let Some(&i) = free.first() {
+                        let name = &self.params[i].name;
+                        d = d
+                            .note(format!(
+                                "`{name}` has no range, and the slope grows without bound with it"
+                            ))
+                            .help(format!(
+                                "give `{name}` a range: `param {name} = … in low..high`"
+                            ));
+                    }
+                }
                 if let NodeKind::Implicit { field } = &node.kind
                     && crate::lipschitz::crosses_branch_cut(field)
                 {
@@ -467,6 +575,8 @@ impl<'a> Checker<'a> {
     }
 
     fn finish(self, root: NodeId) -> Scene {
-        self.settings.finish(self.nodes, root, self.materials)
+        let mut scene = self.settings.finish(self.nodes, root, self.materials);
+        scene.params = self.params;
+        scene
     }
 }

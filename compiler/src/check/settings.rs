@@ -132,6 +132,7 @@ impl Settings {
                 color: color.unwrap_or(background),
                 density,
             }),
+            params: Vec::new(),
         }
     }
 }

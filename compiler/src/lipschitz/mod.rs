@@ -31,6 +31,15 @@ pub fn infer(field: &Field) -> Result<f64, String> {
     Ok(if l.is_nan() { f64::INFINITY } else { l })
 }
 
+/// The values an expression of parameters (no coordinates) takes over every value they may
+/// take (their declared ranges, everything without one), and the first reason it may be
+/// undefined there (as [`infer`] reports them).
+pub fn value_range(field: &Field) -> (Interval, Option<String>) {
+    let mut undefined = None;
+    let (v, _) = grad(field, &[Interval::ALL; 3], &mut undefined, &mut false);
+    (v, undefined)
+}
+
 /// Whether the body takes `atan2(a, b)` where a may cross 0 while b is negative: the angle
 /// jumps by 2π there, so no slope bound holds across it (the reason an inference failed).
 pub fn crosses_branch_cut(field: &Field) -> bool {
@@ -77,6 +86,9 @@ fn grad_inner(
     let zero = Interval::point(0.0);
     match f {
         Field::Const(c) => (Interval::point(*c), [zero; 3]),
+        // Any value of its range (everything without one): a bound for every value the host
+        // may set.
+        Field::Param(r) => (Interval::new(r.lo, r.hi), [zero; 3]),
         Field::Coord(i) => {
             let mut g = [zero; 3];
             g[*i] = Interval::point(1.0);

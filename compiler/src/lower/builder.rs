@@ -19,6 +19,8 @@ pub struct ModuleBuilder {
     helpers: std::collections::HashMap<String, Handle<Function>>,
     /// The compute entry's count of shading evaluations, if it has one (`count.rs`).
     pub evaluations: Option<Handle<naga::GlobalVariable>>,
+    /// The `Params` uniform, if the scene has parameters (`params.rs`).
+    pub params: Option<Handle<naga::GlobalVariable>>,
 }
 
 impl ModuleBuilder {

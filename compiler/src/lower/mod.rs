@@ -15,6 +15,7 @@ mod hybrid;
 pub mod march;
 mod math;
 pub mod ops;
+pub mod params;
 pub mod prims;
 mod probes;
 mod prune;
@@ -38,6 +39,7 @@ pub use tracer::Entry;
 /// Builds the module for a scene and an entry kind. Validation happens in `emit`.
 pub fn lower(scene: &Scene, entry: Entry, options: &tracer::Options) -> naga::Module {
     let mut mb = ModuleBuilder::default();
+    mb.params = params::add(&mut mb, scene);
     let reachable = scene.reachable();
     add_primitive_functions(&mut mb, scene, &reachable);
     add_operator_helpers(&mut mb, scene, &reachable);
@@ -280,8 +282,8 @@ impl Walk<'_> {
             NodeKind::Primitive { prim, ctx } => {
                 let f = b.m.helper(&format!("sd_{}", prim.name));
                 let mut args = vec![p];
-                for (param, v) in prim.params.iter().zip(&ctx.args) {
-                    args.push(literal(b, param.ty, *v));
+                for (i, (param, v)) in prim.params.iter().zip(&ctx.args).enumerate() {
+                    args.push(params::arg(b, param.ty, *v, ctx.sym(i), p));
                 }
                 b.call(f, args)
             }
@@ -299,21 +301,13 @@ impl Walk<'_> {
     }
 }
 
-/// A checked argument as an IR literal of its parameter's type.
-fn literal(b: &mut FnBuilder, ty: Ty, v: crate::catalog::Val) -> Ex {
-    match ty {
-        Ty::Count | Ty::CountTo(_) => b.u(v.num() as u32),
-        Ty::Vec3 | Ty::Size | Ty::Scale | Ty::Axis | Ty::Color | Ty::Counts => b.vec3_lit(v.vec()),
-        _ => b.f(v.num()),
-    }
-}
-
 /// An `implicit` body in IR. Whole powers with |n| ≤ 64 are multiplied out by repeated squaring
 /// (WGSL's `pow` is undefined for negative bases; the CPU's `powf` is exact there), negative
 /// ones as the reciprocal.
-fn lower_field(b: &mut FnBuilder, f: &Field, p: Ex) -> Ex {
+pub(super) fn lower_field(b: &mut FnBuilder, f: &Field, p: Ex) -> Ex {
     match f {
         Field::Const(c) => b.f(*c),
+        Field::Param(r) => params::load(b, r),
         Field::Coord(i) => b.at(p, *i as u32),
         Field::Neg(a) => {
             let a = lower_field(b, a, p);

@@ -2,6 +2,7 @@
 //! in `catalog/operators.rs`; the smooth blends call small `op_*` helper functions.
 
 use super::builder::{Ex, FnBuilder};
+use super::params;
 use crate::catalog::Ctx;
 use crate::catalog::operators::{FALLOFF_SLOPE, rotate as rotate_point, twist_stretch};
 use crate::catalog::repeat::{AxisPlan, Plan};
@@ -87,7 +88,7 @@ fn smooth(
     negate: bool,
 ) -> Ex {
     let f = b.m.helper(helper);
-    let k = b.f(c.num(0));
+    let k = params::num(b, c, 0, p);
     fold(b, c, p, child, &|b, x, y| {
         let y = if negate { b.neg(y) } else { y };
         b.call(f, vec![x, y, k])
@@ -144,6 +145,16 @@ pub fn smooth_max_body(b: &mut FnBuilder) -> Ex {
 
 /// (1 − w)·a + w·b
 pub fn mix(b: &mut FnBuilder, c: &Ctx, p: Ex, child: ChildLower) -> Ex {
+    if params::varies(c, 0) {
+        let w = params::num(b, c, 0, p);
+        let one = b.f(1.0);
+        let rest = b.sub(one, w);
+        let a = child(b, 0, p);
+        let a = b.mul(a, rest);
+        let d = child(b, 1, p);
+        let d = b.mul(d, w);
+        return b.add(a, d);
+    }
     let w = c.num(0);
     let a = child(b, 0, p);
     let a = scale_by(b, a, 1.0 - w);
@@ -155,6 +166,14 @@ pub fn mix(b: &mut FnBuilder, c: &Ctx, p: Ex, child: ChildLower) -> Ex {
 /// Blob field: threshold − Σ falloff, over its slope bound, or the influence zone's distance.
 pub fn blob(b: &mut FnBuilder, c: &Ctx, p: Ex, child: ChildLower) -> Ex {
     let (radius, threshold) = (c.num(0), c.num(1));
+    let run_time = params::varies(c, 0);
+    let r_ex = params::num(b, c, 0, p);
+    let inv_r = if run_time {
+        let one = b.f(1.0);
+        Some(b.div(one, r_ex))
+    } else {
+        None
+    };
     let n = c.child_lambda.len();
     let mut field = None;
     let mut nearest = None;
@@ -162,7 +181,10 @@ pub fn blob(b: &mut FnBuilder, c: &Ctx, p: Ex, child: ChildLower) -> Ex {
         let d = norm(b, c, child, i, p);
         let zero = b.f(0.0);
         let dp = b.max(d, zero);
-        let s = scale_by(b, dp, 1.0 / radius);
+        let s = match inv_r {
+            Some(inv) => b.mul(dp, inv),
+            None => scale_by(b, dp, 1.0 / radius),
+        };
         // (1 − s²)³ clamped at 0
         let s2 = b.mul(s, s);
         let one = b.f(1.0);
@@ -180,23 +202,58 @@ pub fn blob(b: &mut FnBuilder, c: &Ctx, p: Ex, child: ChildLower) -> Ex {
         });
     }
     let (field, nearest) = (field.expect("a child"), nearest.expect("a child"));
-    let th = b.f(threshold);
+    let _ = threshold;
+    let th = params::num(b, c, 1, p);
     let v = b.sub(th, field);
-    let v = scale_by(b, v, radius / (n as f64 * FALLOFF_SLOPE));
-    let r = b.f(radius);
-    let outside = b.sub(nearest, r);
+    let v = if run_time {
+        let k = b.f(1.0 / (n as f64 * FALLOFF_SLOPE));
+        let k = b.mul(r_ex, k);
+        b.mul(v, k)
+    } else {
+        scale_by(b, v, radius / (n as f64 * FALLOFF_SLOPE))
+    };
+    let outside = b.sub(nearest, r_ex);
     b.max(v, outside)
 }
 
 /// f(p − offset)
 pub fn translate(b: &mut FnBuilder, c: &Ctx, p: Ex, child: ChildLower) -> Ex {
-    let o = b.vec3_lit(c.vec(0));
+    let o = params::vec3(b, c, 0, p);
     let q = b.sub(p, o);
     child(b, 0, q)
 }
 
 /// f(R⁻¹p) with R⁻¹ folded into a constant matrix.
 pub fn rotate(b: &mut FnBuilder, c: &Ctx, p: Ex, child: ChildLower) -> Ex {
+    if params::varies(c, 0) || params::varies(c, 1) {
+        // Rodrigues' formula at run time: q = p·cos θ + (k × p)·sin θ + k(k·p)(1 − cos θ),
+        // θ = −angle.
+        let angle = params::num(b, c, 1, p);
+        let theta = b.neg(angle);
+        let (s, co) = (b.math(M::Sin, &[theta]), b.math(M::Cos, &[theta]));
+        // About a fixed coordinate axis: a turn in the plane across it, as written by hand.
+        let axis = c.vec(0);
+        if let Some(a) = (0..3)
+            .filter(|_| !params::varies(c, 0))
+            .find(|&a| axis[a].abs() == 1.0 && (0..3).all(|j| j == a || axis[j] == 0.0))
+        {
+            let s = if axis[a] < 0.0 { b.neg(s) } else { s };
+            let q = turn(b, p, [(a + 1) % 3, (a + 2) % 3], (s, co));
+            return child(b, 0, q);
+        }
+        let k = params::vec3(b, c, 0, p);
+        let a = b.mul(p, co);
+        let cross = b.math(M::Cross, &[k, p]);
+        let cross = b.mul(cross, s);
+        let kp = b.dot(k, p);
+        let one = b.f(1.0);
+        let rest = b.sub(one, co);
+        let along = b.mul(kp, rest);
+        let along = b.mul(k, along);
+        let q = b.add(a, cross);
+        let q = b.add(q, along);
+        return child(b, 0, q);
+    }
     let (axis, angle) = (c.vec(0), c.num(1));
     let cols = [DVec3::X, DVec3::Y, DVec3::Z].map(|e| rotate_point(e, axis, -angle));
     let q = linear(b, cols, p);
@@ -260,6 +317,15 @@ pub fn linear(b: &mut FnBuilder, cols: [DVec3; 3], p: Ex) -> Ex {
 
 /// f(p / s)·min(s)
 pub fn scale(b: &mut FnBuilder, c: &Ctx, p: Ex, child: ChildLower) -> Ex {
+    if params::varies(c, 0) {
+        let s = params::vec3(b, c, 0, p);
+        let q = b.div(p, s);
+        let d = child(b, 0, q);
+        let [x, y, z] = b.xyz(s);
+        let m = b.min(x, y);
+        let m = b.min(m, z);
+        return b.mul(d, m);
+    }
     let s = c.vec(0);
     let inv = b.vec3_lit(DVec3::ONE / s);
     let q = b.mul(p, inv);
@@ -355,8 +421,10 @@ fn center(b: &mut FnBuilder, plan: &Plan, i: usize, k: Ex) -> Ex {
 /// p − 2·min(p·n, 0)·n
 pub fn mirror(b: &mut FnBuilder, c: &Ctx, p: Ex, child: ChildLower) -> Ex {
     let normal = c.vec(0);
+    let fixed = !params::varies(c, 0);
     // Across a coordinate plane: that coordinate's absolute value (or its negation).
     if let Some(k) = (0..3)
+        .filter(|_| fixed)
         .find(|&k| normal[k].abs() == 1.0 && (0..3).all(|j| j == k || normal[j].abs() < 1e-12))
     {
         let mut coords = b.xyz(p);
@@ -365,7 +433,7 @@ pub fn mirror(b: &mut FnBuilder, c: &Ctx, p: Ex, child: ChildLower) -> Ex {
         let q = b.compose_vec3(coords);
         return child(b, 0, q);
     }
-    let n = b.vec3_lit(normal);
+    let n = params::vec3(b, c, 0, p);
     let d = b.dot(p, n);
     let zero = b.f(0.0);
     let d = b.min(d, zero);
@@ -425,11 +493,17 @@ fn warp(
 /// Rotates coordinates `plane` of `p` by `rate` times coordinate `by` (twist: xz by y; bend: xy
 /// by x), as `catalog::warp::twist_point` and `bend_point`.
 fn plane_rotation(b: &mut FnBuilder, p: Ex, plane: [usize; 2], by: usize, rate: f64) -> Ex {
-    let mut c = b.xyz(p);
     let k = b.f(rate);
-    let a = b.mul(k, c[by]);
+    let along = b.at(p, by as u32);
+    let a = b.mul(k, along);
     let (s, co) = (b.math(M::Sin, &[a]), b.math(M::Cos, &[a]));
-    let [i, j] = plane;
+    turn(b, p, plane, (s, co))
+}
+
+/// `p` turned in the plane of coordinates `[i, j]` by the angle whose sine and cosine are given:
+/// (c·pᵢ − s·pⱼ, s·pᵢ + c·pⱼ).
+fn turn(b: &mut FnBuilder, p: Ex, [i, j]: [usize; 2], (s, co): (Ex, Ex)) -> Ex {
+    let mut c = b.xyz(p);
     let (ci, sj) = (b.mul(co, c[i]), b.mul(s, c[j]));
     let (si, cj) = (b.mul(s, c[i]), b.mul(co, c[j]));
     c[i] = b.sub(ci, sj);
@@ -466,7 +540,7 @@ pub fn bend(b: &mut FnBuilder, c: &Ctx, p: Ex, child: ChildLower) -> Ex {
 /// f/λ − r
 pub fn round(b: &mut FnBuilder, c: &Ctx, p: Ex, child: ChildLower) -> Ex {
     let d = norm(b, c, child, 0, p);
-    let r = b.f(c.num(0));
+    let r = params::num(b, c, 0, p);
     b.sub(d, r)
 }
 
@@ -474,15 +548,21 @@ pub fn round(b: &mut FnBuilder, c: &Ctx, p: Ex, child: ChildLower) -> Ex {
 pub fn onion(b: &mut FnBuilder, c: &Ctx, p: Ex, child: ChildLower) -> Ex {
     let d = norm(b, c, child, 0, p);
     let d = b.abs(d);
-    let t = b.f(c.num(0));
+    let t = params::num(b, c, 0, p);
     b.sub(d, t)
 }
 
 /// f(p − clamp(p, −h, h))
 pub fn elongate(b: &mut FnBuilder, c: &Ctx, p: Ex, child: ChildLower) -> Ex {
-    let h = c.vec(0) / 2.0;
-    let hi = b.vec3_lit(h);
-    let lo = b.vec3_lit(-h);
+    let (hi, lo) = if params::varies(c, 0) {
+        let amount = params::vec3(b, c, 0, p);
+        let half = b.f(0.5);
+        let hi = b.mul(amount, half);
+        (hi, b.neg(hi))
+    } else {
+        let h = c.vec(0) / 2.0;
+        (b.vec3_lit(h), b.vec3_lit(-h))
+    };
     let cl = b.clamp(p, lo, hi);
     let q = b.sub(p, cl);
     child(b, 0, q)

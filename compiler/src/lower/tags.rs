@@ -218,6 +218,13 @@ fn pick_material(
     let rule = rule.sharp();
     match rule {
         MatRule::Pass => seen[0].1,
+        MatRule::Weighted if super::params::varies(ctx, 0) => {
+            let w = super::params::num(b, ctx, 0, seen[0].0);
+            let half = b.f(0.5);
+            let second = b.gt(w, half);
+            let (first, other) = (mat(b, 0), mat(b, 1));
+            Some(b.select(second, other, first))
+        }
         MatRule::Weighted => Some(mat(b, usize::from(ctx.num(0) > 0.5))),
         MatRule::Nearest | MatRule::Farthest | MatRule::Cut => {
             let sign = if rule == MatRule::Cut { -1.0 } else { 1.0 };
@@ -264,10 +271,10 @@ fn pick_blend(
     let v3 = b.m.vec3();
     if rule == MatRule::Weighted {
         let (a, c) = (tag(b, 0), tag(b, 1));
-        let w = b.f(ctx.num(0));
+        let w = super::params::num(b, ctx, 0, seen[0].0);
         return Some(b.compose(v3, vec![a, c, w]));
     }
-    let k = ctx.num(0);
+    let k = Radius::of(b, ctx, seen[0].0);
     let mut d = ops::scale_by(b, seen[0].0, 1.0 / ctx.child_lambda[0]);
     let mut blend = seen[0].1.unwrap_or_else(|| b.splat3(0.0));
     for (i, &(di, _)) in seen.iter().enumerate().skip(1) {
@@ -287,8 +294,7 @@ fn pick_blend(
         let whole = seen[i].1.unwrap_or_else(|| b.splat3(0.0));
         let gap = b.sub(x, y);
         let gap = b.abs(gap);
-        let kk = b.f(k);
-        let outside = b.ge(gap, kk);
+        let outside = b.ge(gap, k.ex);
         let first_side = b.bin(naga::BinaryOperator::LessEqual, x, y);
         let side = b.select(first_side, blend, whole);
         blend = b.select(outside, side, mixed);
@@ -301,34 +307,81 @@ fn pick_blend(
     Some(blend)
 }
 
+/// A smooth operator's radius: its value if fixed, and the expression (a parameter's may be
+/// 0 at run time: divisions by it use max(k, 1e-30), which gives the sharp result there).
+#[derive(Clone, Copy)]
+struct Radius {
+    ex: Ex,
+    fixed: Option<f64>,
+}
+
+impl Radius {
+    fn of(b: &mut FnBuilder, ctx: &crate::catalog::Ctx, any: Ex) -> Radius {
+        if super::params::varies(ctx, 0) {
+            Radius {
+                ex: super::params::num(b, ctx, 0, any),
+                fixed: None,
+            }
+        } else {
+            let k = ctx.num(0);
+            Radius {
+                ex: b.f(k),
+                fixed: Some(k),
+            }
+        }
+    }
+
+    /// Whether it is a fixed 0 (or less): the sharp operator.
+    fn sharp(self) -> bool {
+        self.fixed.is_some_and(|k| k <= 0.0)
+    }
+
+    /// The divisor: k, or max(k, 1e-30) at run time.
+    fn divisor(self, b: &mut FnBuilder) -> Ex {
+        match self.fixed {
+            Some(_) => self.ex,
+            None => {
+                let tiny = b.f(1e-30);
+                b.max(self.ex, tiny)
+            }
+        }
+    }
+}
+
 /// IQ's quadratic smooth minimum of radius `k` (`catalog::operators::smin`).
-fn smin(b: &mut FnBuilder, x: Ex, y: Ex, k: f64) -> Ex {
+fn smin(b: &mut FnBuilder, x: Ex, y: Ex, k: Radius) -> Ex {
     let low = b.min(x, y);
-    if k <= 0.0 {
+    if k.sharp() {
         return low;
     }
     let h = smin_h(b, x, y, k);
     let hh = b.mul(h, h);
-    let kq = b.f(k * 0.25);
+    let kq = match k.fixed {
+        Some(k) => b.f(k * 0.25),
+        None => {
+            let quarter = b.f(0.25);
+            b.mul(k.ex, quarter)
+        }
+    };
     let dent = b.mul(hh, kq);
     b.sub(low, dent)
 }
 
 /// max(k − |x − y|, 0)/k.
-fn smin_h(b: &mut FnBuilder, x: Ex, y: Ex, k: f64) -> Ex {
+fn smin_h(b: &mut FnBuilder, x: Ex, y: Ex, k: Radius) -> Ex {
     let diff = b.sub(x, y);
     let diff = b.abs(diff);
-    let kk = b.f(k);
-    let h = b.sub(kk, diff);
+    let h = b.sub(k.ex, diff);
     let zero = b.f(0.0);
     let h = b.max(h, zero);
+    let kk = k.divisor(b);
     b.div(h, kk)
 }
 
 /// The weight of `y` in the smooth minimum of `x` and `y` (`crate::blend::smin_weight`).
-fn smin_weight(b: &mut FnBuilder, x: Ex, y: Ex, k: f64) -> Ex {
+fn smin_weight(b: &mut FnBuilder, x: Ex, y: Ex, k: Radius) -> Ex {
     let first = b.bin(naga::BinaryOperator::LessEqual, x, y);
-    if k <= 0.0 {
+    if k.sharp() {
         let (zero, one) = (b.f(0.0), b.f(1.0));
         return b.select(first, zero, one);
     }

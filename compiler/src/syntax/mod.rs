@@ -44,6 +44,17 @@ pub enum Item {
         /// The value.
         value: Expr,
     },
+    /// `param name = value in low..high`: a value set at run time.
+    Param {
+        /// The parameter's name.
+        name: Ident,
+        /// Its default value.
+        value: Expr,
+        /// The values it may take, if declared: `low..high` (each end included).
+        range: Option<Box<(Expr, Expr)>>,
+        /// The whole statement.
+        span: Span,
+    },
     /// `camera { .. }`, `light point { .. }`, `trace enhanced { .. }`, `material gold { .. }`
     Block {
         /// `camera`, `light`, `trace` or `material`.
@@ -265,7 +276,10 @@ fn rule_name(rule: Rule) -> &'static str {
         Rule::block => "`{`",
         Rule::settings_body => "`{`",
         Rule::setting => "a setting",
+        Rule::in_kw => "`in`",
         Rule::let_stmt
+        | Rule::param_stmt
+        | Rule::param_kw
         | Rule::block_stmt
         | Rule::block_kw
         | Rule::value_stmt
@@ -295,6 +309,21 @@ fn item(p: Pair<Rule>) -> Item {
             let name = ident(it.next().expect("let name"));
             let value = expr(it.next().expect("let value"));
             Item::Let { name, value }
+        }
+        Rule::param_stmt => {
+            let mut it = p.into_inner().filter(|q| q.as_rule() != Rule::in_kw);
+            let _keyword = it.next();
+            let name = ident(it.next().expect("param name"));
+            let value = expr(it.next().expect("param value"));
+            let range = it
+                .next()
+                .map(|lo| Box::new((expr(lo), expr(it.next().expect("range end")))));
+            Item::Param {
+                name,
+                value,
+                range,
+                span,
+            }
         }
         Rule::block_stmt => {
             let mut keyword = None;

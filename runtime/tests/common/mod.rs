@@ -47,6 +47,7 @@ pub fn gpu_trace(
 ) -> Vec<(f32, u32, u32)> {
     let (module, _) = emit::module(scene, Entry::Rays, &Options::from_scene(scene))
         .unwrap_or_else(|e| panic!("{}", e.0));
+    gpu.set_params(&sdfc_compiler::lower::params::bytes(&scene.params));
     gpu.trace_rays(&module, rays).unwrap()
 }
 
@@ -91,6 +92,9 @@ pub struct Tally {
     pub grazed: u32,
     /// Ran out of budget (counted, not judged).
     pub exhausted: u32,
+    /// Hybrid only: stepped through a stretch inside the scene shorter than its linear step,
+    /// as its fixed steps do by construction (Liktor §5.4; docs/stability.md).
+    pub slivers: u32,
 }
 
 impl Safety {
@@ -112,11 +116,13 @@ impl Safety {
         trace::ray(&self.truth, &self.truth.trace, view.eye, rd, view.pixel)
     }
 
-    /// Counts a tracer's result `r` on the ray `rd` whose ground truth is `truth`.
+    /// Counts the result `r` of tracer settings `trace` on the ray `rd` whose ground truth is
+    /// `truth`; `footprint` is the largest pixel footprint (per unit of t) the tracer used (a
+    /// coarse pass's).
     pub fn judge(
         &self,
         tally: &mut Tally,
-        (view, rd): (&sdfc_compiler::view::View, glam::DVec3),
+        (view, rd, trace, footprint): (&sdfc_compiler::view::View, glam::DVec3, &Trace, f64),
         r: &Traced,
         truth: &Traced,
     ) {
@@ -125,6 +131,13 @@ impl Safety {
         } else if truth.hit && !r.hit {
             let t = &self.truth;
             let f = trace::ray_exact(t, &t.trace, self.fine_epsilon, view.eye, rd);
+            if trace.method == Method::Hybrid && f.hit {
+                let step = trace.linear * trace::Threshold::new(t, trace, footprint).at(f.t);
+                if inside_length(t, view.eye, rd, f.t, step) < step {
+                    tally.slivers += 1;
+                    return;
+                }
+            }
             if f.hit || f.exhausted {
                 tally.missed += 1;
             } else {
@@ -132,6 +145,22 @@ impl Safety {
             }
         }
     }
+}
+
+/// How far the ray `eye + t·rd` runs inside the scene once it enters it after `t` (where a
+/// fine trace stopped, just before the surface; within `around` of it), walked in steps of
+/// `around`/1024; `f64::INFINITY` if it does not enter there.
+fn inside_length(scene: &Scene, eye: glam::DVec3, rd: glam::DVec3, t: f64, around: f64) -> f64 {
+    let step = around / 1024.0;
+    let inside = |s: f64| sdfc_compiler::eval::distance(scene, eye + rd * s) <= 0.0;
+    let Some(entry) = (0..1024).map(|k| t + step * k as f64).find(|&s| inside(s)) else {
+        return f64::INFINITY;
+    };
+    let mut s = entry;
+    while inside(s + step) && s - entry < 2.0 * around {
+        s += step;
+    }
+    s + step - entry
 }
 
 /// Runs the `sdfc` binary with `args`.
@@ -183,6 +212,7 @@ pub fn off_by(px: u32, want: [i32; 3]) -> i32 {
 pub fn render(gpu: &Gpu, scene: &Scene, view: &sdfc_compiler::view::View) -> sdfc::gpu::Frame {
     let (module, _) = emit::module(scene, Entry::Compute, &Options::from_scene(scene))
         .unwrap_or_else(|e| panic!("{}", e.0));
+    gpu.set_params(&sdfc_compiler::lower::params::bytes(&scene.params));
     gpu.render(&module, view, None, |_, _| {}).unwrap()
 }
 

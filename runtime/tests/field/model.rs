@@ -64,6 +64,8 @@ pub fn estimate(f: &Field, p: DVec3) -> Est {
     match f {
         Field::Const(c) => est(*c, (c - f32x(*c)).abs(), false),
         Field::Coord(i) => est(p[*i], 0.0, false),
+        // The uniform holds the value rounded to f32.
+        Field::Param(r) => est(r.value, (r.value - f32x(r.value)).abs(), false),
         Field::Neg(a) => {
             let a = estimate(a, p);
             est(-a.v, a.e, a.off)

@@ -1,0 +1,519 @@
+//! Checking parameters: `param` declarations and the built-in `time`, values computed from them
+//! (kept as expressions the shader evaluates), and their use as arguments over their whole range.
+
+use super::{Checker, Dim, Value};
+use crate::catalog::{self, Ty, Val};
+use crate::diag::{Diagnostic, Span};
+use crate::interval::Interval;
+use crate::scene::{Field, ParamDecl, ParamKind, ParamRef};
+use crate::syntax::{BinOp, Expr, Ident};
+use glam::DVec3;
+
+/// The name of the built-in parameter: seconds since the animation started, set by the host.
+pub const TIME: &str = "time";
+
+/// A value that depends on parameters: one expression per component.
+#[derive(Clone, Debug)]
+pub(crate) struct Sym {
+    /// What it is.
+    pub kind: SymKind,
+    /// One component (numbers) or three (vectors, colours).
+    pub comps: Vec<Field>,
+}
+
+/// What a [`Sym`] holds.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum SymKind {
+    /// A number with its dimension.
+    Num(Dim),
+    /// A vector.
+    Vec3,
+    /// A colour.
+    Color,
+}
+
+impl Sym {
+    /// Its value where the scene is checked (every parameter at its value).
+    pub fn value(&self) -> Value {
+        let at = |i: usize| self.comps[i].eval(DVec3::ZERO);
+        match self.kind {
+            SymKind::Num(d) => Value::Num(at(0), d),
+            SymKind::Vec3 => Value::Vec3(DVec3::new(at(0), at(1), at(2))),
+            SymKind::Color => Value::Color(DVec3::new(at(0), at(1), at(2))),
+        }
+    }
+
+    /// Its components as three (a number repeated).
+    fn three(&self) -> [Field; 3] {
+        [0, 1, 2].map(|i| self.comps[i.min(self.comps.len() - 1)].clone())
+    }
+
+    /// The names of the parameters it reads, each once.
+    fn reads(&self, params: &[ParamDecl]) -> Vec<String> {
+        let mut seen: Vec<usize> = Vec::new();
+        for c in &self.comps {
+            c.params(&mut |r| {
+                if !seen.contains(&r.index) {
+                    seen.push(r.index);
+                }
+            });
+        }
+        seen.iter().map(|&i| params[i].name.clone()).collect()
+    }
+}
+
+/// A value as constant components (numbers and vectors), for mixing with a [`Sym`].
+fn comps_of(v: &Value) -> Vec<Field> {
+    match v {
+        Value::Param(s) => s.comps.clone(),
+        Value::Num(x, _) => vec![Field::Const(*x)],
+        Value::Vec3(v) | Value::Color(v) => v.to_array().map(Field::Const).to_vec(),
+        Value::Field(f) => vec![f.clone()],
+        Value::Shape(_) => vec![Field::Const(f64::NAN)],
+    }
+}
+
+/// The range of each component of an expression over every value its parameters may take,
+/// and the first reason it may be undefined there.
+pub(crate) fn range_of(f: &Field) -> (Interval, Option<String>) {
+    crate::lipschitz::value_range(f)
+}
+
+impl Checker<'_> {
+    /// `param name = default in lo..hi`.
+    pub(super) fn param_statement(
+        &mut self,
+        name: &Ident,
+        value: &Expr,
+        range: Option<&(Expr, Expr)>,
+        span: Span,
+    ) {
+        if name.name != TIME
+            && let Some(d) = self.reserved_name(name)
+        {
+            self.diags.push(d);
+            self.failed.insert(name.name.clone());
+            return;
+        }
+        if self.defined_twice(name) {
+            return;
+        }
+        let decl = self.param_decl(name, value, range, span);
+        match decl {
+            Some(d) => {
+                self.param_index
+                    .insert(name.name.clone(), self.params.len());
+                self.params.push(d);
+                self.param_used.push(false);
+            }
+            None => {
+                self.failed.insert(name.name.clone());
+            }
+        }
+    }
+
+    fn param_decl(
+        &mut self,
+        name: &Ident,
+        value: &Expr,
+        range: Option<&(Expr, Expr)>,
+        span: Span,
+    ) -> Option<ParamDecl> {
+        let v = self.value(value)?;
+        let (kind, default) = match v {
+            Value::Num(x, Dim::None) => (ParamKind::Number, DVec3::new(x, 0.0, 0.0)),
+            Value::Num(x, Dim::Angle) => (ParamKind::Angle, DVec3::new(x, 0.0, 0.0)),
+            Value::Vec3(v) => (ParamKind::Vector, v),
+            Value::Color(c) => (ParamKind::Color, c),
+            other => {
+                let d = Diagnostic::error(
+                    value.span,
+                    "a parameter's default must be a constant number, angle, vector or colour",
+                )
+                .label(format!("this is {}", other.describe()));
+                let d = if matches!(other, Value::Param(_)) {
+                    d.help("a value computed from parameters is a `let`: `let d = r * 2`")
+                } else {
+                    d
+                };
+                self.diags.push(d);
+                return None;
+            }
+        };
+        if name.name == TIME && kind != ParamKind::Number {
+            self.diags.push(
+                Diagnostic::error(value.span, "`time` is a number of seconds")
+                    .label(format!("this is {}", v.describe())),
+            );
+            return None;
+        }
+        if !catalog::fits_gpu(default.max_element()) || !catalog::fits_gpu(default.min_element()) {
+            self.diags.push(
+                Diagnostic::error(
+                    value.span,
+                    "this value is beyond what the GPU's f32 arithmetic can use",
+                )
+                .label("out of range"),
+            );
+            return None;
+        }
+        let n = kind.components();
+        let range = match range {
+            None => None,
+            Some((lo, hi)) => {
+                let (a, b) = (self.range_end(lo, kind), self.range_end(hi, kind));
+                let (a, b) = (a?, b?);
+                if (0..n).any(|i| a[i] > b[i]) {
+                    self.diags.push(
+                        Diagnostic::error(lo.span.to(hi.span), "this range is empty")
+                            .label("the low end is above the high end"),
+                    );
+                    return None;
+                }
+                if (0..n).any(|i| default[i] < a[i] || default[i] > b[i]) {
+                    self.diags.push(
+                        Diagnostic::error(value.span, "the default is outside the range")
+                            .label("not in the range")
+                            .also(lo.span.to(hi.span), "the range"),
+                    );
+                    return None;
+                }
+                Some((a, b))
+            }
+        };
+        let mut decl = ParamDecl {
+            name: name.name.clone(),
+            kind,
+            default,
+            value: default,
+            range,
+            span,
+        };
+        if let Some(asked) = self.overrides.get(&name.name).cloned() {
+            decl.value = self.asked_value(&decl, &asked, span)?;
+        }
+        Some(decl)
+    }
+
+    /// The value given for a parameter from outside (`sdfc render --param`), checked against
+    /// its kind and range.
+    fn asked_value(&mut self, decl: &ParamDecl, asked: &[f64], span: Span) -> Option<DVec3> {
+        let n = decl.kind.components();
+        let name = &decl.name;
+        if asked.len() != n {
+            self.diags.push(
+                Diagnostic::error(
+                    span,
+                    format!("`{name}` takes {n} number(s), {} were given", asked.len()),
+                )
+                .label(format!("`{name}` is {} here", decl.kind.name())),
+            );
+            return None;
+        }
+        let mut v = DVec3::ZERO;
+        for (i, x) in asked.iter().enumerate() {
+            v[i] = *x;
+        }
+        if let Some((lo, hi)) = decl.range
+            && (0..n).any(|i| v[i] < lo[i] || v[i] > hi[i])
+        {
+            self.diags.push(
+                Diagnostic::error(
+                    span,
+                    format!("the value asked for `{name}` is outside its range"),
+                )
+                .label(format!(
+                    "{} was asked for; it is not in the range",
+                    show(v, n)
+                )),
+            );
+            return None;
+        }
+        if !(0..n).all(|i| catalog::fits_gpu(v[i])) {
+            self.diags.push(
+                Diagnostic::error(span, format!("the value asked for `{name}` is beyond f32"))
+                    .label("out of range"),
+            );
+            return None;
+        }
+        Some(v)
+    }
+
+    /// One end of a range, as the parameter's kind.
+    fn range_end(&mut self, e: &Expr, kind: ParamKind) -> Option<DVec3> {
+        let v = self.value(e)?;
+        match (kind, v) {
+            (ParamKind::Number, Value::Num(x, Dim::None))
+            | (ParamKind::Angle, Value::Num(x, Dim::Angle)) => Some(DVec3::new(x, 0.0, 0.0)),
+            (ParamKind::Vector, Value::Vec3(v)) | (ParamKind::Color, Value::Color(v)) => Some(v),
+            (ParamKind::Vector, Value::Num(x, Dim::None)) => Some(DVec3::splat(x)),
+            (ParamKind::Color, Value::Vec3(v)) => Some(v),
+            (kind, other) => {
+                self.diags.push(
+                    Diagnostic::error(
+                        e.span,
+                        format!(
+                            "the range of {} parameter must be of its kind",
+                            article(kind)
+                        ),
+                    )
+                    .label(format!("this is {}", other.describe())),
+                );
+                None
+            }
+        }
+    }
+
+    /// The value of a parameter's name, if it is one (`time` is declared on first use).
+    pub(super) fn param_ref(&mut self, name: &str) -> Option<Value> {
+        let index = match self.param_index.get(name) {
+            Some(&i) => i,
+            None if name == TIME => {
+                let value = match self.overrides.get(TIME) {
+                    Some(v) => v.first().copied().unwrap_or(0.0),
+                    None => 0.0,
+                };
+                self.params.push(ParamDecl {
+                    name: TIME.into(),
+                    kind: ParamKind::Number,
+                    default: DVec3::ZERO,
+                    value: DVec3::new(value, 0.0, 0.0),
+                    range: None,
+                    span: Span::new(0, 0),
+                });
+                self.param_used.push(false);
+                self.param_index.insert(TIME.into(), self.params.len() - 1);
+                self.params.len() - 1
+            }
+            None => return None,
+        };
+        self.param_used[index] = true;
+        let decl = &self.params[index];
+        let comps = (0..decl.kind.components())
+            .map(|comp| {
+                let (lo, hi) = match decl.range {
+                    Some((lo, hi)) => (lo[comp], hi[comp]),
+                    None => (f64::NEG_INFINITY, f64::INFINITY),
+                };
+                Field::Param(ParamRef {
+                    index,
+                    comp,
+                    value: decl.value[comp],
+                    lo,
+                    hi,
+                })
+            })
+            .collect();
+        let kind = match decl.kind {
+            ParamKind::Number => SymKind::Num(Dim::None),
+            ParamKind::Angle => SymKind::Num(Dim::Angle),
+            ParamKind::Vector => SymKind::Vec3,
+            ParamKind::Color => SymKind::Color,
+        };
+        Some(Value::Param(Sym { kind, comps }))
+    }
+
+    /// `a ∘ b` where one side depends on parameters: typed as the constant values are (which
+    /// also checks them where the scene is checked), computed per component at run time.
+    pub(super) fn param_binary(
+        &mut self,
+        op: BinOp,
+        a: Value,
+        b: Value,
+        span: Span,
+    ) -> Option<Value> {
+        let constant = |v: &Value| match v {
+            Value::Param(s) => s.value(),
+            other => other.clone(),
+        };
+        let result = self.binary(op, constant(&a), constant(&b), span)?;
+        let (fa, fb) = (comps_of(&a), comps_of(&b));
+        let bin =
+            |x: &Field, y: &Field| Field::Binary(op, Box::new(x.clone()), Box::new(y.clone()));
+        Some(match result {
+            Value::Field(_) => Value::Field(bin(&fa[0], &fb[0])),
+            Value::Num(_, d) => Value::Param(Sym {
+                kind: SymKind::Num(d),
+                comps: vec![bin(&fa[0], &fb[0])],
+            }),
+            Value::Vec3(_) => {
+                let at = |f: &[Field], i: usize| f[i.min(f.len() - 1)].clone();
+                Value::Param(Sym {
+                    kind: SymKind::Vec3,
+                    comps: (0..3).map(|i| bin(&at(&fa, i), &at(&fb, i))).collect(),
+                })
+            }
+            other => other,
+        })
+    }
+
+    /// `(a, b, c)` where a component depends on parameters.
+    pub(super) fn param_vector(&mut self, parts: &[Value]) -> Value {
+        let comps = parts.iter().map(|p| comps_of(p)[0].clone()).collect();
+        Value::Param(Sym {
+            kind: SymKind::Vec3,
+            comps,
+        })
+    }
+
+    /// An argument that depends on parameters, as a value of `ty` where the scene is checked and
+    /// as per-component expressions for the shader (a number broadcast for sizes and scales,
+    /// an axis normalised). Every value the parameters may take must be of the type: checked
+    /// by interval arithmetic over their ranges.
+    pub(super) fn param_arg(
+        &mut self,
+        e: &Expr,
+        ty: Ty,
+        param: &str,
+        s: Sym,
+    ) -> Option<(Val, Vec<Field>)> {
+        let fixed = matches!(
+            ty,
+            Ty::Count
+                | Ty::CountTo(_)
+                | Ty::UpTo(_)
+                | Ty::Counts
+                | Ty::Word(_)
+                | Ty::PositiveOr(_)
+                | Ty::ZeroOrAtLeast(_)
+        );
+        if fixed {
+            self.diags.push(
+                Diagnostic::error(e.span, format!("`{param}` cannot be a parameter"))
+                    .label(format!("reads {}", self.reads_text(&s)))
+                    .note(format!(
+                        "`{param}` is {}: it decides the shape of the shader's code, which is compiled once",
+                        ty.describe()
+                    )),
+            );
+            return None;
+        }
+        let val = self.convert_value(e, ty, param, s.value())?;
+        for c in &s.comps {
+            let (range, undefined) = range_of(c);
+            if let Some(why) = undefined {
+                self.diags.push(
+                    Diagnostic::error(
+                        e.span,
+                        format!(
+                            "`{param}` is not defined for every value of {}",
+                            self.reads_text(&s)
+                        ),
+                    )
+                    .label(why)
+                    .help(self.range_help(&s)),
+                );
+                return None;
+            }
+            if !range_fits(ty, range) {
+                self.diags.push(
+                    Diagnostic::error(
+                        e.span,
+                        format!(
+                            "`{param}` must be {} for every value of {}",
+                            ty.describe(),
+                            self.reads_text(&s)
+                        ),
+                    )
+                    .label(if range.lo.is_finite() && range.hi.is_finite() {
+                        format!("ranges over [{}, {}]", range.lo, range.hi)
+                    } else {
+                        "it may be any value".to_string()
+                    })
+                    .help(self.range_help(&s)),
+                );
+                return None;
+            }
+        }
+        let comps = match (ty, s.kind) {
+            (Ty::Axis, SymKind::Vec3) => {
+                let len = Field::Call(catalog::math_fn("length").expect("length"), s.comps.clone());
+                if range_of(&len).0.lo <= 1e-12 {
+                    self.diags.push(
+                        Diagnostic::error(
+                            e.span,
+                            format!("`{param}` may be a zero vector, which has no direction"),
+                        )
+                        .label(format!("for some values of {}", self.reads_text(&s)))
+                        .help(self.range_help(&s)),
+                    );
+                    return None;
+                }
+                s.comps
+                    .iter()
+                    .map(|c| Field::Binary(BinOp::Div, Box::new(c.clone()), Box::new(len.clone())))
+                    .collect()
+            }
+            (_, SymKind::Num(_)) if matches!(val, Val::Vec3(_)) => s.three().to_vec(),
+            _ => s.comps,
+        };
+        Some((val, comps))
+    }
+
+    /// "`r`" or "`a` and `b`": the parameters a value reads.
+    fn reads_text(&self, s: &Sym) -> String {
+        let names: Vec<String> = s
+            .reads(&self.params)
+            .iter()
+            .map(|n| format!("`{n}`"))
+            .collect();
+        names.join(" and ")
+    }
+
+    fn range_help(&self, s: &Sym) -> String {
+        let unranged: Vec<String> = s
+            .reads(&self.params)
+            .into_iter()
+            .filter(|n| self.params[self.param_index[n]].range.is_none())
+            .collect();
+        match unranged.first() {
+            Some(n) if n == TIME => "give `time` a range: `param time = 0 in 0..10`".into(),
+            Some(n) => {
+                format!("give `{n}` a range that keeps it valid: `param {n} = … in low..high`")
+            }
+            None => "narrow the parameters' ranges".into(),
+        }
+    }
+
+    /// Warnings for declared parameters the scene never reads.
+    pub(super) fn unused_params(&mut self) {
+        for (i, p) in self.params.iter().enumerate() {
+            if !self.param_used[i] && p.name != TIME {
+                self.diags.push(
+                    Diagnostic::warning(p.span, format!("parameter `{}` is never used", p.name))
+                        .label("declared here")
+                        .note("it stays in the shader's `Params` uniform, for the host"),
+                );
+            }
+        }
+    }
+}
+
+/// Whether every value in `r` is a value of `ty` (the number types; vectors per component).
+fn range_fits(ty: Ty, r: Interval) -> bool {
+    match ty {
+        Ty::Number | Ty::Vec3 | Ty::Angle | Ty::Axis => true,
+        Ty::Length | Ty::Size => r.lo >= 0.0,
+        Ty::Positive | Ty::Scale => r.lo > 0.0,
+        Ty::Fraction | Ty::Color => r.lo >= 0.0 && r.hi <= 1.0,
+        Ty::Range(lo, hi) => r.lo >= lo && r.hi < hi,
+        _ => false,
+    }
+}
+
+fn article(kind: ParamKind) -> &'static str {
+    match kind {
+        ParamKind::Number => "a number",
+        ParamKind::Angle => "an angle",
+        ParamKind::Vector => "a vector",
+        ParamKind::Color => "a colour",
+    }
+}
+
+fn show(v: DVec3, n: usize) -> String {
+    if n == 1 {
+        format!("{}", v.x)
+    } else {
+        format!("({}, {}, {})", v.x, v.y, v.z)
+    }
+}

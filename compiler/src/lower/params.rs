@@ -1,0 +1,136 @@
+//! The `Params` uniform (the scene's parameters, set by the host at run time) and arguments
+//! computed from it.
+
+use super::builder::{Ex, FnBuilder, ModuleBuilder};
+use crate::catalog::{Ctx, Ty, Val};
+use crate::scene::{Field, ParamDecl, ParamKind, ParamRef, Scene};
+use naga::{AddressSpace, Expression, Handle, VectorSize};
+
+/// The binding (in group 0) of the `Params` uniform, in every module of a scene with
+/// parameters.
+pub const PARAMS_BINDING: u32 = 9;
+
+/// The byte offset of each parameter in the `Params` uniform and the struct's size: std140
+/// (and WGSL uniform) layout, a number 4-byte aligned, a vector or colour a `vec3<f32>`
+/// 16-byte aligned, the whole a multiple of 16 bytes.
+pub fn layout(params: &[ParamDecl]) -> (Vec<u32>, u32) {
+    let mut offset = 0u32;
+    let mut offsets = Vec::with_capacity(params.len());
+    for p in params {
+        let (align, size) = match p.kind.components() {
+            1 => (4, 4),
+            _ => (16, 12),
+        };
+        offset = offset.div_ceil(align) * align;
+        offsets.push(offset);
+        offset += size;
+    }
+    (offsets, offset.div_ceil(16).max(1) * 16)
+}
+
+/// The `Params` uniform's bytes for the parameters' values (`ParamDecl::value`), laid out as
+/// [`layout`] says (little-endian f32).
+pub fn bytes(params: &[ParamDecl]) -> Vec<u8> {
+    let (offsets, size) = layout(params);
+    let mut out = vec![0u8; size as usize];
+    for (p, &o) in params.iter().zip(&offsets) {
+        for (i, v) in p.values().iter().enumerate() {
+            let at = o as usize + 4 * i;
+            out[at..at + 4].copy_from_slice(&(*v as f32).to_le_bytes());
+        }
+    }
+    out
+}
+
+/// The WGSL type a parameter has in the uniform.
+pub fn wgsl_type(kind: ParamKind) -> &'static str {
+    match kind.components() {
+        1 => "f32",
+        _ => "vec3<f32>",
+    }
+}
+
+/// Adds `var<uniform> params: Params` when the scene has parameters.
+pub(super) fn add(mb: &mut ModuleBuilder, scene: &Scene) -> Option<Handle<naga::GlobalVariable>> {
+    if scene.params.is_empty() {
+        return None;
+    }
+    let (offsets, size) = layout(&scene.params);
+    let (f, v3) = (mb.f32(), mb.vec(VectorSize::Tri));
+    let members: Vec<(&str, Handle<naga::Type>, u32)> = scene
+        .params
+        .iter()
+        .zip(&offsets)
+        .map(|(p, &o)| {
+            (
+                p.name.as_str(),
+                if p.kind.components() == 1 { f } else { v3 },
+                o,
+            )
+        })
+        .collect();
+    let ty = super::tracer::struct_ty(mb, "Params", &members, size);
+    Some(super::entry::global(
+        mb,
+        "params",
+        ty,
+        AddressSpace::Uniform,
+        PARAMS_BINDING,
+    ))
+}
+
+/// One component of a parameter, loaded from the uniform.
+pub(super) fn load(b: &mut FnBuilder, r: &ParamRef) -> Ex {
+    let global =
+        b.m.params
+            .expect("a module with parameters has the uniform");
+    let g = b.expr(Expression::GlobalVariable(global));
+    let ptr = b.at(g, r.index as u32);
+    let v = b.load(ptr);
+    let vector = matches!(
+        b.m.module.types[b.m.module.global_variables[global].ty].inner,
+        naga::TypeInner::Struct { ref members, .. }
+            if matches!(b.m.module.types[members[r.index].ty].inner, naga::TypeInner::Vector { .. })
+    );
+    if vector { b.at(v, r.comp as u32) } else { v }
+}
+
+/// Components computed from parameters, as one value (a `vec3` for three).
+fn components(b: &mut FnBuilder, comps: &[Field], p: Ex) -> Ex {
+    let parts: Vec<Ex> = comps.iter().map(|f| super::lower_field(b, f, p)).collect();
+    match parts[..] {
+        [x] => x,
+        [x, y, z] => b.compose_vec3([x, y, z]),
+        _ => unreachable!("one or three components"),
+    }
+}
+
+/// An argument of type `ty`: computed from the uniform if it reads parameters, else a literal.
+pub(super) fn arg(b: &mut FnBuilder, ty: Ty, v: Val, sym: Option<&[Field]>, p: Ex) -> Ex {
+    match sym {
+        Some(comps) => components(b, comps, p),
+        None => match ty {
+            Ty::Count | Ty::CountTo(_) => b.u(v.num() as u32),
+            Ty::Vec3 | Ty::Size | Ty::Scale | Ty::Axis | Ty::Color | Ty::Counts => {
+                b.vec3_lit(v.vec())
+            }
+            _ => b.f(v.num()),
+        },
+    }
+}
+
+/// Argument `i` of an operator as a number (`p` is any expression of the function: parameters
+/// do not read it).
+pub fn num(b: &mut FnBuilder, c: &Ctx, i: usize, p: Ex) -> Ex {
+    arg(b, Ty::Number, c.args[i], c.sym(i), p)
+}
+
+/// Argument `i` of an operator as a vector.
+pub fn vec3(b: &mut FnBuilder, c: &Ctx, i: usize, p: Ex) -> Ex {
+    arg(b, Ty::Vec3, c.args[i], c.sym(i), p)
+}
+
+/// Whether argument `i` is read at run time.
+pub fn varies(c: &Ctx, i: usize) -> bool {
+    c.sym(i).is_some()
+}

@@ -1,0 +1,147 @@
+//! Scene parameters on the GPU: one compiled module, its `Params` uniform set to other values
+//! and times between frames, each frame against the f64 reference at those values.
+
+mod common;
+
+use common::{compile, gpu, off_by, srgb8};
+use sdfc::frames::{Layout, Source};
+use sdfc::gpu::TILE;
+use sdfc_compiler::emit;
+use sdfc_compiler::lower::params::bytes;
+use sdfc_compiler::lower::{Entry, tracer::Options};
+use sdfc_compiler::shading;
+use sdfc_compiler::view::View;
+use std::collections::HashMap;
+
+/// Most 8-bit levels a channel may differ by (f32 against f64).
+const LEVELS: i32 = 2;
+
+/// A scene with every kind of parameter use: a radius (primitive argument), a vector offset
+/// (`at`), a smooth union's radius, a turn by `time`, an angle parameter (about a coordinate
+/// axis and about another), an axis parameter, a `mix` weight and an `implicit` body.
+const SCENE: &str = "\
+camera { eye (0, 2.5, -6)  target (0, 0.6, 0) }
+light { direction (-0.4, 1, -0.5)  shadow soft }
+param r = 0.8 in 0.4..1.2
+param lift = (0, 0.9, 0) in (-1, 0, -1)..(1, 2, 1)
+param blend = 0.3 in 0..0.6
+param tilt = 0deg in -45deg..45deg
+param morph = 0 in 0..1
+param wave = 0.1 in 0..0.3
+param axis = (0, 1, 0.3) in (-1, 0.5, -1)..(1, 1, 1)
+smooth_union(blend) {
+  sphere(r) at lift
+  box((2.4, 0.3, 0.6)) |> rotate(z, tilt) |> rotate(y, time * 40deg) at (0, 0.3, 0)
+}
+mix(morph) { sphere(0.5)  box(0.8) } |> rotate((1, 1, 0), tilt) |> rotate(axis, 25deg) at (-2, 0.5, 0)
+implicit { length(x - 2, y - 0.5, z) - 0.5 + wave * sin(6 * x) }
+plane(y, 0)
+";
+
+/// Renders `scene`'s compiled module once per setting, changing only the uniform between
+/// frames (`Prepared::set_params`), and compares each frame with the CPU reference of the
+/// scene at those values (`Scene::with_values`). Each setting must give a different picture.
+#[test]
+fn one_module_draws_every_setting_as_the_cpu_reference() {
+    let gpu = gpu();
+    let scene = compile(SCENE);
+    let names: Vec<&str> = scene.params.iter().map(|p| p.name.as_str()).collect();
+    assert_eq!(
+        names,
+        [
+            "r", "lift", "blend", "tilt", "morph", "wave", "axis", "time"
+        ],
+        "the uniform's fields"
+    );
+    let (module, _) = emit::module(&scene, Entry::Compute, &Options::from_scene(&scene))
+        .unwrap_or_else(|e| panic!("{}", e.0));
+    let view = View::new(&scene.camera, 96, 64);
+    let prepared = gpu
+        .prepare(
+            Source::Module(&module),
+            Layout::Full { passes: false },
+            &view,
+            None,
+            TILE,
+        )
+        .unwrap();
+    let settings: [&[(&str, &[f64])]; 4] = [
+        &[],
+        &[
+            ("r", &[1.15]),
+            ("lift", &[0.6, 1.4, -0.3]),
+            ("blend", &[0.55]),
+            ("morph", &[0.8]),
+        ],
+        &[
+            ("time", &[1.5]),
+            ("tilt", &[0.6]),
+            ("axis", &[0.8, 0.6, -0.9]),
+        ],
+        &[
+            ("time", &[4.0]),
+            ("wave", &[0.3]),
+            ("r", &[0.45]),
+            ("blend", &[0.0]),
+        ],
+    ];
+    let mut frames: Vec<Vec<u32>> = Vec::new();
+    for setting in settings {
+        let values: HashMap<String, Vec<f64>> = setting
+            .iter()
+            .map(|(n, v)| (n.to_string(), v.to_vec()))
+            .collect();
+        // Valid values, as `render --param` checks them.
+        assert!(
+            sdfc_compiler::check::compile_with(SCENE, &values)
+                .scene
+                .is_some(),
+            "{values:?} should be valid"
+        );
+        let here = scene.with_values(&values);
+        prepared.set_params(&bytes(&here.params));
+        prepared.run_tiles(|_, _| {}).unwrap();
+        let got = prepared.frame(0.0).unwrap();
+        let (mut within, mut worst) = (0, 0);
+        for (i, &px) in got.color.iter().enumerate() {
+            let (x, y) = (
+                (i as u32 % view.width) as f64 + 0.5,
+                (i as u32 / view.width) as f64 + 0.5,
+            );
+            let c = shading::pixel(&here, &here.trace, &view, x, y);
+            let d = off_by(px, srgb8(c));
+            worst = worst.max(d);
+            within += u32::from(d <= LEVELS);
+        }
+        let share = f64::from(within) / got.color.len() as f64;
+        println!(
+            "{values:?}: {:.2}% within {LEVELS} levels of the CPU (worst {worst})",
+            share * 100.0
+        );
+        assert!(
+            share >= 0.998,
+            "{values:?}: only {:.2}% match",
+            share * 100.0
+        );
+        frames.push(got.color);
+    }
+    for a in 0..frames.len() {
+        for b in a + 1..frames.len() {
+            let changed = frames[a]
+                .iter()
+                .zip(&frames[b])
+                .filter(|(x, y)| off_by(**x, srgb8_of(**y)) > 8)
+                .count();
+            assert!(
+                changed > 100,
+                "settings {a} and {b} draw the same picture ({changed} pixels differ)"
+            );
+        }
+    }
+}
+
+/// The 8-bit sRGB channels of a packed pixel, for `off_by`.
+fn srgb8_of(px: u32) -> [i32; 3] {
+    let b = px.to_le_bytes();
+    [b[0].into(), b[1].into(), b[2].into()]
+}
