@@ -6,6 +6,8 @@ mod call;
 mod expr;
 mod implicit;
 mod look;
+mod nodes;
+mod param_args;
 mod params;
 mod ranges;
 mod settings;
@@ -16,9 +18,8 @@ pub use look::LIGHT_KINDS;
 pub use params::TIME;
 pub use tracer::TRACE_METHODS;
 
-use crate::catalog::{Bound, Ctx};
 use crate::diag::{Diagnostic, Span};
-use crate::scene::{Field, Material, Node, NodeId, NodeKind, Scene};
+use crate::scene::{Field, Material, Node, NodeId, Scene};
 use crate::syntax::{self, Expr, Item};
 use glam::DVec3;
 use std::collections::HashMap;
@@ -361,210 +362,6 @@ impl<'a> Checker<'a> {
             );
         }
         None
-    }
-
-    /// Adds a node; `None` (with an error) past [`MAX_NODES`].
-    fn push_node(
-        &mut self,
-        kind: NodeKind,
-        lambda: f64,
-        bound: Bound,
-        span: Span,
-    ) -> Option<NodeId> {
-        if self.nodes.len() >= MAX_NODES {
-            if self.nodes.len() == MAX_NODES {
-                self.diags.push(
-                    Diagnostic::error(span, "the scene has too many nodes")
-                        .note(format!("the limit is {MAX_NODES} nodes")),
-                );
-                // Push a placeholder so the message is given once.
-                self.nodes.push(self.nodes[0].clone());
-            }
-            return None;
-        }
-        // A zero slope (a constant field) would divide by zero; any larger λ is still a bound.
-        let lambda = lambda.max(MIN_LAMBDA);
-        let unit_gradient = match &kind {
-            NodeKind::Primitive { prim, ctx } => (prim.unit_gradient)(ctx),
-            NodeKind::Operator { op, ctx, children } => {
-                (op.unit_gradient)(ctx) && children.iter().all(|&c| self.nodes[c].unit_gradient)
-            }
-            NodeKind::Implicit { .. } => false,
-        };
-        let exact = match &kind {
-            NodeKind::Primitive { prim, .. } => prim.exact,
-            NodeKind::Operator { op, ctx, children } => {
-                (op.keeps_exact)(ctx) && children.iter().all(|&c| self.nodes[c].exact)
-            }
-            NodeKind::Implicit { .. } => false,
-        };
-        let mirror = match &kind {
-            NodeKind::Primitive { prim, ctx } => (prim.mirror)(ctx),
-            NodeKind::Operator { op, ctx, .. } => (op.mirror)(ctx),
-            NodeKind::Implicit { .. } => [false; 3],
-        };
-        self.nodes.push(Node {
-            mirror,
-            unit_gradient,
-            exact,
-            // (An operator's is set by `operator_node`.)
-            evaluations: 1.0,
-            kind,
-            span,
-            lambda,
-            inferred_lambda: lambda,
-            bound,
-            material: None,
-            name: None,
-        });
-        Some(self.nodes.len() - 1)
-    }
-
-    /// Builds an operator node over checked children.
-    fn operator_node(
-        &mut self,
-        name: &str,
-        (args, sym): (Vec<crate::catalog::Val>, crate::catalog::ArgSyms),
-        children: Vec<NodeId>,
-        span: Span,
-    ) -> Option<NodeId> {
-        let op = crate::catalog::operator(name).expect("operator in the catalog");
-        let ctx = Ctx {
-            args,
-            sym,
-            child_lambda: children.iter().map(|&c| self.nodes[c].lambda).collect(),
-            child_bound: children.iter().map(|&c| self.nodes[c].bound).collect(),
-            child_mirror: children.iter().map(|&c| self.nodes[c].mirror).collect(),
-            child_exact: children.iter().map(|&c| self.nodes[c].exact).collect(),
-            prune: None,
-        };
-        let mut ctx = ctx;
-        if name == "union" {
-            ctx.prune = crate::catalog::prune::Tree::build(&ctx).map(std::sync::Arc::new);
-        }
-        let rules =
-            self.rules_over_ranges(&ctx, span, name, &|c| ranges::Rules::operator(op, c))?;
-        let (lambda, bound) = (rules.lambda, rules.bound);
-        let copies = if name == "repeat" {
-            let copies = crate::catalog::repeat::Plan::new(&ctx).copies();
-            self.check_repeat_copies(&ctx, copies, span);
-            copies
-        } else {
-            1.0
-        };
-        let each: f64 = children.iter().map(|&c| self.nodes[c].evaluations).sum();
-        let evaluations = each * copies;
-        if evaluations > MAX_EVALUATIONS
-            && children
-                .iter()
-                .all(|&c| self.nodes[c].evaluations <= MAX_EVALUATIONS)
-        {
-            self.diags.push(
-                Diagnostic::error(span, "this shape costs too many evaluations")
-                    .label(format!(
-                        "one evaluation of it evaluates {evaluations:.0} primitives"
-                    ))
-                    .note(format!(
-                        "counting every use of a shared `let` and every copy a `repeat` looks at; the limit is {MAX_EVALUATIONS:.0} per evaluation of the field"
-                    ))
-                    .help("use a shape fewer times, or fewer copies"),
-            );
-        }
-        let id = self.push_node(
-            NodeKind::Operator { op, ctx, children },
-            lambda,
-            bound,
-            span,
-        )?;
-        self.nodes[id].evaluations = evaluations;
-        self.narrow_rules(id, &rules);
-        Some(id)
-    }
-
-    /// A node's symmetries, exactness and gradient as every value of its parameters has them.
-    fn narrow_rules(&mut self, id: NodeId, rules: &ranges::Rules) {
-        let n = &mut self.nodes[id];
-        for i in 0..3 {
-            n.mirror[i] &= rules.mirror[i];
-        }
-        n.unit_gradient &= rules.unit;
-        n.exact &= rules.exact;
-    }
-
-    /// A `repeat` evaluates the copies that can be nearest (see `catalog::repeat`); a shape
-    /// spanning many cells would need too many of them per evaluation: an error.
-    fn check_repeat_copies(&mut self, ctx: &Ctx, copies: f64, span: Span) {
-        if copies > crate::catalog::repeat::MAX_COPIES as f64 {
-            let b = ctx.child_bound[0];
-            let size = b.hi - b.lo;
-            self.diags.push(
-                Diagnostic::error(span, "the repeated shape spans too many cells")
-                    .label(format!(
-                        "each evaluation would look at {copies:.0} copies (the shape is {:.3} × {:.3} × {:.3}, the spacing {} × {} × {})",
-                        size.x, size.y, size.z, ctx.vec(0).x, ctx.vec(0).y, ctx.vec(0).z
-                    ))
-                    .note(format!("at most {} copies are evaluated per point", crate::catalog::repeat::MAX_COPIES))
-                    .help("use a larger spacing, or a smaller shape"),
-            );
-        }
-    }
-
-    /// Every reachable node needs a finite λ; report those that have none.
-    fn check_bounded(&mut self, root: NodeId) {
-        let mut seen = vec![false; self.nodes.len()];
-        let mut stack = vec![root];
-        while let Some(n) = stack.pop() {
-            if std::mem::replace(&mut seen[n], true) {
-                continue;
-            }
-            let node = &self.nodes[n];
-            let children_bounded = node
-                .children()
-                .iter()
-                .all(|&c| self.nodes[c].lambda.is_finite());
-            if !node.lambda.is_finite() && children_bounded {
-                let what = node.kind_name();
-                let mut d = Diagnostic::error(
-                    node.span,
-                    format!("cannot bound the slope of this `{what}`"),
-                )
-                .label("no Lipschitz bound")
-                .help("add `@lipschitz(L)` after it with a bound L on the gradient's length");
-                if let NodeKind::Implicit { field } = &node.kind {
-                    let mut free = Vec::new();
-                    field.params(&mut |r| {
-                        if !r.ranged() && !free.contains(&r.index) {
-                            free.push(r.index);
-                        }
-                    });
-                    if let Some(&i) = free.first() {
-                        let name = &self.params[i].name;
-                        d = d
-                            .note(format!(
-                                "`{name}` has no range, and the slope grows without bound with it"
-                            ))
-                            .help(format!(
-                                "give `{name}` a range: `param {name} = … in low..high`"
-                            ));
-                    }
-                }
-                if let NodeKind::Implicit { field } = &node.kind
-                    && crate::lipschitz::crosses_branch_cut(field)
-                {
-                    d = d.note("`atan2(a, b)` jumps by 2π where a crosses 0 while b < 0; only a field that is periodic in the angle (e.g. `sin(n * atan2(a, b))` with a whole n) stays continuous there, and then an annotation is right");
-                }
-                if what == "repeat" {
-                    d = d.note("`repeat` can only be bounded when its shape is bounded along the repeated axes");
-                }
-                if what == "twist" || what == "bend" {
-                    d = d.note(format!(
-                        "`{what}` can only be bounded when its shape is bounded"
-                    ));
-                }
-                self.diags.push(d);
-            }
-            stack.extend(self.nodes[n].children().iter().copied());
-        }
     }
 
     /// The 0-based line of a byte offset (0 when the source is unknown).

@@ -25,6 +25,7 @@ mod tags;
 mod texture;
 pub mod tracer;
 mod variants;
+mod warp;
 
 use crate::catalog::{Ctx, Ty};
 use crate::scene::{Field, NodeId, NodeKind, Scene};

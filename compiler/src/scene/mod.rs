@@ -1,9 +1,14 @@
 //! The checked scene graph: shape nodes with their Lipschitz bounds, materials, camera, lights and
 //! tracer settings. Both the CPU evaluator and the lowering read this, so they cannot drift apart.
 
-use crate::catalog::{Bound, Ctx, MathFn, Operator, Primitive};
+mod field;
+mod params;
+
+pub use field::{Field, binary};
+pub use params::{ParamDecl, ParamKind, ParamRef};
+
+use crate::catalog::{Bound, Ctx, Operator, Primitive};
 use crate::diag::Span;
-use crate::syntax::BinOp;
 use glam::DVec3;
 
 /// Index of a node in [`Scene::nodes`].
@@ -190,176 +195,6 @@ pub enum NodeKind {
         /// The expression of x, y, z.
         field: Field,
     },
-}
-
-/// An expression of the coordinates x, y, z (the body of `implicit`), constants folded.
-#[derive(Clone, Debug, PartialEq)]
-pub enum Field {
-    /// A constant.
-    Const(f64),
-    /// Coordinate 0 (x), 1 (y) or 2 (z).
-    Coord(usize),
-    /// −a
-    Neg(Box<Field>),
-    /// a ∘ b
-    Binary(BinOp, Box<Field>, Box<Field>),
-    /// f(args)
-    Call(&'static MathFn, Vec<Field>),
-    /// A component of a parameter, read from the `Params` uniform at run time.
-    Param(ParamRef),
-}
-
-/// A use of one component of a parameter in an expression.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ParamRef {
-    /// Index into [`Scene::params`].
-    pub index: usize,
-    /// The component (0 for numbers).
-    pub comp: usize,
-    /// Its value where the scene was checked (the default, or the value asked for).
-    pub value: f64,
-    /// The lowest value it may take (−∞ without a declared range).
-    pub lo: f64,
-    /// The highest value it may take (+∞ without a declared range).
-    pub hi: f64,
-}
-
-impl ParamRef {
-    /// Whether the parameter was declared with a range.
-    pub fn ranged(&self) -> bool {
-        self.lo.is_finite() && self.hi.is_finite()
-    }
-}
-
-/// What kind of value a parameter holds.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum ParamKind {
-    /// A plain number.
-    Number,
-    /// An angle, in radians.
-    Angle,
-    /// A vector.
-    Vector,
-    /// A colour (sRGB, 0..1).
-    Color,
-}
-
-impl ParamKind {
-    /// Components: 1 for numbers and angles, 3 for vectors and colours.
-    pub fn components(self) -> usize {
-        match self {
-            ParamKind::Number | ParamKind::Angle => 1,
-            _ => 3,
-        }
-    }
-
-    /// How the manifest and `sdfc check` name it.
-    pub fn name(self) -> &'static str {
-        match self {
-            ParamKind::Number => "number",
-            ParamKind::Angle => "angle",
-            ParamKind::Vector => "vector",
-            ParamKind::Color => "color",
-        }
-    }
-}
-
-/// A declared parameter (`param name = default in lo..hi`) or the built-in `time`.
-#[derive(Clone, Debug, PartialEq)]
-pub struct ParamDecl {
-    /// Its name (a field of the `Params` uniform).
-    pub name: String,
-    /// Number, angle, vector or colour.
-    pub kind: ParamKind,
-    /// The declared default (numbers in `x`).
-    pub default: DVec3,
-    /// The value the scene was checked at: the default unless another was asked for.
-    pub value: DVec3,
-    /// The declared range, each end included (per component).
-    pub range: Option<(DVec3, DVec3)>,
-    /// Where it was declared (the whole file's start for the built-in `time`).
-    pub span: Span,
-}
-
-impl ParamDecl {
-    /// The values of its components, in order.
-    pub fn values(&self) -> Vec<f64> {
-        self.value.to_array()[..self.kind.components()].to_vec()
-    }
-}
-
-impl Field {
-    /// Value at a point, in f64.
-    pub fn eval(&self, p: DVec3) -> f64 {
-        match self {
-            Field::Const(c) => *c,
-            Field::Coord(i) => p[*i],
-            Field::Neg(a) => -a.eval(p),
-            Field::Binary(op, a, b) => binary(*op, a.eval(p), b.eval(p)),
-            Field::Call(f, args) => {
-                let v: Vec<f64> = args.iter().map(|a| a.eval(p)).collect();
-                (f.eval)(&v)
-            }
-            Field::Param(r) => r.value,
-        }
-    }
-
-    /// The same expression with every parameter's value replaced by `value(use)`.
-    pub fn with_values(&self, value: &dyn Fn(&ParamRef) -> f64) -> Field {
-        match self {
-            Field::Param(r) => Field::Param(ParamRef {
-                value: value(r),
-                ..*r
-            }),
-            Field::Neg(a) => Field::Neg(Box::new(a.with_values(value))),
-            Field::Binary(op, a, b) => Field::Binary(
-                *op,
-                Box::new(a.with_values(value)),
-                Box::new(b.with_values(value)),
-            ),
-            Field::Call(f, args) => {
-                Field::Call(f, args.iter().map(|a| a.with_values(value)).collect())
-            }
-            other => other.clone(),
-        }
-    }
-
-    /// Calls `each` on every parameter use in the expression.
-    pub fn params(&self, each: &mut dyn FnMut(&ParamRef)) {
-        match self {
-            Field::Param(r) => each(r),
-            Field::Neg(a) => a.params(each),
-            Field::Binary(_, a, b) => {
-                a.params(each);
-                b.params(each);
-            }
-            Field::Call(_, args) => args.iter().for_each(|a| a.params(each)),
-            _ => {}
-        }
-    }
-
-    /// Whether the expression reads the coordinates (an `implicit` body) rather than only
-    /// parameters and constants.
-    pub fn has_coords(&self) -> bool {
-        match self {
-            Field::Coord(_) => true,
-            Field::Neg(a) => a.has_coords(),
-            Field::Binary(_, a, b) => a.has_coords() || b.has_coords(),
-            Field::Call(_, args) => args.iter().any(Field::has_coords),
-            _ => false,
-        }
-    }
-}
-
-/// Applies a binary operator to numbers.
-pub fn binary(op: BinOp, a: f64, b: f64) -> f64 {
-    match op {
-        BinOp::Add => a + b,
-        BinOp::Sub => a - b,
-        BinOp::Mul => a * b,
-        BinOp::Div => a / b,
-        BinOp::Pow => a.powf(b),
-    }
 }
 
 /// A declared material.
