@@ -18,10 +18,19 @@ const LEVELS: i32 = 2;
 
 /// A scene with every kind of parameter use: a radius (primitive argument), a vector offset
 /// (`at`), a smooth union's radius, a turn by `time`, an angle parameter (about a coordinate
-/// axis and about another), an axis parameter, a `mix` weight and an `implicit` body.
+/// axis and about another), an axis parameter, a `mix` weight, an `implicit` body, a
+/// material's colour and specular strength, a light's direction, colour and intensity, and a
+/// colour computed from a parameter.
 const SCENE: &str = "\
 camera { eye (0, 2.5, -6)  target (0, 0.6, 0) }
-light { direction (-0.4, 1, -0.5)  shadow soft }
+param sun = (-0.4, 1, -0.5) in (-1, 0.5, -1)..(1, 1, 1)
+param warmth = #ffffff
+param power = 1 in 0.5..1.5
+param tint = #c04030
+param shine = 0.5 in 0..1
+light { direction sun  shadow soft  color warmth  intensity power }
+light point { position (2, 3, -2)  intensity 0.4  color (shine, 0.5, 0.5) }
+material red { color tint  specular shine }
 param r = 0.8 in 0.4..1.2
 param lift = (0, 0.9, 0) in (-1, 0, -1)..(1, 2, 1)
 param blend = 0.3 in 0..0.6
@@ -30,7 +39,7 @@ param morph = 0 in 0..1
 param wave = 0.1 in 0..0.3
 param axis = (0, 1, 0.3) in (-1, 0.5, -1)..(1, 1, 1)
 smooth_union(blend) {
-  sphere(r) at lift
+  sphere(r) at lift : red
   box((2.4, 0.3, 0.6)) |> rotate(z, tilt) |> rotate(y, time * 40deg) at (0, 0.3, 0)
 }
 mix(morph) { sphere(0.5)  box(0.8) } |> rotate((1, 1, 0), tilt) |> rotate(axis, 25deg) at (-2, 0.5, 0)
@@ -49,7 +58,8 @@ fn one_module_draws_every_setting_as_the_cpu_reference() {
     assert_eq!(
         names,
         [
-            "r", "lift", "blend", "tilt", "morph", "wave", "axis", "time"
+            "sun", "warmth", "power", "tint", "shine", "r", "lift", "blend", "tilt", "morph",
+            "wave", "axis", "time"
         ],
         "the uniform's fields"
     );
@@ -65,7 +75,7 @@ fn one_module_draws_every_setting_as_the_cpu_reference() {
             TILE,
         )
         .unwrap();
-    let settings: [&[(&str, &[f64])]; 4] = [
+    let settings: [&[(&str, &[f64])]; 5] = [
         &[],
         &[
             ("r", &[1.15]),
@@ -83,6 +93,13 @@ fn one_module_draws_every_setting_as_the_cpu_reference() {
             ("wave", &[0.3]),
             ("r", &[0.45]),
             ("blend", &[0.0]),
+        ],
+        &[
+            ("sun", &[0.9, 0.6, 0.2]),
+            ("warmth", &[1.0, 0.7, 0.4]),
+            ("power", &[1.4]),
+            ("tint", &[0.2, 0.6, 0.9]),
+            ("shine", &[0.05]),
         ],
     ];
     let mut frames: Vec<Vec<u32>> = Vec::new();

@@ -7,6 +7,17 @@ use crate::scene::Field;
 use crate::syntax::{Arg, Expr, ExprKind};
 use glam::DVec3;
 
+/// Which arguments of a call or settings block may be computed from parameters.
+#[derive(Clone, Copy)]
+pub(super) enum RunTime {
+    /// None: settings compiled into the shader.
+    Never,
+    /// Every one (shapes' and operators' arguments; the catalog's types still decide).
+    All,
+    /// These settings.
+    Only(&'static [&'static str]),
+}
+
 /// A signature for messages: `sphere(radius = 1)`.
 pub fn signature(name: &str, params: &[Param]) -> String {
     let ps: Vec<String> = params
@@ -69,19 +80,19 @@ impl Checker<'_> {
         args: &[Arg],
         call_span: Span,
     ) -> Option<Vec<Val>> {
-        self.bind_args(what, params, args, call_span, false)
+        self.bind_args(what, params, args, call_span, RunTime::Never)
             .map(|(v, _)| v)
     }
 
-    /// As [`Self::bind`]; where `run_time`, arguments may be computed from parameters, and
-    /// each one's components as expressions come back beside the values (none: empty).
+    /// As [`Self::bind`]; the arguments `run_time` allows may be computed from parameters,
+    /// and each one's components as expressions come back beside the values (none: empty).
     pub(super) fn bind_args(
         &mut self,
         what: &str,
         params: &[Param],
         args: &[Arg],
         call_span: Span,
-        run_time: bool,
+        run_time: RunTime,
     ) -> Option<(Vec<Val>, catalog::ArgSyms)> {
         let mut syms: catalog::ArgSyms = vec![None; params.len()];
         let mut slots: Vec<Option<(Val, Span)>> = vec![None; params.len()];
@@ -153,7 +164,12 @@ impl Checker<'_> {
                 ok = false;
                 continue;
             }
-            let converted = if run_time {
+            let allowed = match run_time {
+                RunTime::Never => false,
+                RunTime::All => true,
+                RunTime::Only(names) => names.contains(&param.name),
+            };
+            let converted = if allowed {
                 self.convert_arg(&arg.value, param.ty, param.name, what)
             } else {
                 self.convert(&arg.value, param.ty, param.name)
@@ -278,7 +294,7 @@ impl Checker<'_> {
             self.diags.push(
                 Diagnostic::error(e.span, format!("`{param}` cannot be a parameter"))
                     .label(format!("this is {}", value.describe()))
-                    .note(format!("the shader is compiled with `{param}` in it: only shapes' and operators' arguments can change at run time")),
+                    .note(format!("the shader is compiled with `{param}` in it; what can change at run time: shapes' and operators' arguments, a material's `color` and `specular`, a light's direction or position, `color` and `intensity`")),
             );
             return None;
         }

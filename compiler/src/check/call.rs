@@ -1,6 +1,7 @@
 //! Checking calls: math functions, `implicit`, primitives and operators with their children,
 //! material tags, and the copy a tag or annotation makes of a shared shape.
 
+use super::args::RunTime;
 use super::{Binding, Checker, Value};
 use crate::catalog::{self, Arity, Ctx};
 use crate::diag::{Diagnostic, did_you_mean};
@@ -38,7 +39,8 @@ impl Checker<'_> {
                 );
                 return None;
             }
-            let (args, sym) = self.bind_args(name, prim.params, &call.args, call.span, true)?;
+            let (args, sym) =
+                self.bind_args(name, prim.params, &call.args, call.span, RunTime::All)?;
             let ctx = Ctx {
                 args,
                 sym,
@@ -61,7 +63,7 @@ impl Checker<'_> {
             return Some(Value::Shape(id));
         }
         if let Some(op) = catalog::operator(name) {
-            let args = self.bind_args(name, op.params, &call.args, call.span, true);
+            let args = self.bind_args(name, op.params, &call.args, call.span, RunTime::All);
             let children = self.children(call, piped, op.arity)?;
             return self
                 .operator_node(name, args?, children, call.span)

@@ -2,6 +2,7 @@
 //! fog, each a table of parameters bound by the same code as call arguments.
 
 use super::Checker;
+use super::args::RunTime;
 use super::settings::v;
 use crate::catalog::{Param, Ty, Val, opt, req};
 use crate::diag::{Diagnostic, Span, did_you_mean};
@@ -80,7 +81,9 @@ impl Checker<'_> {
         else {
             return;
         };
-        let Some(a) = self.bind(&format!("light {name}"), params, args, span) else {
+        let run_time = RunTime::Only(&["direction", "position", "color", "intensity"]);
+        let what = format!("light {name}");
+        let Some((a, sym)) = self.bind_args(&what, params, args, span, run_time) else {
             return;
         };
         let place = a[0].vec();
@@ -104,6 +107,7 @@ impl Checker<'_> {
                 Val::Word(2) => Shadow::Soft(a[4].num()),
                 _ => Shadow::None,
             },
+            sym,
         });
     }
 
@@ -224,7 +228,9 @@ impl Checker<'_> {
                     }
                 })));
         }
-        let Some(a) = self.bind(&format!("material {}", name.name), MATERIAL, &args, span) else {
+        let what = format!("material {}", name.name);
+        let run_time = RunTime::Only(&["color", "specular"]);
+        let Some((a, sym)) = self.bind_args(&what, MATERIAL, &args, span, run_time) else {
             self.failed.insert(name.name.clone());
             return;
         };
@@ -252,6 +258,7 @@ impl Checker<'_> {
             ior: a[4].num(),
             pattern,
             span: name.span,
+            sym,
         });
     }
 }

@@ -159,6 +159,8 @@ impl Checker<'_> {
         }
         let n = kind.components();
         let range = match range {
+            // A colour's components are 0…1 whatever the host sets.
+            None if kind == ParamKind::Color => Some((DVec3::ZERO, DVec3::ONE)),
             None => None,
             Some((lo, hi)) => {
                 let (a, b) = (self.range_end(lo, kind), self.range_end(hi, kind));

@@ -112,6 +112,7 @@ impl Settings {
                 color: DVec3::ONE,
                 intensity: 1.0,
                 shadow: Shadow::None,
+                sym: Vec::new(),
             }]
         } else {
             self.lights

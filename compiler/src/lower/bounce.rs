@@ -172,7 +172,8 @@ pub(super) fn add_path(
             let id = b.u(i as u32 + 1);
             let is = b.bin(Op::Equal, m, id);
             let (mr, mt, mi) = (b.f(mat.reflect), b.f(mat.transparent), b.f(mat.ior));
-            let mc = b.vec3_lit(crate::color::linear(mat.color));
+            let mc =
+                super::params::linear_color(b, mat.color, super::params::setting(&mat.sym, 0), m);
             r = b.select(is, mr, r);
             t = b.select(is, mt, t);
             ior = b.select(is, mi, ior);

@@ -119,6 +119,37 @@ pub(super) fn arg(b: &mut FnBuilder, ty: Ty, v: Val, sym: Option<&[Field]>, p: E
     }
 }
 
+/// Setting `i` of a material or light (`Material::sym`, `Light::sym`), if computed from
+/// parameters.
+pub(super) fn setting(sym: &crate::catalog::ArgSyms, i: usize) -> Option<&[Field]> {
+    sym.get(i).and_then(|s| s.as_deref())
+}
+
+/// An sRGB colour setting as linear light: the sRGB curve (`crate::color::to_linear`)
+/// computed in the shader if it reads parameters, else folded.
+pub(super) fn linear_color(
+    b: &mut FnBuilder,
+    c: glam::DVec3,
+    sym: Option<&[Field]>,
+    any: Ex,
+) -> Ex {
+    let Some(comps) = sym else {
+        return b.vec3_lit(crate::color::linear(c));
+    };
+    let c = components(b, comps, any);
+    let knee = b.splat3(0.04045);
+    let low = b.bin(naga::BinaryOperator::LessEqual, c, knee);
+    let k = b.splat3(1.0 / 12.92);
+    let below = b.mul(c, k);
+    let a = b.splat3(0.055);
+    let shifted = b.add(c, a);
+    let k = b.splat3(1.0 / 1.055);
+    let scaled = b.mul(shifted, k);
+    let e = b.splat3(2.4);
+    let above = b.math(naga::MathFunction::Pow, &[scaled, e]);
+    b.select(low, below, above)
+}
+
 /// Argument `i` of an operator as a number (`p` is any expression of the function: parameters
 /// do not read it).
 pub fn num(b: &mut FnBuilder, c: &Ctx, i: usize, p: Ex) -> Ex {

@@ -3,7 +3,9 @@
 //! reference they mirror: `crate::shading`).
 
 use super::builder::{Ex, FnBuilder, ModuleBuilder};
+use super::params;
 use super::probes::{add_occlusion, add_shadow};
+use crate::catalog::{Ty, Val};
 use crate::scene::{LightKind, Scene, Shadow};
 use crate::shading::{AMBIENT, DEFAULT_COLOR, SHININESS, has_shadows};
 use naga::{Function, Handle, MathFunction as M, ScalarKind};
@@ -110,10 +112,17 @@ pub(super) fn add_shade(
     let amb = b.f(AMBIENT);
     let mut color = b.mul(lit_base, amb);
     for light in &scene.lights {
+        let place = params::setting(&light.sym, 0);
         let (l, far) = match light.kind {
-            LightKind::Directional(d) => (b.vec3_lit(d.normalize()), b.f(scene.trace.max_distance)),
+            LightKind::Directional(d) => {
+                let l = match place {
+                    Some(_) => params::arg(&mut b, Ty::Axis, Val::Vec3(d), place, p),
+                    None => b.vec3_lit(d.normalize()),
+                };
+                (l, b.f(scene.trace.max_distance))
+            }
             LightKind::Point(pos) => {
-                let pv = b.vec3_lit(pos);
+                let pv = params::arg(&mut b, Ty::Vec3, Val::Vec3(pos), place, p);
                 let d = b.sub(pv, p);
                 (unit_or_zero(&mut b, d), b.length(d))
             }
@@ -121,7 +130,17 @@ pub(super) fn add_shade(
         let ndl = b.dot(n, l);
         let zero = b.f(0.0);
         let diff = b.max(ndl, zero);
-        let lc = b.vec3_lit(crate::color::linear(light.color) * light.intensity);
+        let (tint, intensity) = (
+            params::setting(&light.sym, 1),
+            params::setting(&light.sym, 2),
+        );
+        let lc = if tint.is_none() && intensity.is_none() {
+            b.vec3_lit(crate::color::linear(light.color) * light.intensity)
+        } else {
+            let c = params::linear_color(&mut b, light.color, tint, p);
+            let k = params::arg(&mut b, Ty::Number, Val::Num(light.intensity), intensity, p);
+            b.mul(c, k)
+        };
         let lc = match (shadow, light.shadow) {
             (Some(f), Shadow::Hard | Shadow::Soft(_)) => {
                 let k = match light.shadow {
@@ -169,15 +188,16 @@ fn material_props(
         let is = b.bin(naga::BinaryOperator::Equal, id, k);
         let c = match patterned.iter().find(|(j, _)| *j == i) {
             Some(&(_, c)) => c,
-            None => b.vec3_lit(crate::color::linear(m.color)),
+            None => params::linear_color(b, m.color, params::setting(&m.sym, 0), id),
         };
         base = b.select(is, c, base);
-        if m.specular > 0.0 || spec.is_some() {
+        let specular = params::setting(&m.sym, 1);
+        if m.specular > 0.0 || spec.is_some() || specular.is_some() {
             let prev = match spec {
                 Some(s) => s,
                 None => b.f(0.0),
             };
-            let s = b.f(m.specular);
+            let s = params::arg(b, Ty::Number, Val::Num(m.specular), specular, id);
             spec = Some(b.select(is, s, prev));
         }
     }

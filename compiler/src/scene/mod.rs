@@ -72,6 +72,36 @@ impl Scene {
         }
         let params = s.params.clone();
         let value = |r: &ParamRef| params[r.index].value[r.comp];
+        let at = |sym: &crate::catalog::ArgSyms, i: usize| -> Option<DVec3> {
+            let comps = sym.get(i)?.as_ref()?;
+            let v: Vec<f64> = comps
+                .iter()
+                .map(|f| f.with_values(&value).eval(DVec3::ZERO))
+                .collect();
+            Some(DVec3::new(v[0], v[v.len().min(2) - 1], v[v.len() - 1]))
+        };
+        for m in &mut s.materials {
+            if let Some(c) = at(&m.sym, 0) {
+                m.color = c;
+            }
+            if let Some(x) = at(&m.sym, 1) {
+                m.specular = x.x;
+            }
+        }
+        for l in &mut s.lights {
+            if let Some(v) = at(&l.sym, 0) {
+                l.kind = match l.kind {
+                    LightKind::Directional(_) => LightKind::Directional(v),
+                    LightKind::Point(_) => LightKind::Point(v),
+                };
+            }
+            if let Some(c) = at(&l.sym, 1) {
+                l.color = c;
+            }
+            if let Some(x) = at(&l.sym, 2) {
+                l.intensity = x.x;
+            }
+        }
         for n in &mut s.nodes {
             match &mut n.kind {
                 NodeKind::Primitive { ctx, .. } | NodeKind::Operator { ctx, .. } => {
@@ -215,6 +245,9 @@ pub struct Material {
     pub ior: f64,
     /// A procedural pattern mixing `color` with a second colour (`crate::texture`).
     pub pattern: Option<Pattern>,
+    /// Settings computed from parameters (indexed as `check::look::MATERIAL`: `color`,
+    /// `specular`), as expressions per component; empty when none is.
+    pub sym: crate::catalog::ArgSyms,
     /// Where it was declared.
     pub span: Span,
 }
@@ -348,7 +381,7 @@ pub fn guard_axis(x: f64) -> f64 {
 pub const AXIS_GUARD: f64 = 1e-20;
 
 /// A light.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Light {
     /// Directional (towards the light) or positional.
     pub kind: LightKind,
@@ -358,6 +391,10 @@ pub struct Light {
     pub intensity: f64,
     /// Whether surfaces shade each other from it.
     pub shadow: Shadow,
+    /// Settings computed from parameters (indexed as `check::LIGHT_KINDS`' parameters: the
+    /// direction or position, `color`, `intensity`), as expressions per component; empty
+    /// when none is.
+    pub sym: crate::catalog::ArgSyms,
 }
 
 /// Ambient occlusion (Evans 2006, cited by Keinert et al. §1): `samples` evaluations of the
