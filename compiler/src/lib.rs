@@ -12,6 +12,7 @@ pub mod eval;
 pub mod interval;
 pub mod lipschitz;
 pub mod lower;
+pub mod manifest;
 pub mod passes;
 pub mod scene;
 pub mod shading;

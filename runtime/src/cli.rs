@@ -89,6 +89,15 @@ enum Command {
         glsl_version: crate::emit_cmd::GlslVersionArg,
         #[command(flatten)]
         tracer: TracerArgs,
+        /// Prefix the shader's own names (functions, structs, globals, constants) with `NAME_`
+        /// so that they cannot collide with the host's: `NAME_map`, `NAME_trace`, `NAME_Params`.
+        #[arg(long, value_name = "NAME")]
+        prefix: Option<String>,
+        /// Also write the manifest a host needs (bindings, uniform layouts, parameters, entry
+        /// points, functions, materials, camera, lights) as JSON to this file
+        /// (docs/interface.md).
+        #[arg(long, value_name = "FILE")]
+        manifest: Option<PathBuf>,
     },
     /// Render a scene to a PNG (or depth to `.npy`) on the GPU, headless.
     Render {
@@ -291,15 +300,17 @@ pub fn run() -> i32 {
             spirv_version,
             glsl_version,
             tracer,
+            prefix,
+            manifest,
         } => crate::emit_cmd::run(
             &file,
             (target.into(), entry.into()),
-            output.as_deref(),
+            (output.as_deref(), manifest.as_deref()),
             &sdfc_compiler::emit::Settings {
                 spirv_version: spirv_version.pair(),
                 glsl_version: glsl_version.into(),
             },
-            &tracer,
+            (&tracer, prefix.as_deref()),
         ),
         Command::Render {
             file,

@@ -10,14 +10,32 @@ use std::path::Path;
 pub fn run(
     file: &Path,
     (target, entry): (Target, Entry),
-    output: Option<&Path>,
+    (output, manifest): (Option<&Path>, Option<&Path>),
     settings: &emit::Settings,
-    tracer: &crate::cli::TracerArgs,
+    (tracer, prefix): (&crate::cli::TracerArgs, Option<&str>),
 ) -> i32 {
     if let Some(path) = output
         && let Err(e) = check_extension(path, target)
     {
         say!("{e}");
+        return 1;
+    }
+    if let Some(p) = prefix
+        && !sdfc_compiler::manifest::valid_prefix(p)
+    {
+        say!(
+            "error: `--prefix {p}` is not a name: it must start with a letter and go on with letters, digits or `_`"
+        );
+        return 1;
+    }
+    if let Some(m) = manifest
+        && m.extension()
+            .is_some_and(|e| !e.eq_ignore_ascii_case("json"))
+    {
+        say!(
+            "error: `--manifest {}`: the manifest is JSON; give it a `.json` file",
+            m.display()
+        );
         return 1;
     }
     if target == Target::Glsl
@@ -45,8 +63,27 @@ pub fn run(
         );
         return 1;
     }
-    let result = emit::module(&scene, entry, &options)
-        .and_then(|(m, info)| emit::write_with(&m, &info, target, entry, settings));
+    let compiled = emit::module(&scene, entry, &options).and_then(|(mut m, info)| {
+        let Some(p) = prefix else {
+            return Ok((m, info));
+        };
+        sdfc_compiler::manifest::prefix(&mut m, p);
+        let info = emit::validate(&m)?;
+        Ok((m, info))
+    });
+    let mut described = None;
+    let result = compiled.and_then(|(m, info)| {
+        if manifest.is_some() {
+            let origin = sdfc_compiler::manifest::Origin {
+                scene: &name,
+                target: target_name(target),
+                entry,
+                prefix,
+            };
+            described = Some(sdfc_compiler::manifest::manifest(&scene, &m, &origin));
+        }
+        emit::write_with(&m, &info, target, entry, settings)
+    });
     let out = match result {
         Ok(o) => o,
         Err(e) => {
@@ -62,6 +99,12 @@ pub fn run(
         Output::Binary(words) => words.iter().flat_map(|w| w.to_le_bytes()).collect(),
     };
     let code = write_output(output, &bytes, matches!(out, Output::Binary(_)));
+    if let (0, Some(path), Some(m)) = (code, manifest, described) {
+        let text = serde_json::to_string_pretty(&m).expect("JSON") + "\n";
+        if write_whole(path, text.as_bytes()) != 0 {
+            return 1;
+        }
+    }
     if let (0, Some(path)) = (code, output.filter(|p| *p != Path::new("-"))) {
         crate::cli::done(&format!(
             "wrote {} — {}, {} bytes",

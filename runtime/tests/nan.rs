@@ -24,24 +24,6 @@ fn host(scene: &Scene, poison: bool) -> String {
         unreachable!()
     };
     let has = |f: &str| lib.contains(&format!("fn {f}("));
-    let pixel = if lib
-        .lines()
-        .any(|l| l.starts_with("fn trace(") && l.contains("pixel"))
-    {
-        ", view.size.z"
-    } else {
-        ""
-    };
-    let material = if has("map_material") {
-        "map_material(p)"
-    } else {
-        "0u"
-    };
-    let shade_h = if sdfc_compiler::shading::has_shadows(scene) {
-        ", h"
-    } else {
-        ""
-    };
     let path = if has("path") {
         "c = path(p, n, rd, m, h, c);"
     } else {
@@ -67,7 +49,7 @@ fn host(scene: &Scene, poison: bool) -> String {
            let v = 1.0 - 2.0 * uv.y / view.size.y;\n\
            let rd = normalize(view.forward.xyz + view.right.xyz * u + view.up.xyz * v);\n\
            let ro = view.eye.xyz;\n\
-           let r = trace(ro, rd{pixel});\n\
+           let r = trace(ro, rd, view.size.z);\n\
            var c = vec3<f32>(0.0);\n\
            var hit = 0u;\n\
            if ((r.flags & 1u) != 0u) {{\n\
@@ -75,8 +57,8 @@ fn host(scene: &Scene, poison: bool) -> String {
              let p = ro + rd * r.t;\n\
              let h = max(view.size.z * r.t, 1e-6);\n\
              let n = normal(p, h);\n\
-             let m = {material};\n\
-             c = shade(p, n, rd, m{shade_h});\n\
+             let m = map_material(p);\n\
+             c = shade(p, n, rd, m, h);\n\
              {path}\n\
              {fog}\n\
              {poison}\n\

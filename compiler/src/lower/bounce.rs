@@ -316,7 +316,7 @@ pub(super) fn add_path(
             |b| {
                 super::count::count(b, 1);
                 let nm = b.call(c.material, vec![np]);
-                let nl = super::shading::call_shade(b, c.shade, scene, [np, nn, dir, nm], h);
+                let nl = super::shading::call_shade(b, c.shade, [np, nn, dir, nm], h);
                 b.store(m_v, nm);
                 b.store(local_v, nl);
             },

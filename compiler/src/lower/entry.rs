@@ -3,13 +3,15 @@
 //! the tests; the view uniform and the pinhole camera they share.
 
 use super::builder::{Ex, FnBuilder, ModuleBuilder};
+use super::camera::{add_camera_ray, add_view};
+pub(super) use super::camera::{global, storage_array, view_field};
 use super::handoff::{hand_over, trace_in_pass};
 use super::march::{epsilon, is_hit};
-use super::tracer::{Options, Pass, Tracer, VIEW_FIELDS, WORKGROUP, struct_ty};
+use super::tracer::{Options, Pass, Tracer, WORKGROUP};
 use crate::scene::{Epsilon, Scene};
 use naga::{
-    AddressSpace, Binding, BuiltIn, EntryPoint, Expression, Function, Handle, MathFunction as M,
-    ResourceBinding, ScalarKind, ShaderStage, Span, StorageAccess, Type, TypeInner, VectorSize,
+    Binding, BuiltIn, EntryPoint, Expression, Function, Handle, MathFunction as M, ScalarKind,
+    ShaderStage, VectorSize,
 };
 
 /// The functions and globals the camera entries share.
@@ -20,8 +22,8 @@ pub(super) struct Fns {
     material: Option<Handle<Function>>,
     fog: Option<Handle<Function>>,
     path: Option<Handle<Function>>,
-    ray: Handle<Function>,
-    pub(super) view: Handle<naga::GlobalVariable>,
+    /// `camera_ray` and the `View` uniform: none in the library (the host has its camera).
+    camera: Option<(Handle<Function>, Handle<naga::GlobalVariable>)>,
     pub(super) passes: bool,
 }
 
@@ -38,107 +40,35 @@ impl Fns {
         let view = add_view(mb, passes);
         let ray = add_camera_ray(mb, view);
         Fns {
+            camera: Some((ray, view)),
+            passes,
+            ..Fns::library(tracer, [normal, shade], material, [fog, path])
+        }
+    }
+
+    /// The functions without a camera: the library's.
+    pub fn library(
+        tracer: Tracer,
+        [normal, shade]: [Handle<Function>; 2],
+        material: Option<Handle<Function>>,
+        [fog, path]: [Option<Handle<Function>>; 2],
+    ) -> Fns {
+        Fns {
             tracer,
             normal,
             shade,
             material,
             fog,
             path,
-            ray,
-            view,
-            passes,
+            camera: None,
+            passes: false,
         }
     }
-}
 
-/// The `View` uniform at group 0, binding 0 (with the `pass` field only for passes).
-fn add_view(mb: &mut ModuleBuilder, passes: bool) -> Handle<naga::GlobalVariable> {
-    let v4 = mb.vec(VectorSize::Quad);
-    let u4 = mb.uvec(VectorSize::Quad);
-    let fields = if passes { 7 } else { 6 };
-    let members: Vec<(&str, Handle<Type>, u32)> = VIEW_FIELDS[..fields]
-        .iter()
-        .enumerate()
-        .map(|(i, n)| (*n, if *n == "offset" { u4 } else { v4 }, 16 * i as u32))
-        .collect();
-    let ty = struct_ty(mb, "View", &members, 16 * fields as u32);
-    global(mb, "view", ty, AddressSpace::Uniform, 0)
-}
-
-pub(super) fn global(
-    mb: &mut ModuleBuilder,
-    name: &str,
-    ty: Handle<Type>,
-    space: AddressSpace,
-    binding: u32,
-) -> Handle<naga::GlobalVariable> {
-    mb.module.global_variables.append(
-        naga::GlobalVariable {
-            name: Some(name.to_string()),
-            space,
-            binding: Some(ResourceBinding { group: 0, binding }),
-            ty,
-            init: None,
-            memory_decorations: naga::MemoryDecorations::empty(),
-        },
-        Span::UNDEFINED,
-    )
-}
-
-/// A runtime-sized storage array at group 0, `binding`: elements of `base`, `stride` bytes
-/// apart; the shader may write it if `write`.
-pub(super) fn storage_array(
-    mb: &mut ModuleBuilder,
-    name: &str,
-    (base, stride): (Handle<Type>, u32),
-    write: bool,
-    binding: u32,
-) -> Handle<naga::GlobalVariable> {
-    let ty = mb.ty(TypeInner::Array {
-        base,
-        size: naga::ArraySize::Dynamic,
-        stride,
-    });
-    let access = match write {
-        true => StorageAccess::LOAD | StorageAccess::STORE,
-        false => StorageAccess::LOAD,
-    };
-    global(mb, name, ty, AddressSpace::Storage { access }, binding)
-}
-
-/// Loads member `i` of the view uniform.
-pub(super) fn view_field(b: &mut FnBuilder, view: Handle<naga::GlobalVariable>, i: u32) -> Ex {
-    let g = b.expr(Expression::GlobalVariable(view));
-    let ptr = b.at(g, i);
-    b.load(ptr)
-}
-
-/// `camera_ray(pixel)`: the pinhole camera (Munini §2.1), pixel coordinates with y down.
-fn add_camera_ray(mb: &mut ModuleBuilder, view: Handle<naga::GlobalVariable>) -> Handle<Function> {
-    let v2 = mb.vec(VectorSize::Bi);
-    let v3 = mb.vec3();
-    let mut b = FnBuilder::new(mb, "camera_ray", &[("pixel", v2)], Some(v3));
-    let pixel = b.arg(0);
-    let [right, up, forward, size] = [1, 2, 3, 4].map(|i| {
-        let v = view_field(&mut b, view, i);
-        b.swizzle(v, &[0, 1, 2])
-    });
-    let size = b.swizzle(size, &[0, 1]);
-    let two = b.f(2.0);
-    let one = b.f(1.0);
-    let uv = b.div(pixel, size);
-    let uv = b.mul(uv, two);
-    let [u, v] = [b.at(uv, 0), b.at(uv, 1)];
-    let u = b.sub(u, one);
-    let v = b.sub(one, v);
-    let ru = b.mul(right, u);
-    let uvv = b.mul(up, v);
-    let d = b.add(forward, ru);
-    let d = b.add(d, uvv);
-    let d = b.math(M::Normalize, &[d]);
-    b.ret(Some(d));
-    let f = b.finish();
-    mb.add_function(f)
+    /// The `View` uniform (the camera entries have one).
+    pub(super) fn view(&self) -> Handle<naga::GlobalVariable> {
+        self.camera.expect("a camera entry").1
+    }
 }
 
 /// The ray through `pixel` traced (in a pass if given): (origin, direction, `TraceResult`,
@@ -149,10 +79,10 @@ pub(super) fn trace_pixel(
     pixel: Ex,
     pass: Option<Pass>,
 ) -> (Ex, Ex, Ex, Ex) {
-    let rd = b.call(fns.ray, vec![pixel]);
-    let eye = view_field(b, fns.view, 0);
+    let rd = b.call(fns.camera.expect("a camera entry").0, vec![pixel]);
+    let eye = view_field(b, fns.view(), 0);
     let ro = b.swizzle(eye, &[0, 1, 2]);
-    let size = view_field(b, fns.view, 4);
+    let size = view_field(b, fns.view(), 4);
     let px = b.at(size, 2);
     let result = fns.tracer.call(b, ro, rd, px, pass);
     b.name(result, "traced");
@@ -200,7 +130,7 @@ fn shade_hit(
             None => b.u(0),
         };
         {
-            let c = super::shading::call_shade(b, fns.shade, scene, [p, n, rd, m], h);
+            let c = super::shading::call_shade(b, fns.shade, [p, n, rd, m], h);
             // Mirrors and transparent solids: the path of reflected and refracted rays.
             let c = match fns.path {
                 Some(f) => b.call(f, vec![p, n, rd, m, h, c]),
@@ -261,7 +191,7 @@ fn hit_bit(b: &mut FnBuilder, result: Ex) -> Ex {
 /// in it the ray passes through: the pixel's corner plus `(right.w, up.w)`).
 fn compute_pixel(b: &mut FnBuilder, fns: &Fns) -> (Ex, Ex) {
     let gid = b.arg(0);
-    let offset = view_field(b, fns.view, 5);
+    let offset = view_field(b, fns.view(), 5);
     let gxy = b.swizzle(gid, &[0, 1]);
     let oxy = b.swizzle(offset, &[0, 1]);
     let pxy = b.add(gxy, oxy);
@@ -277,8 +207,8 @@ fn compute_pixel(b: &mut FnBuilder, fns: &Fns) -> (Ex, Ex) {
     let pf = b.cast(pxy, ScalarKind::Float);
     // Where in the pixel the ray passes: `right.w`, `up.w` (the centre, 0.5, unless
     // anti-aliasing samples move it).
-    let right = view_field(b, fns.view, 1);
-    let up = view_field(b, fns.view, 2);
+    let right = view_field(b, fns.view(), 1);
+    let up = view_field(b, fns.view(), 2);
     let (jx, jy) = (b.at(right, 3), b.at(up, 3));
     let jitter = b.vec2(jx, jy);
     (index, b.add(pf, jitter))
@@ -395,6 +325,32 @@ pub(super) fn compute_main(mb: &mut ModuleBuilder, function: Function, workgroup
         task_payload: None,
         incoming_ray_payload: None,
     });
+}
+
+/// The library's `color(ro, rd, pixel) -> vec4<f32>`: the ray traced and its surface shaded
+/// as the camera entries do (reflections, refraction, fog, cone anti-aliasing included) in
+/// linear light, the background where it misses; `w` is 1 on a hit, else 0.
+pub(super) fn add_color(
+    mb: &mut ModuleBuilder,
+    scene: &Scene,
+    fns: &Fns,
+    options: &Options,
+    floor: f64,
+) {
+    let (v3, f, v4) = (mb.vec3(), mb.f32(), mb.vec(VectorSize::Quad));
+    let args = [("ro", v3), ("rd", v3), ("pixel", f)];
+    let mut b = FnBuilder::new(mb, "color", &args, Some(v4));
+    let (ro, rd, px) = (b.arg(0), b.arg(1), b.arg(2));
+    let result = fns.tracer.call(&mut b, ro, rd, px, None);
+    let s = shade_hit(&mut b, scene, fns, options, floor, (ro, rd, result, px));
+    let hit = hit_bit(&mut b, result);
+    let (one, zero) = (b.f(1.0), b.f(0.0));
+    let w = b.select(hit, one, zero);
+    let [r, g, bl] = b.xyz(s.color);
+    let out = b.compose(v4, vec![r, g, bl, w]);
+    b.ret(Some(out));
+    let f = b.finish();
+    mb.add_function(f);
 }
 
 /// `@fragment` `main`: `@builtin(position)` in, `@location(0)` colour out.

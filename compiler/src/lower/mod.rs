@@ -7,11 +7,13 @@
 mod bounce;
 mod bound;
 pub mod builder;
+mod camera;
 mod careful;
 mod count;
 mod entry;
 mod handoff;
 mod hybrid;
+pub mod interface;
 pub mod march;
 mod math;
 pub mod ops;
@@ -58,7 +60,8 @@ pub fn lower(scene: &Scene, entry: Entry, options: &tracer::Options) -> naga::Mo
         ops::scale_by(b, d, 1.0 / scene.root_node().lambda)
     });
     let u32t = mb.u32();
-    let material = has_materials(scene, &reachable).then(|| {
+    // (The library always has `map_material`: its interface does not depend on the scene.)
+    let material = (has_materials(scene, &reachable) || entry == Entry::Library).then(|| {
         point_function(&mut mb, "map_material", u32t, |b, p| {
             let (_, m) = walk.with_material(b, scene.root, p);
             m.unwrap_or_else(|| b.u(0))

@@ -57,16 +57,19 @@ pub(super) fn add(mb: &mut ModuleBuilder, scene: &Scene) -> Option<Handle<naga::
     }
     let (offsets, size) = layout(&scene.params);
     let (f, v3) = (mb.f32(), mb.vec(VectorSize::Tri));
+    let names: Vec<String> = scene
+        .params
+        .iter()
+        .map(|p| super::interface::shader_name(&p.name))
+        .collect();
     let members: Vec<(&str, Handle<naga::Type>, u32)> = scene
         .params
         .iter()
+        .zip(&names)
         .zip(&offsets)
-        .map(|(p, &o)| {
-            (
-                p.name.as_str(),
-                if p.kind.components() == 1 { f } else { v3 },
-                o,
-            )
+        .map(|((p, n), &o)| {
+            let ty = if p.kind.components() == 1 { f } else { v3 };
+            (n.as_str(), ty, o)
         })
         .collect();
     let ty = super::tracer::struct_ty(mb, "Params", &members, size);

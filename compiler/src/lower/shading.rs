@@ -50,7 +50,7 @@ pub(super) fn add_normal(mb: &mut ModuleBuilder, map: Handle<Function>) -> Handl
     mb.add_function(f)
 }
 
-/// `shade(p, n, rd, material[, h])`: Lambert with an ambient term (Munini §2.3), a Blinn–Phong
+/// `shade(p, n, rd, material, h)`: Lambert with an ambient term (Munini §2.3), a Blinn–Phong
 /// highlight only if some material is specular, the scene's lights folded in as constants;
 /// with shadows, each shadowing light's terms scaled by `shadow` (`h`: the hit threshold);
 /// with occlusion, the ambient and diffuse terms scaled by `occlusion(p, n)`.
@@ -70,10 +70,15 @@ pub(super) fn add_shade(
     let v3 = mb.vec3();
     let u32t = mb.u32();
     let f32t = mb.f32();
-    let mut args = vec![("p", v3), ("n", v3), ("rd", v3), ("material", u32t)];
-    if shadow.is_some() {
-        args.push(("h", f32t));
-    }
+    // `h` whether or not a light casts shadows: the library's signature does not depend on the
+    // scene (docs/interface.md).
+    let args = [
+        ("p", v3),
+        ("n", v3),
+        ("rd", v3),
+        ("material", u32t),
+        ("h", f32t),
+    ];
     let mut b = FnBuilder::new(mb, "shade", &args, Some(v3));
     let (p, n, rd, mat) = (b.arg(0), b.arg(1), b.arg(2), b.arg(3));
     // Scene colours are sRGB; lighting is linear (the conversion folds at compile time).
@@ -204,19 +209,14 @@ fn material_props(
     (base, spec)
 }
 
-/// `shade(p, n, rd, material[, h])`: `h` only where the scene has shadows (`add_shade`).
+/// `shade(p, n, rd, material, h)`.
 pub(super) fn call_shade(
     b: &mut FnBuilder,
     shade: Handle<Function>,
-    scene: &Scene,
     [p, n, rd, m]: [Ex; 4],
     h: Ex,
 ) -> Ex {
-    let mut args = vec![p, n, rd, m];
-    if has_shadows(scene) {
-        args.push(h);
-    }
-    b.call(shade, args)
+    b.call(shade, vec![p, n, rd, m, h])
 }
 
 /// `v` normalised, or zero for the zero vector (no NaN): `crate::shading::unit_or_zero`.

@@ -195,20 +195,21 @@ pub fn add(
     };
     match entry {
         Entry::Library => {
-            // A stable name whatever the variant.
+            // Stable names and signatures whatever the variant and settings
+            // (docs/interface.md): `trace(ro, rd, pixel)` (`pixel` unused with an absolute ε)
+            // and `color(ro, rd, pixel)`, the whole pixel.
             let v3 = mb.vec3();
             let f32t = mb.f32();
-            let mut args = vec![("ro", v3), ("rd", v3)];
-            if inputs.pixel {
-                args.push(("pixel", f32t));
-            }
+            let args = [("ro", v3), ("rd", v3), ("pixel", f32t)];
             let mut b = FnBuilder::new(mb, "trace", &args, Some(result_ty));
-            let (ro, rd) = (b.arg(0), b.arg(1));
-            let pixel = if inputs.pixel { b.arg(2) } else { b.f(0.0) };
+            let (ro, rd, pixel) = (b.arg(0), b.arg(1), b.arg(2));
             let r = tracer.call(&mut b, ro, rd, pixel, None);
             b.ret(Some(r));
             let f = b.finish();
             mb.add_function(f);
+            let fns = entry::Fns::library(tracer, [normal, shade], material, [fog, path]);
+            entry::add_color(mb, scene, &fns, options, floor);
+            super::interface::add_material_constants(mb, scene);
         }
         Entry::Rays => rays::add_rays(mb, &tracer),
         Entry::Field => unreachable!("the field entry returned above"),

@@ -1,0 +1,306 @@
+//! The manifest `sdfc emit --manifest` writes beside a shader: everything a host needs to
+//! drive it (bindings, uniform layouts, parameters, entry points, functions, materials, the
+//! scene's camera and lights), read from the validated module itself. Format: docs/interface.md.
+
+use crate::lower::Entry;
+use crate::scene::{LightKind, Scene, Shadow};
+use naga::{AddressSpace, Module, ScalarKind, TypeInner, VectorSize};
+use serde_json::{Value, json};
+
+/// The format's name and version, the manifest's first field.
+pub const FORMAT: &str = "sdfc-manifest 1";
+
+/// The library's documented functions, in the order the manifest lists them.
+pub const LIBRARY_FUNCTIONS: &[&str] =
+    &["map", "map_material", "normal", "trace", "shade", "color"];
+
+/// What the manifest says about the shader's origin.
+pub struct Origin<'a> {
+    /// The scene file's name.
+    pub scene: &'a str,
+    /// The target language's name (`wgsl`, `glsl`…).
+    pub target: &'a str,
+    /// The entry kind.
+    pub entry: Entry,
+    /// The `--prefix`, if any.
+    pub prefix: Option<&'a str>,
+}
+
+/// The manifest of `module` (already prefixed, if it is) compiled from `scene`.
+pub fn manifest(scene: &Scene, module: &Module, origin: &Origin) -> Value {
+    let entry = match origin.entry {
+        Entry::Compute => "compute",
+        Entry::Fragment => "fragment",
+        Entry::Library => "library",
+        Entry::Trace => "trace",
+        Entry::Rays => "rays",
+        Entry::Field => "field",
+    };
+    let entry_points: Vec<Value> = module
+        .entry_points
+        .iter()
+        .map(|e| {
+            json!({
+                "name": e.name,
+                "stage": format!("{:?}", e.stage).to_lowercase(),
+                "workgroup_size": e.workgroup_size,
+            })
+        })
+        .collect();
+    let mut bindings: Vec<(u32, u32, Value)> = module
+        .global_variables
+        .iter()
+        .filter_map(|(_, g)| {
+            let b = g.binding.as_ref()?;
+            let (space, access) = match g.space {
+                AddressSpace::Uniform => ("uniform", None),
+                AddressSpace::Storage { access } => (
+                    "storage",
+                    Some(if access.contains(naga::StorageAccess::STORE) {
+                        "read_write"
+                    } else {
+                        "read"
+                    }),
+                ),
+                _ => ("other", None),
+            };
+            let mut v = json!({
+                "group": b.group,
+                "binding": b.binding,
+                "name": g.name,
+                "space": space,
+                "type": type_name(module, g.ty),
+            });
+            if let Some(a) = access {
+                v["access"] = json!(a);
+            }
+            if let TypeInner::Struct { span, .. } = module.types[g.ty].inner {
+                v["size"] = json!(span);
+            }
+            if let TypeInner::Array { stride, .. } = module.types[g.ty].inner {
+                v["stride"] = json!(stride);
+            }
+            Some((b.group, b.binding, v))
+        })
+        .collect();
+    bindings.sort_by_key(|(g, b, _)| (*g, *b));
+    let structs: Vec<Value> = module
+        .types
+        .iter()
+        .filter_map(|(_, t)| {
+            let TypeInner::Struct { members, span } = &t.inner else {
+                return None;
+            };
+            let members: Vec<Value> = members
+                .iter()
+                .map(|m| json!({"name": m.name, "type": type_name(module, m.ty), "offset": m.offset}))
+                .collect();
+            Some(json!({"name": t.name, "size": span, "members": members}))
+        })
+        .collect();
+    let functions: Vec<Value> = if origin.entry == Entry::Library {
+        LIBRARY_FUNCTIONS
+            .iter()
+            .filter_map(|name| {
+                let full = prefixed(origin.prefix, name);
+                let (_, f) = module
+                    .functions
+                    .iter()
+                    .find(|(_, f)| f.name.as_deref() == Some(full.as_str()))?;
+                let args: Vec<Value> = f
+                    .arguments
+                    .iter()
+                    .map(|a| json!({"name": a.name, "type": type_name(module, a.ty)}))
+                    .collect();
+                let result = f.result.as_ref().map(|r| type_name(module, r.ty));
+                Some(json!({"name": full, "arguments": args, "result": result}))
+            })
+            .collect()
+    } else {
+        Vec::new()
+    };
+    let (offsets, size) = crate::lower::params::layout(&scene.params);
+    let params: Vec<Value> = scene
+        .params
+        .iter()
+        .zip(&offsets)
+        .map(|(p, &offset)| {
+            let n = p.kind.components();
+            let comps = |v: glam::DVec3| v.to_array()[..n].to_vec();
+            let mut v = json!({
+                "name": p.name,
+                "member": crate::lower::interface::shader_name(&p.name),
+                "kind": p.kind.name(),
+                "type": crate::lower::params::wgsl_type(p.kind),
+                "offset": offset,
+                "default": comps(p.default),
+                "builtin": p.name == crate::check::TIME && p.span.start == p.span.end,
+            });
+            if let Some((lo, hi)) = p.range {
+                v["min"] = json!(comps(lo));
+                v["max"] = json!(comps(hi));
+            }
+            if p.kind == crate::scene::ParamKind::Angle {
+                v["unit"] = json!("radians");
+            }
+            v
+        })
+        .collect();
+    let mut materials = vec![json!({
+        "id": 0,
+        "name": "default",
+        "color": crate::shading::DEFAULT_COLOR.to_array(),
+    })];
+    for (i, m) in scene.materials.iter().enumerate() {
+        let mut v = json!({
+            "id": i + 1,
+            "name": m.name,
+            "color": m.color.to_array(),
+            "specular": m.specular,
+            "reflect": m.reflect,
+            "transparent": m.transparent,
+            "ior": m.ior,
+        });
+        if let Some(pt) = &m.pattern {
+            let kind = crate::texture::PATTERNS
+                .iter()
+                .find(|p| p.1 == pt.kind)
+                .map_or("?", |p| p.0);
+            v["pattern"] = json!({
+                "kind": kind,
+                "second": pt.other.to_array(),
+                "scale": pt.scale,
+                "octaves": pt.octaves,
+            });
+        }
+        if origin.entry == Entry::Library {
+            v["constant"] = json!(prefixed(
+                origin.prefix,
+                &crate::lower::interface::material_constant(&m.name)
+            ));
+        }
+        materials.push(v);
+    }
+    let lights: Vec<Value> = scene
+        .lights
+        .iter()
+        .map(|l| {
+            let (kind, place, vector) = match l.kind {
+                LightKind::Directional(d) => ("directional", "direction", d),
+                LightKind::Point(p) => ("point", "position", p),
+            };
+            let shadow = match l.shadow {
+                Shadow::None => json!("none"),
+                Shadow::Hard => json!("hard"),
+                Shadow::Soft(k) => json!({"soft": k}),
+            };
+            json!({
+                "kind": kind,
+                place: vector.to_array(),
+                "color": l.color.to_array(),
+                "intensity": l.intensity,
+                "shadow": shadow,
+            })
+        })
+        .collect();
+    let c = &scene.camera;
+    json!({
+        "format": FORMAT,
+        "sdfc": env!("CARGO_PKG_VERSION"),
+        "scene": origin.scene,
+        "target": origin.target,
+        "entry": entry,
+        "prefix": origin.prefix,
+        "entry_points": entry_points,
+        "functions": functions,
+        "bindings": bindings.into_iter().map(|(_, _, v)| v).collect::<Vec<_>>(),
+        "structs": structs,
+        "params": {
+            "struct": prefixed(origin.prefix, "Params"),
+            "binding": if scene.params.is_empty() { Value::Null } else { json!({"group": 0, "binding": crate::lower::params::PARAMS_BINDING}) },
+            "size": if scene.params.is_empty() { 0 } else { size },
+            "fields": params,
+        },
+        "materials": materials,
+        "camera": {
+            "eye": c.eye.to_array(),
+            "target": c.target.to_array(),
+            "up": c.up.to_array(),
+            "fov_degrees": c.fov.to_degrees(),
+        },
+        "lights": lights,
+        "background": scene.background.to_array(),
+        "colors": "sRGB components in 0..1; shaders compute in linear light",
+    })
+}
+
+fn prefixed(prefix: Option<&str>, name: &str) -> String {
+    match prefix {
+        Some(p) => format!("{p}_{name}"),
+        None => name.to_string(),
+    }
+}
+
+/// A type as WGSL spells it (`vec3<f32>`, `array<u32>`, a struct's name).
+fn type_name(module: &Module, ty: naga::Handle<naga::Type>) -> String {
+    let t = &module.types[ty];
+    let scalar = |s: naga::Scalar| match (s.kind, s.width) {
+        (ScalarKind::Float, 4) => "f32",
+        (ScalarKind::Uint, 4) => "u32",
+        (ScalarKind::Sint, 4) => "i32",
+        (ScalarKind::Bool, _) => "bool",
+        _ => "?",
+    };
+    let size = |v: VectorSize| v as u8;
+    match &t.inner {
+        TypeInner::Scalar(s) => scalar(*s).into(),
+        TypeInner::Vector { size: n, scalar: s } => format!("vec{}<{}>", size(*n), scalar(*s)),
+        TypeInner::Matrix {
+            columns,
+            rows,
+            scalar: s,
+        } => format!("mat{}x{}<{}>", size(*columns), size(*rows), scalar(*s)),
+        TypeInner::Array { base, size: n, .. } => match n {
+            naga::ArraySize::Constant(k) => format!("array<{}, {k}>", type_name(module, *base)),
+            _ => format!("array<{}>", type_name(module, *base)),
+        },
+        TypeInner::Struct { .. } => t.name.clone().unwrap_or_else(|| "struct".into()),
+        other => format!("{other:?}"),
+    }
+}
+
+/// Prefixes the module's own names (functions, structs, globals, constants) with `prefix_`,
+/// so that they cannot collide with a host's; entry points and struct members keep theirs.
+pub fn prefix(module: &mut Module, prefix: &str) {
+    let add = |name: &mut Option<String>| {
+        if let Some(n) = name {
+            *n = format!("{prefix}_{n}");
+        }
+    };
+    for (_, f) in module.functions.iter_mut() {
+        add(&mut f.name);
+    }
+    for (_, g) in module.global_variables.iter_mut() {
+        add(&mut g.name);
+    }
+    for (_, c) in module.constants.iter_mut() {
+        add(&mut c.name);
+    }
+    // Types are interned: rebuild the arena with the struct names changed.
+    let mut types = naga::UniqueArena::new();
+    for (_, t) in module.types.iter() {
+        let mut t = t.clone();
+        if matches!(t.inner, TypeInner::Struct { .. }) {
+            add(&mut t.name);
+        }
+        types.insert(t, naga::Span::UNDEFINED);
+    }
+    module.types = types;
+}
+
+/// Whether `name` can be a `--prefix`: a letter, then letters, digits or `_`.
+pub fn valid_prefix(name: &str) -> bool {
+    let mut chars = name.chars();
+    chars.next().is_some_and(|c| c.is_ascii_alphabetic())
+        && chars.all(|c| c.is_ascii_alphanumeric() || c == '_')
+}

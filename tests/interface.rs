@@ -1,0 +1,165 @@
+//! What hosts rely on (docs/interface.md): the manifest describes the module it came with
+//! (bindings, uniform layouts, parameters, functions), `--prefix` keeps two scenes' libraries
+//! apart in one shader, and the manifest's format is snapshotted.
+
+use sdfc_compiler::emit::{self, Output, Target};
+use sdfc_compiler::lower::{Entry, tracer::Options};
+use sdfc_compiler::manifest::{self, Origin};
+use sdfc_compiler::scene::Scene;
+
+fn compiled(scene: &Scene, entry: Entry, prefix: Option<&str>) -> (naga::Module, String) {
+    let (mut m, _) = emit::module(scene, entry, &Options::from_scene(scene)).unwrap();
+    if let Some(p) = prefix {
+        manifest::prefix(&mut m, p);
+    }
+    let info = emit::validate(&m).unwrap_or_else(|e| panic!("{}", e.0));
+    let Output::Text(text) = emit::write(&m, &info, Target::Wgsl, entry).unwrap() else {
+        unreachable!()
+    };
+    (m, text)
+}
+
+fn describe(
+    scene: &Scene,
+    m: &naga::Module,
+    entry: Entry,
+    prefix: Option<&str>,
+) -> serde_json::Value {
+    let origin = Origin {
+        scene: "scene.sdf",
+        target: "wgsl",
+        entry,
+        prefix,
+    };
+    manifest::manifest(scene, m, &origin)
+}
+
+/// For every example and entry: each binding the manifest lists is declared in the WGSL with
+/// that group, binding, address space and type, and the WGSL declares no other; each struct's
+/// members and offsets are the module's; the parameters' offsets are the `Params` struct's.
+#[test]
+fn the_manifest_describes_the_module() {
+    let mut checked = 0;
+    for path in sdfc_tests::examples() {
+        let scene = sdfc_tests::example(&path);
+        for entry in [Entry::Compute, Entry::Fragment, Entry::Library] {
+            let (m, wgsl) = compiled(&scene, entry, None);
+            let d = describe(&scene, &m, entry, None);
+            let name = format!("{} ({entry:?})", path.display());
+            let bindings = d["bindings"].as_array().unwrap();
+            for b in bindings {
+                let decl = format!(
+                    "@group({}) @binding({}) \nvar<{}{}> {}: {};",
+                    b["group"],
+                    b["binding"],
+                    b["space"].as_str().unwrap(),
+                    b.get("access")
+                        .map_or(String::new(), |a| format!(", {}", a.as_str().unwrap())),
+                    b["name"].as_str().unwrap(),
+                    b["type"].as_str().unwrap()
+                );
+                assert!(wgsl.contains(&decl), "{name}: `{decl}` not in the WGSL");
+            }
+            assert_eq!(
+                wgsl.matches("@binding(").count(),
+                bindings.len(),
+                "{name}: the WGSL has bindings the manifest does not list"
+            );
+            for s in d["structs"].as_array().unwrap() {
+                let (_, t) = m
+                    .types
+                    .iter()
+                    .find(|(_, t)| t.name.as_deref() == s["name"].as_str())
+                    .unwrap();
+                let naga::TypeInner::Struct { members, span } = &t.inner else {
+                    panic!("{name}: not a struct")
+                };
+                assert_eq!(s["size"], *span, "{name}");
+                for (a, b) in members.iter().zip(s["members"].as_array().unwrap()) {
+                    assert_eq!(b["name"].as_str(), a.name.as_deref(), "{name}");
+                    assert_eq!(b["offset"], a.offset, "{name}");
+                }
+                assert!(wgsl.contains(&format!("struct {} {{", s["name"].as_str().unwrap())));
+            }
+            let fields = d["params"]["fields"].as_array().unwrap();
+            assert_eq!(fields.len(), scene.params.len(), "{name}");
+            if !fields.is_empty() {
+                let s = d["structs"]
+                    .as_array()
+                    .unwrap()
+                    .iter()
+                    .find(|s| s["name"] == "Params")
+                    .unwrap_or_else(|| panic!("{name}: no Params struct"));
+                for (f, member) in fields.iter().zip(s["members"].as_array().unwrap()) {
+                    assert_eq!(f["member"], member["name"], "{name}");
+                    assert_eq!(f["offset"], member["offset"], "{name}");
+                    assert_eq!(f["type"], member["type"], "{name}");
+                }
+                assert_eq!(d["params"]["size"], s["size"], "{name}");
+            }
+            if entry == Entry::Library {
+                let functions = d["functions"].as_array().unwrap();
+                assert_eq!(
+                    functions.len(),
+                    manifest::LIBRARY_FUNCTIONS.len(),
+                    "{name}: every documented function is there"
+                );
+                let described = &d["materials"].as_array().unwrap()[1..];
+                for (mat, m) in scene.materials.iter().zip(described) {
+                    let c = format!(
+                        "const {}: u32 = {}u;",
+                        m["constant"].as_str().unwrap(),
+                        m["id"]
+                    );
+                    assert!(wgsl.contains(&c), "{name}: no `{c}` for `{}`", mat.name);
+                }
+            }
+            checked += 1;
+        }
+    }
+    assert!(checked >= 30, "{checked}");
+}
+
+/// Two scenes' libraries, each with its own `--prefix`, in one host shader: they parse and
+/// validate together (nothing collides), and no name of either is left unprefixed.
+#[test]
+fn prefixed_libraries_live_side_by_side() {
+    let root = sdfc_tests::root();
+    let a = sdfc_tests::example(&root.join("examples/lamp.sdf"));
+    let b = sdfc_tests::example(&root.join("examples/jewel.sdf"));
+    let (_, la) = compiled(&a, Entry::Library, Some("lamp"));
+    let (_, lb) = compiled(&b, Entry::Library, Some("jewel"));
+    for (lib, p) in [(&la, "lamp"), (&lb, "jewel")] {
+        for line in lib.lines() {
+            for head in ["fn ", "struct ", "const ", "var<"] {
+                if let Some(rest) = line.strip_prefix(head) {
+                    let rest = match head {
+                        "var<" => rest.split_once("> ").map_or(rest, |(_, r)| r),
+                        _ => rest,
+                    };
+                    assert!(rest.starts_with(&format!("{p}_")), "unprefixed: `{line}`");
+                }
+            }
+        }
+    }
+    let host = format!(
+        "{la}\n{lb}\n@group(1) @binding(0) var<storage, read_write> out: array<vec4<f32>>;\n\
+         @compute @workgroup_size(1)\nfn main() {{\n\
+         let ro = vec3<f32>(0.0, 1.0, -5.0);\n  let rd = vec3<f32>(0.0, 0.0, 1.0);\n\
+         out[0] = lamp_color(ro, rd, 0.001) + jewel_color(ro, rd, 0.001);\n\
+         out[1] = vec4<f32>(f32(lamp_MATERIAL_brass + jewel_MATERIAL_gold), lamp_params.height, 0.0, 0.0);\n}}\n"
+    );
+    let module = naga::front::wgsl::parse_str(&host)
+        .unwrap_or_else(|e| panic!("does not parse:\n{}", e.emit_to_string(&host)));
+    emit::validate(&module).unwrap_or_else(|e| panic!("{}", e.0));
+}
+
+/// The parametric example's manifest (library, prefixed) and its WGSL, read and kept.
+#[test]
+fn parametric_example_snapshots() {
+    let scene = sdfc_tests::example(&sdfc_tests::root().join("examples/lamp.sdf"));
+    let (m, wgsl) = compiled(&scene, Entry::Library, Some("lamp"));
+    let d = describe(&scene, &m, Entry::Library, Some("lamp"));
+    insta::assert_snapshot!("lamp_manifest", serde_json::to_string_pretty(&d).unwrap());
+    insta::assert_snapshot!("lamp_library_wgsl", wgsl);
+}
