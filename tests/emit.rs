@@ -5,8 +5,7 @@
 use sdfc_compiler::emit::{self, Output, Target};
 use sdfc_compiler::lower::{Entry, tracer::Options};
 use sdfc_compiler::scene::Scene;
-use std::path::Path;
-use std::process::Command;
+use sdfc_tests::{have, run_tool, tempdir};
 
 const TARGETS: [Target; 5] = [
     Target::Wgsl,
@@ -60,31 +59,6 @@ fn passes_snapshot() {
         Output::Text(s) => insta::assert_snapshot!("village_passes_wgsl", s),
         Output::Binary(_) => unreachable!(),
     }
-}
-
-/// Whether an external tool is installed; says so loudly when it is not.
-fn have(tool: &str) -> bool {
-    let ok = Command::new(tool).arg("--version").output().is_ok();
-    if !ok {
-        eprintln!(
-            "\n*** {tool} is not installed: its checks are SKIPPED (`.ci/run` installs it) ***\n"
-        );
-    }
-    ok
-}
-
-fn run_tool(tool: &str, args: &[&str], file: &Path, what: &str) {
-    let out = Command::new(tool)
-        .args(args)
-        .arg(file)
-        .output()
-        .expect("run validator");
-    assert!(
-        out.status.success(),
-        "{tool} rejected {what}:\n{}{}",
-        String::from_utf8_lossy(&out.stdout),
-        String::from_utf8_lossy(&out.stderr)
-    );
 }
 
 #[test]
@@ -147,12 +121,6 @@ fn every_example_target_and_entry_validates() {
         }
     }
     assert!(checked >= 150, "only {checked} combinations");
-}
-
-fn tempdir() -> std::path::PathBuf {
-    let d = std::env::temp_dir().join(format!("sdfc-emit-{}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d
 }
 
 fn functions(wgsl: &str) -> Vec<String> {

@@ -163,3 +163,95 @@ fn parametric_example_snapshots() {
     insta::assert_snapshot!("lamp_manifest", serde_json::to_string_pretty(&d).unwrap());
     insta::assert_snapshot!("lamp_library_wgsl", wgsl);
 }
+
+/// Every back end's library has every documented function, for every example: naga's GLSL
+/// back end writes only what an entry point uses, so the placeholder `main` must use the
+/// `Params` uniform, or the library of a scene with parameters loses its functions.
+#[test]
+fn every_target_library_has_every_function() {
+    use sdfc_compiler::emit::{GlslVersion, Settings};
+    for path in sdfc_tests::examples() {
+        let scene = sdfc_tests::example(&path);
+        let (m, info) = emit::module(&scene, Entry::Library, &Options::from_scene(&scene)).unwrap();
+        let targets = [
+            (Target::Wgsl, GlslVersion::Core450),
+            (Target::Glsl, GlslVersion::Core450),
+            (Target::Glsl, GlslVersion::Es300),
+            (Target::Msl, GlslVersion::Core450),
+            (Target::Hlsl, GlslVersion::Core450),
+        ];
+        for (target, glsl_version) in targets {
+            let settings = Settings {
+                glsl_version,
+                ..Settings::default()
+            };
+            let Output::Text(text) =
+                emit::write_with(&m, &info, target, Entry::Library, &settings).unwrap()
+            else {
+                unreachable!()
+            };
+            for f in manifest::LIBRARY_FUNCTIONS {
+                let defined = text.lines().any(|l| {
+                    !l.starts_with(' ') && l.contains(&format!(" {f}("))
+                        || l.starts_with(&format!("fn {f}("))
+                });
+                assert!(
+                    defined,
+                    "{} {target:?} {glsl_version:?}: no `{f}`",
+                    path.display()
+                );
+            }
+        }
+    }
+}
+
+/// `--entry shadertoy` for every example: no `#version`, precision, `main` or uniform of its own
+/// (Shadertoy supplies those), one `mainImage`, and it compiles as GLSL ES 3.00 inside
+/// Shadertoy's prelude (`iResolution`, `iTime`, `iMouse`) and `main`.
+#[test]
+fn every_example_pastes_into_shadertoy() {
+    let glslang = sdfc_tests::have("glslangValidator");
+    let dir = sdfc_tests::tempdir();
+    for path in sdfc_tests::examples() {
+        let scene = sdfc_tests::example(&path);
+        let toy = sdfc_compiler::shadertoy::shader(&scene, &Options::from_scene(&scene)).unwrap();
+        let name = path.display();
+        for banned in ["#version", "precision ", "void main(", "uniform "] {
+            assert!(
+                !toy.contains(banned),
+                "{name}: `{banned}` in the Shadertoy shader"
+            );
+        }
+        assert_eq!(toy.matches("void mainImage(").count(), 1, "{name}");
+        assert!(toy.contains("vec4 color("), "{name}: no `color`");
+        if scene.params.iter().any(|p| p.name == "time") {
+            assert!(toy.contains("iTime"), "{name}: `time` is not `iTime`");
+        }
+        if glslang {
+            let stem = path.file_stem().unwrap().to_string_lossy();
+            let f = dir.join(format!("{stem}-shadertoy.frag"));
+            let harness = format!(
+                "#version 300 es\nprecision highp float;\nprecision highp int;\n\
+                 uniform vec3 iResolution;\nuniform float iTime;\nuniform vec4 iMouse;\n\
+                 out vec4 shadertoy_color;\n{toy}\n\
+                 void main() {{ mainImage(shadertoy_color, gl_FragCoord.xy); }}\n"
+            );
+            std::fs::write(&f, harness).unwrap();
+            sdfc_tests::run_tool("glslangValidator", &[], &f, &format!("{name} (Shadertoy)"));
+        }
+    }
+}
+
+/// The Shadertoy shader kept in `examples/hosts/shadertoy/lamp.glsl` is what `sdfc emit
+/// examples/lamp.sdf --entry shadertoy` writes today (regenerate it with that command).
+#[test]
+fn the_kept_shadertoy_shader_is_current() {
+    let root = sdfc_tests::root();
+    let scene = sdfc_tests::example(&root.join("examples/lamp.sdf"));
+    let now = sdfc_compiler::shadertoy::shader(&scene, &Options::from_scene(&scene)).unwrap();
+    let kept = std::fs::read_to_string(root.join("examples/hosts/shadertoy/lamp.glsl")).unwrap();
+    assert!(
+        kept == now,
+        "examples/hosts/shadertoy/lamp.glsl is stale: sdfc emit examples/lamp.sdf --entry shadertoy -o examples/hosts/shadertoy/lamp.glsl"
+    );
+}

@@ -129,3 +129,39 @@ pub fn operator_block(
         children.join("\n")
     )
 }
+
+/// Whether an external tool is installed; says so loudly when it is not.
+pub fn have(tool: &str) -> bool {
+    let ok = std::process::Command::new(tool)
+        .arg("--version")
+        .output()
+        .is_ok();
+    if !ok {
+        eprintln!(
+            "\n*** {tool} is not installed: its checks are SKIPPED (`.ci/run` installs it) ***\n"
+        );
+    }
+    ok
+}
+
+/// Runs `tool` on `file` with `args`; fails the test with its output if it refuses.
+pub fn run_tool(tool: &str, args: &[&str], file: &Path, what: &str) {
+    let out = std::process::Command::new(tool)
+        .args(args)
+        .arg(file)
+        .output()
+        .expect("run validator");
+    assert!(
+        out.status.success(),
+        "{tool} rejected {what}:\n{}{}",
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+/// A scratch directory of this process for files handed to external tools.
+pub fn tempdir() -> std::path::PathBuf {
+    let d = std::env::temp_dir().join(format!("sdfc-emit-{}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}

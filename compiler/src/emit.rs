@@ -92,6 +92,37 @@ pub fn validate(module: &naga::Module) -> Result<ModuleInfo, InternalError> {
         })
 }
 
+/// The library's placeholder `main`: it loads every global (the parameters),
+/// because naga's GLSL back end writes only the globals an entry point uses, and leaves out
+/// every function that reads another — the whole library of a scene with parameters.
+fn touching_globals(module: &naga::Module) -> naga::Function {
+    let mut f = naga::Function::default();
+    for (h, g) in module.global_variables.iter() {
+        let runtime_sized = matches!(
+            module.types[g.ty].inner,
+            naga::TypeInner::Array {
+                size: naga::ArraySize::Dynamic,
+                ..
+            }
+        );
+        if runtime_sized {
+            continue;
+        }
+        let ptr = f
+            .expressions
+            .append(naga::Expression::GlobalVariable(h), naga::Span::UNDEFINED);
+        let start = f.expressions.len();
+        f.expressions.append(
+            naga::Expression::Load { pointer: ptr },
+            naga::Span::UNDEFINED,
+        );
+        let range = f.expressions.range_from(start);
+        f.body
+            .push(naga::Statement::Emit(range), naga::Span::UNDEFINED);
+    }
+    f
+}
+
 /// Binding map for GLSL with Vulkan semantics and HLSL: group 0, binding n → binding n.
 fn glsl_bindings(module: &naga::Module) -> back::glsl::BindingMap {
     module
@@ -231,7 +262,7 @@ pub fn write_with(
                 early_depth_test: None,
                 workgroup_size: if fragment { [0, 0, 0] } else { [1, 1, 1] },
                 workgroup_size_overrides: None,
-                function: naga::Function::default(),
+                function: touching_globals(&m),
                 mesh_info: None,
                 task_payload: None,
                 incoming_ray_payload: None,

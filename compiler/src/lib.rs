@@ -15,6 +15,7 @@ pub mod lower;
 pub mod manifest;
 pub mod passes;
 pub mod scene;
+pub mod shadertoy;
 pub mod shading;
 pub mod syntax;
 pub mod texture;

@@ -70,9 +70,9 @@ enum Command {
     Emit {
         /// The scene file (`-` for standard input).
         file: PathBuf,
-        /// Output language.
-        #[arg(long, value_enum, default_value = "wgsl")]
-        target: TargetArg,
+        /// Output language [default: wgsl; glsl for `--entry shadertoy`].
+        #[arg(long, value_enum)]
+        target: Option<TargetArg>,
         /// The interface: the runtime's compute pass, a full-screen fragment pass, or a library of functions.
         #[arg(long, value_enum, default_value = "compute")]
         entry: EntryArg,
@@ -254,6 +254,9 @@ enum EntryArg {
     Library,
     /// The trace-only compute entry `sdfc bench` times (t and steps per pixel).
     Trace,
+    /// A Shadertoy Image shader: GLSL ES 3.00 with `mainImage`, `iTime` for `time`, an orbit
+    /// camera on `iMouse` (target glsl).
+    Shadertoy,
 }
 
 /// Runs the command line; returns the exit code (0 ok, 1 user error).
@@ -302,16 +305,28 @@ pub fn run() -> i32 {
             tracer,
             prefix,
             manifest,
-        } => crate::emit_cmd::run(
-            &file,
-            (target.into(), entry.into()),
-            (output.as_deref(), manifest.as_deref()),
-            &sdfc_compiler::emit::Settings {
-                spirv_version: spirv_version.pair(),
-                glsl_version: glsl_version.into(),
-            },
-            (&tracer, prefix.as_deref()),
-        ),
+        } => {
+            let shadertoy = matches!(entry, EntryArg::Shadertoy);
+            let target = match (target, shadertoy) {
+                (Some(t), _) => t,
+                (None, true) => TargetArg::Glsl,
+                (None, false) => TargetArg::Wgsl,
+            };
+            crate::emit_cmd::run(
+                &file,
+                (target.into(), entry.into()),
+                (output.as_deref(), manifest.as_deref()),
+                &sdfc_compiler::emit::Settings {
+                    spirv_version: spirv_version.pair(),
+                    glsl_version: glsl_version.into(),
+                },
+                crate::emit_cmd::Extras {
+                    tracer: &tracer,
+                    prefix: prefix.as_deref(),
+                    shadertoy,
+                },
+            )
+        }
         Command::Render {
             file,
             output,
@@ -404,6 +419,7 @@ impl From<EntryArg> for Entry {
             EntryArg::Fragment => Entry::Fragment,
             EntryArg::Library => Entry::Library,
             EntryArg::Trace => Entry::Trace,
+            EntryArg::Shadertoy => Entry::Library,
         }
     }
 }

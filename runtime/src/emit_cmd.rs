@@ -6,14 +6,46 @@ use sdfc_compiler::lower::Entry;
 use std::io::{IsTerminal, Write};
 use std::path::Path;
 
+/// `sdfc emit`'s options besides the target, entry and files.
+pub struct Extras<'a> {
+    /// Tracer overrides.
+    pub tracer: &'a crate::cli::TracerArgs,
+    /// `--prefix`.
+    pub prefix: Option<&'a str>,
+    /// `--entry shadertoy` (compiled as the library, written by `sdfc_compiler::shadertoy`).
+    pub shadertoy: bool,
+}
+
 /// Runs `sdfc emit`; returns the exit code.
 pub fn run(
     file: &Path,
     (target, entry): (Target, Entry),
     (output, manifest): (Option<&Path>, Option<&Path>),
     settings: &emit::Settings,
-    (tracer, prefix): (&crate::cli::TracerArgs, Option<&str>),
+    extras: Extras,
 ) -> i32 {
+    let Extras {
+        tracer,
+        prefix,
+        shadertoy,
+    } = extras;
+    if shadertoy && target != Target::Glsl {
+        say!(
+            "error: the Shadertoy entry is GLSL ES 3.00: `--entry shadertoy` takes `--target glsl` (or no `--target`)"
+        );
+        return 1;
+    }
+    if shadertoy && prefix.is_some() {
+        say!(
+            "error: `--prefix` is for the library; the Shadertoy shader is a whole Image tab with its own `mainImage`"
+        );
+        return 1;
+    }
+    let mut settings = *settings;
+    if shadertoy {
+        settings.glsl_version = emit::GlslVersion::Es300;
+    }
+    let settings = &settings;
     if let Some(path) = output
         && let Err(e) = check_extension(path, target)
     {
@@ -51,7 +83,10 @@ pub fn run(
         return 1;
     };
     let options = match tracer.settle(&mut scene) {
-        Ok(o) => o,
+        Ok(mut o) => {
+            o.private_params = shadertoy;
+            o
+        }
         Err(e) => {
             say!("{e}");
             return 1;
@@ -82,7 +117,12 @@ pub fn run(
             };
             described = Some(sdfc_compiler::manifest::manifest(&scene, &m, &origin));
         }
-        emit::write_with(&m, &info, target, entry, settings)
+        emit::write_with(&m, &info, target, entry, settings).map(|out| match out {
+            Output::Text(library) if shadertoy => {
+                Output::Text(sdfc_compiler::shadertoy::wrap(&library, &scene))
+            }
+            other => other,
+        })
     });
     let out = match result {
         Ok(o) => o,
@@ -106,10 +146,14 @@ pub fn run(
         }
     }
     if let (0, Some(path)) = (code, output.filter(|p| *p != Path::new("-"))) {
+        let what = if shadertoy {
+            "a Shadertoy Image shader (GLSL ES 3.00)".to_string()
+        } else {
+            describe(target, entry)
+        };
         crate::cli::done(&format!(
-            "wrote {} — {}, {} bytes",
+            "wrote {} — {what}, {} bytes",
             path.display(),
-            describe(target, entry),
             bytes.len()
         ));
     }

@@ -50,8 +50,13 @@ pub fn wgsl_type(kind: ParamKind) -> &'static str {
     }
 }
 
-/// Adds `var<uniform> params: Params` when the scene has parameters.
-pub(super) fn add(mb: &mut ModuleBuilder, scene: &Scene) -> Option<Handle<naga::GlobalVariable>> {
+/// Adds `var<uniform> params: Params` when the scene has parameters (`var<private>` if
+/// `private`: `Options::private_params`).
+pub(super) fn add(
+    mb: &mut ModuleBuilder,
+    scene: &Scene,
+    private: bool,
+) -> Option<Handle<naga::GlobalVariable>> {
     if scene.params.is_empty() {
         return None;
     }
@@ -73,6 +78,19 @@ pub(super) fn add(mb: &mut ModuleBuilder, scene: &Scene) -> Option<Handle<naga::
         })
         .collect();
     let ty = super::tracer::struct_ty(mb, "Params", &members, size);
+    if private {
+        return Some(mb.module.global_variables.append(
+            naga::GlobalVariable {
+                name: Some("params".into()),
+                space: AddressSpace::Private,
+                binding: None,
+                ty,
+                init: None,
+                memory_decorations: naga::MemoryDecorations::empty(),
+            },
+            naga::Span::UNDEFINED,
+        ));
+    }
     Some(super::entry::global(
         mb,
         "params",

@@ -54,6 +54,9 @@ pub struct Options {
     /// of Keinert's ε_dynamic = 2·max(h, |f(p)|) (§3.3): only to measure what ε_dynamic
     /// prevents (`--fixed-offset`).
     pub fixed_offset: bool,
+    /// Keep the parameters in a private global the shader itself sets (`params = Params(…)`)
+    /// instead of the `Params` uniform: for hosts without uniforms of their own (Shadertoy).
+    pub private_params: bool,
 }
 
 impl Options {
@@ -64,6 +67,7 @@ impl Options {
             passes: false,
             bounding_volumes: false,
             fixed_offset: false,
+            private_params: false,
         }
     }
 }
