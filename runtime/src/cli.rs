@@ -130,9 +130,17 @@ enum Command {
         /// `#rrggbb`); repeat for several. It must be within the parameter's range.
         #[arg(long = "param", value_name = "NAME=VALUE")]
         params: Vec<String>,
-        /// The scene's `time`, in seconds (default 0).
+        /// The scene's `time`, in seconds (default 0); with `--frames`, the first frame's.
         #[arg(long, allow_hyphen_values = true)]
         time: Option<f64>,
+        /// Render an animation of `time`: frames START to END (excluded), each `1/fps` s
+        /// after the one before, to an animated GIF (`-o anim.gif`) or numbered PNGs
+        /// (`-o out_###.png`); the shader is compiled once.
+        #[arg(long, value_name = "START..END")]
+        frames: Option<String>,
+        /// Frames per second of `--frames`.
+        #[arg(long, default_value_t = 30, requires = "frames")]
+        fps: u32,
     },
     /// Measure every tracer × step budget on the GPU against an f64 ground truth: time,
     /// evaluations per pixel, depth error, hit/miss agreement.
@@ -338,6 +346,8 @@ pub fn run() -> i32 {
             allow_slow_compile,
             params,
             time,
+            frames,
+            fps,
         } => crate::render_cmd::run(&crate::render_cmd::RenderArgs {
             file: &file,
             output: &output,
@@ -349,6 +359,8 @@ pub fn run() -> i32 {
             allow_slow_compile,
             params: &params,
             time,
+            frames: frames.as_deref(),
+            fps,
         }),
         Command::Bench {
             file,

@@ -180,26 +180,54 @@ impl Gpu {
         view: &View,
         passes: Option<&[Pass]>,
         jitters: &[[f64; 2]],
-        mut progress: impl FnMut(u32, u32),
+        progress: impl FnMut(u32, u32),
         mut each: impl FnMut(Frame) -> Result<(), String>,
+    ) -> Result<(), String> {
+        let current = lock(&self.params).clone();
+        self.render_sequence(
+            module,
+            (view, passes),
+            jitters,
+            &[current],
+            progress,
+            |_, f| each(f),
+        )
+    }
+
+    /// [`Gpu::render_samples`] for each of `settings` (the `Params` uniform's bytes, one per
+    /// picture: an animation's frames), the module prepared once; `each` gets the setting's
+    /// index with every sample's frame.
+    pub fn render_sequence(
+        &self,
+        module: &naga::Module,
+        (view, passes): (&View, Option<&[Pass]>),
+        jitters: &[[f64; 2]],
+        settings: &[Vec<u8>],
+        mut progress: impl FnMut(u32, u32),
+        mut each: impl FnMut(usize, Frame) -> Result<(), String>,
     ) -> Result<(), String> {
         let layout = Layout::Full {
             passes: passes.is_some(),
         };
         let prepared = self.prepare(Source::Module(module), layout, view, passes, TILE)?;
         let per_frame = prepared.dispatches();
-        let total = per_frame * jitters.len() as u32;
-        for (k, &jitter) in jitters.iter().enumerate() {
-            prepared.set_jitter(jitter);
-            let validation = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
-            let before = k as u32 * per_frame;
-            let seconds = prepared.run_tiles(|done, _| progress(before + done, total))?;
-            if let Some(e) = pollster::block_on(validation.pop()) {
-                return Err(format!(
-                    "internal error: the GPU rejected the compiled shader: {e}"
-                ));
+        let total = per_frame * (jitters.len() * settings.len()) as u32;
+        let mut k = 0;
+        for (s, bytes) in settings.iter().enumerate() {
+            prepared.set_params(bytes);
+            for &jitter in jitters {
+                prepared.set_jitter(jitter);
+                let validation = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
+                let before = k * per_frame;
+                let seconds = prepared.run_tiles(|done, _| progress(before + done, total))?;
+                if let Some(e) = pollster::block_on(validation.pop()) {
+                    return Err(format!(
+                        "internal error: the GPU rejected the compiled shader: {e}"
+                    ));
+                }
+                each(s, prepared.frame(seconds)?)?;
+                k += 1;
             }
-            each(prepared.frame(seconds)?)?;
         }
         Ok(())
     }

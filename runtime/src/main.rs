@@ -17,6 +17,7 @@ macro_rules! say_raw {
     }};
 }
 
+mod animate;
 mod bench_cmd;
 mod cli;
 mod emit_cmd;

@@ -32,6 +32,10 @@ pub struct RenderArgs<'a> {
     pub params: &'a [String],
     /// `--time T`.
     pub time: Option<f64>,
+    /// `--frames START..END`.
+    pub frames: Option<&'a str>,
+    /// `--fps N`.
+    pub fps: u32,
 }
 
 /// Parses `WxH`.
@@ -116,7 +120,22 @@ fn render(args: &RenderArgs) -> Result<(), String> {
             "error: `--output {word}` names the file to write; the channel is `--channel {word}`\nhelp: sdfc render FILE -o OUT.png --channel {word}"
         ));
     }
-    check_extension(args.output)?;
+    let animation = match args.frames {
+        Some(text) => {
+            let range = crate::animate::parse_frames(text)?;
+            if args.fps == 0 || args.fps > 240 {
+                return Err(format!("error: `--fps {}` must be from 1 to 240", args.fps));
+            }
+            if args.channel != Channel::Color {
+                return Err("error: `--frames` renders colour (`--channel color`)".into());
+            }
+            Some((range, crate::animate::sink(args.output)?))
+        }
+        None => {
+            check_extension(args.output)?;
+            None
+        }
+    };
     if args.output == Path::new("-") && std::io::stdout().is_terminal() {
         return Err(
             "error: a PNG is binary; write it to a file with `-o FILE` (or pipe it)".into(),
@@ -171,6 +190,66 @@ fn render(args: &RenderArgs) -> Result<(), String> {
         .samples
         .unwrap_or_else(|| default_samples(args.channel, &options.trace));
     let points = images::sample_points(samples);
+    if let Some((range, sink)) = animation {
+        let first = range.start;
+        let settings = crate::animate::settings(
+            &scene.params,
+            range,
+            f64::from(args.fps),
+            args.time.unwrap_or(0.0),
+        );
+        let count = settings.len();
+        let mut writer = crate::animate::Writer::new(sink, first, f64::from(args.fps), (w, h))?;
+        let mut sum = images::Accumulator::new((w * h) as usize, true);
+        let mut taken = 0;
+        gpu.render_sequence(
+            &module,
+            (&view, plan.as_deref()),
+            &points,
+            &settings,
+            |done, total| {
+                if let Some(b) = &bar {
+                    b.set_length(total as u64);
+                    b.set_position(done as u64);
+                }
+            },
+            |_, frame| {
+                sum.add(&images::rgba(&frame, Channel::Color, scene.trace.steps));
+                taken += 1;
+                if taken == points.len() {
+                    let done = std::mem::replace(
+                        &mut sum,
+                        images::Accumulator::new((w * h) as usize, true),
+                    );
+                    taken = 0;
+                    writer.add(done.finish())?;
+                }
+                Ok(())
+            },
+        )?;
+        if let Some(b) = bar {
+            b.finish_and_clear();
+        }
+        let place = writer.finish()?;
+        let still = if scene
+            .params
+            .iter()
+            .any(|p| p.name == sdfc_compiler::check::TIME)
+        {
+            ""
+        } else {
+            " (the scene does not read `time`: every frame is the same)"
+        };
+        crate::cli::done(&format!(
+            "wrote {place} — {count} frames of {w}×{h} at {} fps, {samples} {} per pixel, {:.1} s, {} ({}){still}",
+            args.fps,
+            if samples == 1 { "sample" } else { "samples" },
+            started.elapsed().as_secs_f64(),
+            gpu.info.name,
+            gpu.backend()
+        ));
+        return Ok(());
+    }
     gpu.render_samples(
         &module,
         &view,

@@ -162,3 +162,105 @@ fn srgb8_of(px: u32) -> [i32; 3] {
     let b = px.to_le_bytes();
     [b[0].into(), b[1].into(), b[2].into()]
 }
+
+/// Parameter values are not compiled in: the module of the scene checked with other values
+/// (`compile_with`, as `render --param` checks them) is the defaults' module, to the byte.
+#[test]
+fn values_do_not_change_the_module() {
+    let text = |values: &[(&str, &[f64])]| {
+        let values: HashMap<String, Vec<f64>> = values
+            .iter()
+            .map(|(n, v)| (n.to_string(), v.to_vec()))
+            .collect();
+        let scene = sdfc_compiler::check::compile_with(SCENE, &values)
+            .scene
+            .expect("valid values");
+        let (m, info) = emit::module(&scene, Entry::Compute, &Options::from_scene(&scene)).unwrap();
+        match emit::write(&m, &info, emit::Target::Wgsl, Entry::Compute).unwrap() {
+            emit::Output::Text(t) => t,
+            emit::Output::Binary(_) => unreachable!(),
+        }
+    };
+    let defaults = text(&[]);
+    let other = text(&[
+        ("r", &[0.41]),
+        ("tint", &[0.1, 0.2, 0.3]),
+        ("time", &[7.0]),
+        ("tilt", &[-0.7]),
+        ("sun", &[0.2, 0.9, -0.9]),
+    ]);
+    assert!(defaults == other, "a value changed the compiled module");
+}
+
+/// `render --frames` is one render per frame at `time` = k/fps with the module compiled once:
+/// frame k of the sequence is, to the byte, `render --time k/fps`; the frames differ (the
+/// lamp's head nods with `time`), and the GIF has every frame.
+#[test]
+fn animation_frames_are_renders_at_their_times() {
+    let dir = common::scratch("frames");
+    let scene = common::root().join("examples/lamp.sdf");
+    let scene = scene.to_str().unwrap();
+    let run = |args: &[&str]| {
+        let o = common::sdfc(args);
+        assert_eq!(
+            o.status.code(),
+            Some(0),
+            "{args:?}: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+    };
+    let pattern = dir.join("f_##.png");
+    let common_args = [
+        "--size",
+        "64x48",
+        "--samples",
+        "1",
+        "--param",
+        "reach=50deg",
+    ];
+    let mut args = vec!["render", scene, "--frames", "0..3", "--fps", "2", "-o"];
+    args.push(pattern.to_str().unwrap());
+    args.extend(common_args);
+    run(&args);
+    let frames: Vec<Vec<u8>> = (0..3)
+        .map(|k| std::fs::read(dir.join(format!("f_{k:02}.png"))).unwrap())
+        .collect();
+    let single = dir.join("single.png");
+    let mut args = vec![
+        "render",
+        scene,
+        "--time",
+        "0.5",
+        "-o",
+        single.to_str().unwrap(),
+    ];
+    args.extend(common_args);
+    run(&args);
+    assert!(
+        std::fs::read(&single).unwrap() == frames[1],
+        "frame 1 is not the render at time 0.5"
+    );
+    assert!(
+        frames[0] != frames[1] && frames[1] != frames[2],
+        "time does not move the lamp"
+    );
+    let gif = dir.join("anim.gif");
+    let mut args = vec![
+        "render",
+        scene,
+        "--frames",
+        "0..3",
+        "-o",
+        gif.to_str().unwrap(),
+    ];
+    args.extend(common_args);
+    run(&args);
+    use image::AnimationDecoder;
+    let decoder = image::codecs::gif::GifDecoder::new(std::io::BufReader::new(
+        std::fs::File::open(&gif).unwrap(),
+    ))
+    .unwrap();
+    let decoded = decoder.into_frames().collect_frames().unwrap();
+    assert_eq!(decoded.len(), 3);
+    assert_eq!(decoded[0].buffer().dimensions(), (64, 48));
+}

@@ -1,0 +1,191 @@
+//! `sdfc render --frames START..END --fps N`: an animation of the scene's `time`, the module
+//! compiled and prepared once and only its `Params` uniform changed between frames, written as
+//! an animated GIF or a numbered PNG sequence.
+
+use sdfc::images;
+use sdfc_compiler::scene::ParamDecl;
+use std::cell::RefCell;
+use std::path::{Path, PathBuf};
+use std::rc::Rc;
+
+/// Most frames one command renders.
+pub const MAX_FRAMES: u32 = 10_000;
+
+/// Where the frames go.
+pub enum Sink {
+    /// One animated GIF (looping), frames `1/fps` s apart.
+    Gif(PathBuf),
+    /// One PNG per frame: the path's run of `#` replaced by the frame's number, zero-padded
+    /// to the run's length (`out_###.png`: `out_000.png`, `out_001.png`, …).
+    Pngs(String),
+}
+
+/// `--frames START..END` (END excluded) as the frame numbers.
+pub fn parse_frames(text: &str) -> Result<std::ops::Range<u32>, String> {
+    let bad = || {
+        format!(
+            "error: `--frames {text}` is not START..END (whole frame numbers, END excluded), e.g. `--frames 0..60`"
+        )
+    };
+    let (a, b) = text.split_once("..").ok_or_else(bad)?;
+    let (a, b): (u32, u32) = (
+        a.trim().parse().map_err(|_| bad())?,
+        b.trim().parse().map_err(|_| bad())?,
+    );
+    if b <= a {
+        return Err(format!(
+            "error: `--frames {text}` has no frame: END must be above START"
+        ));
+    }
+    if b - a > MAX_FRAMES {
+        return Err(format!(
+            "error: `--frames {text}` is {} frames; at most {MAX_FRAMES} in one command",
+            b - a
+        ));
+    }
+    Ok(a..b)
+}
+
+/// Where `--frames` writes, from the output path: `.gif`, or `.png` with a run of `#`.
+pub fn sink(output: &Path) -> Result<Sink, String> {
+    let text = output.to_string_lossy().to_string();
+    let ext = output
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase());
+    match ext.as_deref() {
+        Some("gif") => Ok(Sink::Gif(output.to_path_buf())),
+        Some("png") if text.contains('#') => Ok(Sink::Pngs(text)),
+        _ => Err(format!(
+            "error: `{text}`: `--frames` writes an animated GIF (`-o anim.gif`) or numbered PNGs (`-o frames/out_###.png`, `#`s becoming the frame's number)"
+        )),
+    }
+}
+
+impl Sink {
+    /// The file of frame `k` (a PNG sequence).
+    fn numbered(pattern: &str, k: u32) -> PathBuf {
+        let start = pattern.find('#').expect("a # run");
+        let len = pattern[start..].chars().take_while(|&c| c == '#').count();
+        let name = format!(
+            "{}{:0len$}{}",
+            &pattern[..start],
+            k,
+            &pattern[start + len..]
+        );
+        PathBuf::from(name)
+    }
+}
+
+/// The `Params` bytes of each frame: `time` = `start` + k/`fps` for frame k, every other
+/// parameter as the scene was loaded (its default or `--param`).
+pub fn settings(
+    params: &[ParamDecl],
+    frames: std::ops::Range<u32>,
+    fps: f64,
+    start: f64,
+) -> Vec<Vec<u8>> {
+    frames
+        .map(|k| {
+            let mut p = params.to_vec();
+            for d in &mut p {
+                if d.name == sdfc_compiler::check::TIME {
+                    d.value.x = start + f64::from(k) / fps;
+                }
+            }
+            sdfc_compiler::lower::params::bytes(&p)
+        })
+        .collect()
+}
+
+/// Collects the frames as they are finished and writes them.
+pub struct Writer {
+    sink: Sink,
+    first: u32,
+    fps: f64,
+    size: (u32, u32),
+    gif: Option<(image::codecs::gif::GifEncoder<Shared>, Shared)>,
+    written: u32,
+}
+
+/// The GIF's bytes in memory (the file is written whole at the end), shared with its encoder,
+/// which writes the trailer when it is dropped.
+#[derive(Clone, Default)]
+struct Shared(Rc<RefCell<Vec<u8>>>);
+
+impl std::io::Write for Shared {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        self.0.borrow_mut().extend_from_slice(buf);
+        Ok(buf.len())
+    }
+    fn flush(&mut self) -> std::io::Result<()> {
+        Ok(())
+    }
+}
+
+impl Writer {
+    /// A writer of `size` frames numbered from `first`.
+    pub fn new(sink: Sink, first: u32, fps: f64, size: (u32, u32)) -> Result<Writer, String> {
+        let gif = match &sink {
+            Sink::Gif(_) => {
+                let bytes = Shared::default();
+                let mut e = image::codecs::gif::GifEncoder::new_with_speed(bytes.clone(), 10);
+                e.set_repeat(image::codecs::gif::Repeat::Infinite)
+                    .map_err(|e| format!("error: cannot start the GIF: {e}"))?;
+                Some((e, bytes))
+            }
+            Sink::Pngs(_) => None,
+        };
+        Ok(Writer {
+            sink,
+            first,
+            fps,
+            size,
+            gif,
+            written: 0,
+        })
+    }
+
+    /// Adds the next frame (sRGB RGBA8).
+    pub fn add(&mut self, rgba: Vec<u8>) -> Result<(), String> {
+        let (w, h) = self.size;
+        let k = self.first + self.written;
+        self.written += 1;
+        match (&self.sink, &mut self.gif) {
+            (Sink::Gif(_), Some((e, _))) => {
+                let img = image::RgbaImage::from_raw(w, h, rgba).expect("a whole frame");
+                let delay =
+                    image::Delay::from_numer_denom_ms(1000, self.fps.round().max(1.0) as u32);
+                e.encode_frame(image::Frame::from_parts(img, 0, 0, delay))
+                    .map_err(|e| format!("error: cannot encode frame {k}: {e}"))
+            }
+            (Sink::Pngs(pattern), _) => {
+                let path = Sink::numbered(pattern, k);
+                let bytes = images::png(rgba, w, h)?;
+                match sdfc::files::write_file(&path, &bytes) {
+                    Ok(()) => Ok(()),
+                    Err(e) => Err(format!("error: cannot write `{}`: {e}", path.display())),
+                }
+            }
+            _ => unreachable!("a GIF has its encoder"),
+        }
+    }
+
+    /// Finishes the animation; what was written, for the success line.
+    pub fn finish(self) -> Result<String, String> {
+        match (self.sink, self.gif) {
+            (Sink::Gif(path), Some((e, bytes))) => {
+                drop(e);
+                let bytes = bytes.0.borrow().clone();
+                sdfc::files::write_file(&path, &bytes)
+                    .map_err(|e| format!("error: cannot write `{}`: {e}", path.display()))?;
+                Ok(path.display().to_string())
+            }
+            (Sink::Pngs(pattern), _) => Ok(format!(
+                "{} … {}",
+                Sink::numbered(&pattern, self.first).display(),
+                Sink::numbered(&pattern, self.first + self.written.saturating_sub(1)).display()
+            )),
+            _ => unreachable!("a GIF has its encoder"),
+        }
+    }
+}
