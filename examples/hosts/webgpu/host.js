@@ -1,0 +1,224 @@
+// A WebGPU host for sdfc's library output (docs/interface.md), with no framework: it loads the
+// library's WGSL and its manifest, draws a full-screen pass that asks the library for each
+// pixel's colour, orbits the scene's camera with the mouse, and makes a slider for each
+// parameter from the manifest (its range, its default). `time` runs with the clock.
+//
+// Files it loads, written by:  sdfc emit SCENE.sdf --entry library -o scene.wgsl --manifest scene.json
+// (the page's `?scene=NAME` loads NAME.wgsl and NAME.json instead).
+
+const HOST_WGSL = /* wgsl */ `
+struct HostCamera {
+  eye: vec4<f32>,
+  right: vec4<f32>,
+  up: vec4<f32>,
+  forward: vec4<f32>,
+  size: vec4<f32>,
+}
+@group(1) @binding(0) var<uniform> camera: HostCamera;
+
+@vertex
+fn host_vertex(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
+  let xy = vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u));
+  return vec4<f32>(xy * 2.0 - 1.0, 0.0, 1.0);
+}
+
+fn host_srgb(c: vec3<f32>) -> vec3<f32> {
+  let l = clamp(c, vec3<f32>(0.0), vec3<f32>(1.0));
+  return select(1.055 * pow(l, vec3<f32>(1.0 / 2.4)) - 0.055, l * 12.92, l <= vec3<f32>(0.0031308));
+}
+
+@fragment
+fn host_fragment(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
+  let u = 2.0 * position.x / camera.size.x - 1.0;
+  let v = 1.0 - 2.0 * position.y / camera.size.y;
+  let rd = normalize(camera.forward.xyz + camera.right.xyz * u + camera.up.xyz * v);
+  let c = color(camera.eye.xyz, rd, camera.size.z);
+  // The canvas is not sRGB: encode here (the library's colours are linear).
+  return vec4<f32>(host_srgb(c.rgb), 1.0);
+}
+`;
+
+const sub = (a, b) => a.map((x, i) => x - b[i]);
+const add = (a, b) => a.map((x, i) => x + b[i]);
+const scale = (a, k) => a.map((x) => x * k);
+const dot = (a, b) => a.reduce((s, x, i) => s + x * b[i], 0);
+const cross = (a, b) => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+const normalize = (a) => scale(a, 1 / Math.sqrt(dot(a, a)));
+
+/** The host's camera uniform: the pinhole camera of `sdfc render` (docs/interface.md). */
+function cameraBytes(eye, target, up, fovDegrees, width, height) {
+  const forward = normalize(sub(target, eye));
+  const right = normalize(cross(forward, up));
+  const realUp = cross(right, forward);
+  const t = Math.tan((fovDegrees * Math.PI) / 360);
+  const aspect = width / height;
+  return new Float32Array([
+    ...eye, 0,
+    ...scale(right, t * aspect), 0,
+    ...scale(realUp, t), 0,
+    ...forward, 0,
+    width, height, t / height, 0,
+  ]);
+}
+
+/** The `Params` uniform from the manifest: each field's value (default unless given) at its offset. */
+function paramsBytes(manifest, values) {
+  const size = manifest.params.size;
+  const data = new Float32Array(Math.max(size, 16) / 4);
+  for (const f of manifest.params.fields) {
+    const v = values[f.name] ?? f.default;
+    v.forEach((x, i) => (data[f.offset / 4 + i] = x));
+  }
+  return data;
+}
+
+/** Everything the page draws with: the device, pipeline and buffers for one scene. */
+export async function createHost(base, format) {
+  if (!navigator.gpu) throw new Error("this browser has no WebGPU");
+  const [library, manifest] = await Promise.all([
+    fetch(`${base}.wgsl`).then((r) => (r.ok ? r.text() : Promise.reject(new Error(`${base}.wgsl: ${r.status}`)))),
+    fetch(`${base}.json`).then((r) => (r.ok ? r.json() : Promise.reject(new Error(`${base}.json: ${r.status}`)))),
+  ]);
+  if (manifest.format !== "sdfc-manifest 1") throw new Error(`unknown manifest format ${manifest.format}`);
+  const adapter = await navigator.gpu.requestAdapter();
+  if (!adapter) throw new Error("no WebGPU adapter");
+  const device = await adapter.requestDevice();
+  const module = device.createShaderModule({ code: library + "\n" + HOST_WGSL });
+  const info = await module.getCompilationInfo();
+  const errors = info.messages.filter((m) => m.type === "error");
+  if (errors.length) throw new Error(errors.map((m) => `${m.lineNum}:${m.linePos} ${m.message}`).join("\n"));
+  const pipeline = device.createRenderPipeline({
+    layout: "auto",
+    vertex: { module, entryPoint: "host_vertex" },
+    fragment: { module, entryPoint: "host_fragment", targets: [{ format }] },
+    primitive: { topology: "triangle-list" },
+  });
+  const cameraBuffer = device.createBuffer({ size: 80, usage: GPUBufferUsage.UNIFORM | GPUBufferUsage.COPY_DST });
+  const cameraGroup = device.createBindGroup({
+    layout: pipeline.getBindGroupLayout(1),
+    entries: [{ binding: 0, resource: { buffer: cameraBuffer } }],
+  });
+  // The scene's parameters, if it has any: group 0, binding 9 (docs/interface.md).
+  let paramsBuffer = null;
+  let paramsGroup = null;
+  if (manifest.params.fields.length) {
+    paramsBuffer = device.createBuffer({
+      size: Math.max(manifest.params.size, 16),
+      usage: GPUBufferUsage.UNIFORM | GPUBufferUsage.COPY_DST,
+    });
+    paramsGroup = device.createBindGroup({
+      layout: pipeline.getBindGroupLayout(0),
+      entries: [{ binding: manifest.params.binding.binding, resource: { buffer: paramsBuffer } }],
+    });
+  }
+  /** Draws into `view` (a texture view of `width`×`height`) from `eye` with `values`. */
+  function draw(view, width, height, eye, values) {
+    const c = manifest.camera;
+    device.queue.writeBuffer(cameraBuffer, 0, cameraBytes(eye, c.target, c.up, c.fov_degrees, width, height));
+    if (paramsBuffer) device.queue.writeBuffer(paramsBuffer, 0, paramsBytes(manifest, values));
+    const encoder = device.createCommandEncoder();
+    const pass = encoder.beginRenderPass({
+      colorAttachments: [{ view, loadOp: "clear", storeOp: "store", clearValue: [0, 0, 0, 1] }],
+    });
+    pass.setPipeline(pipeline);
+    if (paramsGroup) pass.setBindGroup(0, paramsGroup);
+    pass.setBindGroup(1, cameraGroup);
+    pass.draw(3);
+    pass.end();
+    return encoder;
+  }
+  return { device, manifest, draw };
+}
+
+/**
+ * Renders `width`×`height` from the scene's own camera with `values` into a texture and
+ * returns its RGBA8 pixels (sRGB, row-major, y down): what the tests compare with `sdfc render`.
+ */
+export async function renderPixels(base, width, height, values = {}) {
+  const format = "rgba8unorm";
+  const host = await createHost(base, format);
+  const texture = host.device.createTexture({
+    size: [width, height],
+    format,
+    usage: GPUTextureUsage.RENDER_ATTACHMENT | GPUTextureUsage.COPY_SRC,
+  });
+  const row = Math.ceil((4 * width) / 256) * 256;
+  const readback = host.device.createBuffer({ size: row * height, usage: GPUBufferUsage.COPY_DST | GPUBufferUsage.MAP_READ });
+  const encoder = host.draw(texture.createView(), width, height, host.manifest.camera.eye, values);
+  encoder.copyTextureToBuffer({ texture }, { buffer: readback, bytesPerRow: row }, [width, height]);
+  host.device.queue.submit([encoder.finish()]);
+  await readback.mapAsync(GPUMapMode.READ);
+  const data = new Uint8Array(readback.getMappedRange());
+  const out = new Uint8Array(4 * width * height);
+  for (let y = 0; y < height; y++) out.set(data.subarray(y * row, y * row + 4 * width), 4 * width * y);
+  readback.unmap();
+  return out;
+}
+
+/** The interactive page: orbit camera, sliders from the manifest's parameters, `time` running. */
+async function main() {
+  const status = document.getElementById("status");
+  const canvas = document.getElementById("view");
+  if (!canvas || new URLSearchParams(location.search).has("test")) return;
+  const base = new URLSearchParams(location.search).get("scene") ?? "scene";
+  try {
+    const format = navigator.gpu.getPreferredCanvasFormat();
+    const host = await createHost(base, format);
+    const context = canvas.getContext("webgpu");
+    context.configure({ device: host.device, format, alphaMode: "opaque" });
+    const m = host.manifest;
+    const values = {};
+    const sliders = document.getElementById("sliders");
+    for (const f of m.params.fields) {
+      if (f.name === "time" && f.builtin) continue;
+      for (let i = 0; i < f.default.length; i++) {
+        const lo = f.min ? f.min[i] : f.default[i] - 1;
+        const hi = f.max ? f.max[i] : f.default[i] + 1;
+        const label = document.createElement("label");
+        const name = f.default.length > 1 ? `${f.name}.${"xyz"[i]}` : f.name;
+        label.textContent = `${name} (${f.kind})`;
+        const input = Object.assign(document.createElement("input"), {
+          type: "range", min: lo, max: hi, step: (hi - lo) / 1000, value: f.default[i],
+        });
+        values[f.name] = [...f.default];
+        input.oninput = () => (values[f.name][i] = Number(input.value));
+        sliders.append(label, input);
+      }
+    }
+    const target = m.camera.target;
+    let offset = sub(m.camera.eye, target);
+    let dragging = null;
+    canvas.onpointerdown = (e) => (dragging = [e.clientX, e.clientY]);
+    window.onpointerup = () => (dragging = null);
+    window.onpointermove = (e) => {
+      if (!dragging) return;
+      const [dx, dy] = [e.clientX - dragging[0], e.clientY - dragging[1]];
+      dragging = [e.clientX, e.clientY];
+      const r = Math.hypot(...offset);
+      let azimuth = Math.atan2(offset[0], offset[2]) - dx * 0.01;
+      let elevation = Math.min(1.5, Math.max(-1.5, Math.asin(offset[1] / r) + dy * 0.01));
+      offset = [r * Math.cos(elevation) * Math.sin(azimuth), r * Math.sin(elevation), r * Math.cos(elevation) * Math.cos(azimuth)];
+    };
+    canvas.onwheel = (e) => {
+      e.preventDefault();
+      offset = scale(offset, Math.exp(e.deltaY * 0.001));
+    };
+    const started = performance.now();
+    // What the page is doing, for its test (examples/hosts/webgpu/test/render.mjs).
+    window.sdfcLive = { frames: 0, eye: null };
+    const frame = () => {
+      if (m.params.fields.some((f) => f.name === "time")) values.time = [(performance.now() - started) / 1000];
+      const eye = add(target, offset);
+      const encoder = host.draw(context.getCurrentTexture().createView(), canvas.width, canvas.height, eye, values);
+      host.device.queue.submit([encoder.finish()]);
+      window.sdfcLive.frames += 1;
+      window.sdfcLive.eye = eye;
+      requestAnimationFrame(frame);
+    };
+    requestAnimationFrame(frame);
+  } catch (e) {
+    status.textContent = String(e.message ?? e);
+  }
+}
+
+main();

@@ -1,0 +1,90 @@
+// Renders a scene with the WebGPU host page in headless Chromium (WebGPU on SwiftShader) and
+// writes the RGBA8 pixels: what runtime/tests/browser.rs compares with `sdfc render`.
+//
+//   node render.mjs SCENE_DIR NAME WIDTH HEIGHT VALUES_JSON OUT.rgba
+//
+// SCENE_DIR holds NAME.wgsl and NAME.json (`sdfc emit --entry library --manifest`); the page
+// and host.js are served from this directory's parent. CHROME names the browser
+// (default /usr/bin/chromium-headless-shell).
+import puppeteer from "puppeteer-core";
+import http from "node:http";
+import fs from "node:fs";
+import path from "node:path";
+import { fileURLToPath } from "node:url";
+
+const [sceneDir, name, width, height, valuesJson, out] = process.argv.slice(2);
+const pageDir = path.dirname(path.dirname(fileURLToPath(import.meta.url)));
+const types = { ".html": "text/html", ".js": "text/javascript", ".wgsl": "text/plain", ".json": "application/json" };
+const server = http.createServer((req, res) => {
+  const url = decodeURIComponent(new URL(req.url, "http://x").pathname);
+  const file = url.startsWith("/scene/")
+    ? path.join(sceneDir, path.basename(url))
+    : path.join(pageDir, path.basename(url === "/" ? "index.html" : url));
+  fs.readFile(file, (err, data) => {
+    if (err) {
+      res.writeHead(404);
+      res.end();
+      return;
+    }
+    res.writeHead(200, { "content-type": types[path.extname(file)] ?? "application/octet-stream" });
+    res.end(data);
+  });
+});
+await new Promise((ok) => server.listen(0, "127.0.0.1", ok));
+const port = server.address().port;
+const browser = await puppeteer.launch({
+  executablePath: process.env.CHROME ?? "/usr/bin/chromium-headless-shell",
+  headless: "shell",
+  args: ["--no-sandbox", "--enable-unsafe-webgpu", "--enable-features=Vulkan", "--use-angle=swiftshader", "--use-webgpu-adapter=swiftshader"],
+});
+let code = 0;
+try {
+  const page = await browser.newPage();
+  const logs = [];
+  page.on("console", (m) => logs.push(m.text()));
+  page.on("pageerror", (e) => logs.push(String(e)));
+  await page.goto(`http://127.0.0.1:${port}/index.html?test`);
+  const pixels = await page.evaluate(
+    async (name, w, h, values) => {
+      const host = await import("./host.js");
+      const px = await host.renderPixels(`scene/${name}`, w, h, values);
+      return Array.from(px);
+    },
+    name,
+    Number(width),
+    Number(height),
+    JSON.parse(valuesJson),
+  );
+  fs.writeFileSync(out, Buffer.from(pixels));
+  const adapter = await page.evaluate(async () => {
+    const a = await navigator.gpu.requestAdapter();
+    return a?.info ? `${a.info.vendor} ${a.info.architecture} ${a.info.description}`.trim() : "unknown";
+  });
+  console.log(`rendered ${width}x${height} with WebGPU (${adapter})`);
+  // The interactive page on the same scene: a slider per parameter component, frames drawn,
+  // no error shown, and dragging turns the camera (the picture changes).
+  const live = await browser.newPage();
+  live.on("pageerror", (e) => logs.push(String(e)));
+  await live.setViewport({ width: 1280, height: 700 });
+  await live.goto(`http://127.0.0.1:${port}/index.html?scene=scene/${name}`);
+  await live.waitForFunction(() => document.querySelectorAll("input[type=range]").length > 0 || document.getElementById("status").textContent, { timeout: 20000 });
+  await live.waitForFunction(() => window.sdfcLive && window.sdfcLive.frames > 2, { timeout: 20000 });
+  const before = await live.evaluate(() => window.sdfcLive.eye);
+  await live.mouse.move(400, 300);
+  await live.mouse.down();
+  await live.mouse.move(600, 320, { steps: 5 });
+  await live.mouse.up();
+  const drawn = await live.evaluate(() => window.sdfcLive.frames);
+  await live.waitForFunction((n) => window.sdfcLive.frames > n + 2, { timeout: 20000 }, drawn);
+  const after = await live.evaluate(() => window.sdfcLive.eye);
+  const sliders = await live.evaluate(() => document.querySelectorAll("input[type=range]").length);
+  const status = await live.evaluate(() => document.getElementById("status").textContent);
+  console.log(`page: sliders=${sliders} status=${JSON.stringify(status)} dragged=${JSON.stringify(before) !== JSON.stringify(after)} errors=${JSON.stringify(logs.filter((l) => /error/i.test(l)))}`);
+} catch (e) {
+  console.error(String(e.message ?? e));
+  code = 1;
+} finally {
+  await browser.close();
+  server.close();
+}
+process.exit(code);

@@ -1,0 +1,107 @@
+//! The WebGPU host page (`examples/hosts/webgpu`: plain HTML and JavaScript loading the
+//! library's WGSL and its manifest) in headless Chromium, WebGPU on SwiftShader, draws what
+//! `sdfc render` draws on lavapipe, at the defaults and at other parameter values.
+//!
+//! Needs `chromium-headless-shell` and the page's test driver (`npm ci` in
+//! `examples/hosts/webgpu/test`), which `.ci/run` installs; without them the test says
+//! SKIPPED loudly, and fails instead when `SDFC_REQUIRE_BROWSER=1` (as `.ci/run` sets).
+
+mod common;
+
+use common::{compile, gpu, off_by, render, root, scratch, sdfc};
+use sdfc_compiler::view::View;
+use std::collections::HashMap;
+use std::process::Command;
+
+#[test]
+fn the_webgpu_page_draws_what_render_draws() {
+    let chrome = std::env::var("CHROME").unwrap_or("/usr/bin/chromium-headless-shell".into());
+    let driver = root().join("examples/hosts/webgpu/test");
+    let ready = std::path::Path::new(&chrome).exists()
+        && driver.join("node_modules/puppeteer-core").exists()
+        && Command::new("node").arg("--version").output().is_ok();
+    if !ready {
+        assert!(
+            std::env::var("SDFC_REQUIRE_BROWSER").is_err(),
+            "SDFC_REQUIRE_BROWSER is set but {chrome} or the page's test driver (npm ci in {}) is missing",
+            driver.display()
+        );
+        eprintln!(
+            "\n*** chromium-headless-shell or the WebGPU page's test driver is missing: the browser test is SKIPPED (`.ci/run` installs them) ***\n"
+        );
+        return;
+    }
+    let dir = scratch("browser");
+    let scene_file = root().join("examples/lamp.sdf");
+    let out = sdfc(&[
+        "emit",
+        scene_file.to_str().unwrap(),
+        "--entry",
+        "library",
+        "-o",
+        dir.join("lamp.wgsl").to_str().unwrap(),
+        "--manifest",
+        dir.join("lamp.json").to_str().unwrap(),
+    ]);
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let scene = compile(&std::fs::read_to_string(&scene_file).unwrap());
+    let gpu = gpu();
+    let (w, h) = (96, 64);
+    let settings = [
+        r#"{}"#,
+        r#"{"reach": [1.0], "height": [1.7], "time": [2.0]}"#,
+    ];
+    for json in settings {
+        let values: HashMap<String, Vec<f64>> = serde_json::from_str(json).unwrap();
+        let raw = dir.join("out.rgba");
+        let run = Command::new("node")
+            .arg(driver.join("render.mjs"))
+            .args([
+                dir.to_str().unwrap(),
+                "lamp",
+                &w.to_string(),
+                &h.to_string(),
+                json,
+            ])
+            .arg(&raw)
+            .env("CHROME", &chrome)
+            .output()
+            .unwrap();
+        assert!(
+            run.status.success(),
+            "the page failed: {}{}",
+            String::from_utf8_lossy(&run.stdout),
+            String::from_utf8_lossy(&run.stderr)
+        );
+        let said = String::from_utf8_lossy(&run.stdout).to_string();
+        println!("{}", said.trim());
+        // The live page: a slider for each of the lamp's five parameters (`time` runs with
+        // the clock), no error shown, and a drag turns the camera.
+        assert!(
+            said.contains("page: sliders=5 status=\"\" dragged=true errors=[]"),
+            "the interactive page: {said}"
+        );
+        let page = std::fs::read(&raw).unwrap();
+        assert_eq!(page.len(), (4 * w * h) as usize);
+        let here = scene.with_values(&values);
+        let frame = render(&gpu, &here, &View::new(&here.camera, w, h));
+        let (mut within, mut worst) = (0, 0);
+        for (i, &px) in frame.color.iter().enumerate() {
+            let c = &page[4 * i..4 * i + 3];
+            let d = off_by(px, [c[0].into(), c[1].into(), c[2].into()]);
+            worst = worst.max(d);
+            within += u32::from(d <= 2);
+        }
+        let share = f64::from(within) / frame.color.len() as f64;
+        println!(
+            "{json}: the WebGPU page within 2 levels of sdfc render on {:.2}% of pixels (worst {worst})",
+            share * 100.0
+        );
+        assert!(share >= 0.995, "{json}: only {:.2}%", share * 100.0);
+    }
+}
