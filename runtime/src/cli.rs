@@ -142,6 +142,36 @@ enum Command {
         #[arg(long, default_value_t = 30, requires = "frames")]
         fps: u32,
     },
+    /// Show a scene in a window, live: drag to orbit, right-drag to pan, wheel to zoom; the
+    /// picture follows the file on every save. Keys: 1–5 colour/normal/depth/steps/material,
+    /// t tracer, a anti-aliasing, [ ] pick a parameter, - = change it, space pauses `time`,
+    /// r back to the scene's camera, s screenshot, q quit.
+    View {
+        /// The scene file.
+        file: PathBuf,
+        /// The window's size.
+        #[arg(long, default_value = "960x600")]
+        size: String,
+        #[command(flatten)]
+        tracer: TracerArgs,
+        /// Graphics API: Vulkan, then GL, or one of them.
+        #[arg(long, value_enum, default_value = "auto")]
+        backend: BackendArg,
+        /// Write each finished picture (and the one kept after a failed reload) to this
+        /// directory as 000.png, 001.png, … (for tests and recordings).
+        #[arg(long, value_name = "DIR")]
+        screenshots: Option<PathBuf>,
+        /// Input to replay, one step per finished picture: `drag DX DY; pan DX DY; zoom N; key K`.
+        #[arg(long)]
+        script: Option<String>,
+        /// Close after this many screenshots.
+        #[arg(long, value_name = "N")]
+        quit_after: Option<u32>,
+        /// Hold the scene's `time` at T seconds (space lets it run); it runs with the clock
+        /// otherwise.
+        #[arg(long, allow_hyphen_values = true)]
+        time: Option<f64>,
+    },
     /// Measure every tracer × step budget on the GPU against an f64 ground truth: time,
     /// evaluations per pixel, depth error, hit/miss agreement.
     Bench {
@@ -361,6 +391,25 @@ pub fn run() -> i32 {
             time,
             frames: frames.as_deref(),
             fps,
+        }),
+        Command::View {
+            file,
+            size,
+            tracer,
+            backend,
+            screenshots,
+            script,
+            quit_after,
+            time,
+        } => crate::view_cmd::run(crate::view_cmd::ViewArgs {
+            file,
+            size,
+            backend: backend.into(),
+            tracer,
+            screenshots,
+            script,
+            quit_after,
+            time,
         }),
         Command::Bench {
             file,

@@ -93,6 +93,8 @@ pub struct Timing {
 /// workgroup counts.
 struct Dispatch {
     uniform: (wgpu::Buffer, [u8; 112]),
+    /// The tile's origin, for a new view's uniform (`Prepared::set_view`).
+    origin: (u32, u32),
     bind: wgpu::BindGroup,
     groups: (u32, u32),
 }
@@ -243,6 +245,7 @@ impl Gpu {
                     };
                     dispatches.push(Dispatch {
                         uniform: (uniform, bytes),
+                        origin: (x, y),
                         bind,
                         groups: (groups(pw - x), groups(ph - y)),
                     });
@@ -307,6 +310,16 @@ impl Prepared<'_> {
             let mut bytes = bytes.to_vec();
             bytes.resize(buffer.size() as usize, 0);
             self.gpu.queue.write_buffer(buffer, 0, &bytes);
+        }
+    }
+
+    /// Points the next frames' camera as `view` (same size; its jitter included): an orbit
+    /// camera without preparing again (`sdfc view`). For a module prepared without passes.
+    pub fn set_view(&mut self, view: &View) {
+        assert_eq!(self.passes.len(), 1, "a view without passes");
+        for d in &mut self.passes[0] {
+            d.uniform.1 = view.uniform(d.origin.0, d.origin.1, [0.0; 4]);
+            self.gpu.queue.write_buffer(&d.uniform.0, 0, &d.uniform.1);
         }
     }
 

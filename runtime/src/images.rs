@@ -118,6 +118,16 @@ impl Accumulator {
 
     /// The mean of the frames added, as RGBA8.
     pub fn finish(self) -> Vec<u8> {
+        self.mean()
+    }
+
+    /// How many frames were added.
+    pub fn frames(&self) -> u32 {
+        self.frames
+    }
+
+    /// The mean of the frames added so far, as RGBA8 (more may be added).
+    pub fn mean(&self) -> Vec<u8> {
         use sdfc_compiler::color::to_srgb;
         let n = self.frames.max(1) as f64;
         self.sum

@@ -5,4 +5,6 @@ pub mod files;
 pub mod frames;
 pub mod gpu;
 pub mod images;
+pub mod orbit;
 pub mod plot;
+pub mod present;

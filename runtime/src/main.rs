@@ -22,10 +22,14 @@ mod bench_cmd;
 mod cli;
 mod emit_cmd;
 mod input;
+mod live;
 mod messages;
 mod render_cmd;
 mod shell;
 mod tracer_args;
+mod view_cmd;
+mod view_events;
+mod view_window;
 
 fn main() {
     // Mesa's drivers complain on every start when this is unset; nothing else reads it here.

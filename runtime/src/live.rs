@@ -1,0 +1,288 @@
+//! What `sdfc view` shows, apart from the window: the last good scene compiled and prepared
+//! at the window's size (and a quarter of it for moving), the orbit camera, the channel,
+//! parameters and anti-aliasing samples accumulated while nothing moves.
+
+use sdfc::frames::{Layout, Prepared, Source};
+use sdfc::gpu::{Gpu, MAX_SIDE};
+use sdfc::images::{self, Accumulator, Channel};
+use sdfc::orbit::Orbit;
+use sdfc_compiler::check::TIME;
+use sdfc_compiler::emit;
+use sdfc_compiler::lower::{Entry, params::bytes, tracer::Options};
+use sdfc_compiler::scene::{Method, Scene};
+use sdfc_compiler::view::View;
+use std::collections::HashMap;
+use std::time::{Duration, Instant};
+
+/// How long after the last input the camera counts as moving (coarse frames).
+const MOVING: Duration = Duration::from_millis(150);
+/// Coarse frames are this many times smaller per side.
+const COARSE: u32 = 4;
+
+/// The tracers `t` cycles through.
+pub const METHODS: [Method; 5] = [
+    Method::Basic,
+    Method::Relaxed,
+    Method::Enhanced,
+    Method::Hybrid,
+    Method::Auto,
+];
+
+/// A picture to show: sRGB RGBA8 pixels and their size.
+pub struct Picture {
+    /// The pixels, row-major, y down.
+    pub rgba: Vec<u8>,
+    /// Width and height.
+    pub size: (u32, u32),
+    /// Whether it is the finished picture (every sample of a still camera).
+    pub finished: bool,
+}
+
+/// The viewer's state.
+pub struct Live {
+    gpu: &'static Gpu,
+    /// The last scene that checked, at the current parameter values.
+    pub scene: Scene,
+    options: Options,
+    full: Prepared<'static>,
+    coarse: Prepared<'static>,
+    size: (u32, u32),
+    /// The camera.
+    pub orbit: Orbit,
+    /// What is shown.
+    pub channel: Channel,
+    /// Samples per pixel once still (1: no anti-aliasing).
+    pub samples: u32,
+    acc: Accumulator,
+    /// Until when the camera counts as moving.
+    moving_until: Instant,
+    /// Parameter values set with the keys (others at their defaults).
+    pub values: HashMap<String, Vec<f64>>,
+    /// The parameter the keys change.
+    pub selected: usize,
+    started: Instant,
+    /// `time` stopped at this value (space).
+    pub paused: Option<f64>,
+    /// The last frame's GPU time and mean evaluations per pixel.
+    pub stats: (f64, f64),
+    /// The last finished picture at full size (kept through a failed reload).
+    last: Vec<u8>,
+}
+
+impl Live {
+    /// Compiles and prepares `scene` for a window of `size`.
+    pub fn new(
+        gpu: &'static Gpu,
+        scene: Scene,
+        options: Options,
+        size: (u32, u32),
+    ) -> Result<Live, String> {
+        let orbit = Orbit::new(&scene.camera);
+        let (full, coarse) = prepare(gpu, &scene, &options, size)?;
+        Ok(Live {
+            gpu,
+            scene,
+            options,
+            full,
+            coarse,
+            size,
+            orbit,
+            channel: Channel::Color,
+            samples: 4,
+            acc: Accumulator::new(pixels(size), true),
+            moving_until: Instant::now(),
+            values: HashMap::new(),
+            selected: 0,
+            started: Instant::now(),
+            paused: None,
+            stats: (0.0, 0.0),
+            last: Vec::new(),
+        })
+    }
+
+    /// A new scene (a reload that checked): compiled and prepared; the camera stays where the
+    /// user turned it.
+    pub fn replace(&mut self, scene: Scene, options: Options) -> Result<(), String> {
+        let (full, coarse) = prepare(self.gpu, &scene, &options, self.size)?;
+        self.orbit.rehome(&scene.camera);
+        (self.full, self.coarse) = (full, coarse);
+        (self.scene, self.options) = (scene, options);
+        self.restart();
+        Ok(())
+    }
+
+    /// The window's new size.
+    pub fn resize(&mut self, size: (u32, u32)) -> Result<(), String> {
+        let size = (size.0.clamp(1, MAX_SIDE), size.1.clamp(1, MAX_SIDE));
+        (self.full, self.coarse) = prepare(self.gpu, &self.scene, &self.options, size)?;
+        self.size = size;
+        self.restart();
+        Ok(())
+    }
+
+    /// Another tracer: the module compiled again.
+    pub fn cycle_method(&mut self) -> Result<Method, String> {
+        let now = METHODS
+            .iter()
+            .position(|m| *m == self.options.trace.method)
+            .unwrap_or(0);
+        let next = METHODS[(now + 1) % METHODS.len()];
+        let mut scene = self.scene.clone();
+        let name = sdfc_compiler::check::tracer::method_entry(next).0;
+        scene.trace = sdfc_compiler::check::tracer::with_overrides(scene.trace, Some(name), &[])?;
+        let mut options = self.options;
+        options.trace = scene.trace;
+        self.replace(scene, options)?;
+        Ok(next)
+    }
+
+    /// The camera moved (or a setting changed): coarse frames for a moment, then the samples
+    /// again.
+    pub fn touch(&mut self) {
+        self.moving_until = Instant::now() + MOVING;
+        self.restart();
+    }
+
+    /// Start accumulating again.
+    pub fn restart(&mut self) {
+        self.acc = Accumulator::new(pixels(self.size), self.channel == Channel::Color);
+    }
+
+    /// Whether the picture will change without input: moving, samples left, or `time` running.
+    pub fn busy(&self) -> bool {
+        Instant::now() < self.moving_until
+            || self.acc.frames() < self.samples_now()
+            || self.animated()
+    }
+
+    fn animated(&self) -> bool {
+        self.paused.is_none() && self.scene.params.iter().any(|p| p.name == TIME)
+    }
+
+    /// The seconds `time` is at.
+    pub fn time(&self) -> f64 {
+        self.paused
+            .unwrap_or_else(|| self.started.elapsed().as_secs_f64())
+    }
+
+    fn samples_now(&self) -> u32 {
+        // Averages of depths, normals or ids are none of them; a running `time` moves.
+        if self.channel != Channel::Color || self.animated() {
+            1
+        } else {
+            self.samples
+        }
+    }
+
+    /// The `Params` bytes now: the values set, `time` running.
+    fn params(&self) -> Vec<u8> {
+        let mut values = self.values.clone();
+        values.insert(TIME.into(), vec![self.time()]);
+        bytes(&self.scene.with_values(&values).params)
+    }
+
+    /// Renders the next frame: coarse while moving, else the next sample of the full picture.
+    pub fn step(&mut self) -> Result<Picture, String> {
+        let camera = self.orbit.camera();
+        let params = self.params();
+        if Instant::now() < self.moving_until {
+            let size = coarse_size(self.size);
+            let mut view = View::new(&camera, size.0, size.1);
+            view.jitter = [0.5, 0.5];
+            self.coarse.set_params(&params);
+            self.coarse.set_view(&view);
+            let seconds = self.coarse.run_tiles(|_, _| {})?;
+            let frame = self.coarse.frame(seconds)?;
+            self.note(&frame);
+            return Ok(Picture {
+                rgba: images::rgba(&frame, self.channel, self.scene.trace.steps),
+                size,
+                finished: false,
+            });
+        }
+        let n = self.samples_now();
+        if self.acc.frames() >= n {
+            self.restart();
+        }
+        let k = self.acc.frames();
+        let mut view = View::new(&camera, self.size.0, self.size.1);
+        view.jitter = images::sample_points(n)[k as usize];
+        self.full.set_params(&params);
+        self.full.set_view(&view);
+        let seconds = self.full.run_tiles(|_, _| {})?;
+        let frame = self.full.frame(seconds)?;
+        self.note(&frame);
+        self.acc
+            .add(&images::rgba(&frame, self.channel, self.scene.trace.steps));
+        let rgba = self.acc.mean();
+        // (With `time` running, every frame is a finished picture of its moment.)
+        let finished = self.acc.frames() >= n;
+        if finished {
+            self.last = rgba.clone();
+        }
+        Ok(Picture {
+            rgba,
+            size: self.size,
+            finished,
+        })
+    }
+
+    fn note(&mut self, frame: &sdfc::gpu::Frame) {
+        let evals = frame.steps.iter().map(|&s| f64::from(s)).sum::<f64>()
+            / frame.steps.len().max(1) as f64;
+        self.stats = (frame.seconds, evals);
+    }
+
+    /// The device.
+    pub fn gpu(&self) -> &'static Gpu {
+        self.gpu
+    }
+
+    /// The last finished picture (black before the first).
+    pub fn last_picture(&self) -> Vec<u8> {
+        if self.last.len() == pixels(self.size) * 4 {
+            self.last.clone()
+        } else {
+            vec![0; pixels(self.size) * 4]
+        }
+    }
+
+    /// The size of the full picture.
+    pub fn size(&self) -> (u32, u32) {
+        self.size
+    }
+
+    /// The tracer now.
+    pub fn method(&self) -> Method {
+        self.options.trace.method
+    }
+}
+
+fn pixels((w, h): (u32, u32)) -> usize {
+    (w * h) as usize
+}
+
+fn coarse_size((w, h): (u32, u32)) -> (u32, u32) {
+    (w.div_ceil(COARSE).max(1), h.div_ceil(COARSE).max(1))
+}
+
+/// The compute module of `scene`, prepared at `size` and at a quarter of it (one dispatch
+/// each: a frame is one submission).
+fn prepare(
+    gpu: &'static Gpu,
+    scene: &Scene,
+    options: &Options,
+    size: (u32, u32),
+) -> Result<(Prepared<'static>, Prepared<'static>), String> {
+    let (module, _) = emit::module(scene, Entry::Compute, options)
+        .map_err(|e| format!("internal compiler error: {}", e.0))?;
+    gpu.set_params(&bytes(&scene.params));
+    let layout = Layout::Full { passes: false };
+    let full = View::new(&scene.camera, size.0, size.1);
+    let c = coarse_size(size);
+    let small = View::new(&scene.camera, c.0, c.1);
+    Ok((
+        gpu.prepare(Source::Module(&module), layout, &full, None, u32::MAX)?,
+        gpu.prepare(Source::Module(&module), layout, &small, None, u32::MAX)?,
+    ))
+}

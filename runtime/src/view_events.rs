@@ -1,0 +1,118 @@
+//! What drives `sdfc view` besides the window: the watcher of the scene file and the
+//! scripted input of `--script`.
+
+use std::collections::VecDeque;
+use std::path::{Path, PathBuf};
+use winit::event_loop::EventLoopProxy;
+
+/// What the file watcher reports.
+#[derive(Debug)]
+pub enum Watched {
+    /// The scene file was written (or came back).
+    Changed,
+    /// The scene file is gone.
+    Gone,
+}
+
+/// One step of `--script`.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Step {
+    /// `drag DX DY`: an orbit drag of so many pixels.
+    Drag(f64, f64),
+    /// `pan DX DY`: a pan drag.
+    Pan(f64, f64),
+    /// `zoom N`: wheel steps (positive: closer).
+    Zoom(f64),
+    /// `key K`: a key press.
+    Key(String),
+}
+
+pub fn parse_script(text: &str) -> Result<VecDeque<Step>, String> {
+    text.split(';')
+        .map(str::trim)
+        .filter(|s| !s.is_empty())
+        .map(|s| {
+            let words: Vec<&str> = s.split_whitespace().collect();
+            let num = |i: usize| -> Result<f64, String> {
+                words
+                    .get(i)
+                    .and_then(|w| w.parse().ok())
+                    .ok_or_else(|| format!("error: `--script`: `{s}` needs a number"))
+            };
+            match words[0] {
+                "drag" => Ok(Step::Drag(num(1)?, num(2)?)),
+                "pan" => Ok(Step::Pan(num(1)?, num(2)?)),
+                "zoom" => Ok(Step::Zoom(num(1)?)),
+                "key" if words.len() == 2 => Ok(Step::Key(words[1].to_string())),
+                _ => Err(format!(
+                    "error: `--script`: `{s}` is not `drag DX DY`, `pan DX DY`, `zoom N` or `key K`"
+                )),
+            }
+        })
+        .collect()
+}
+
+/// Watches the scene file's directory (editors replace files, and a deleted file may come
+/// back) and reports events about the file.
+pub fn watch(
+    file: &Path,
+    proxy: EventLoopProxy<Watched>,
+) -> notify::Result<notify::RecommendedWatcher> {
+    use notify::Watcher;
+    let file = std::path::absolute(file).unwrap_or_else(|_| file.to_path_buf());
+    let dir = file
+        .parent()
+        .map(Path::to_path_buf)
+        .unwrap_or_else(|| PathBuf::from("."));
+    let name = file.file_name().map(|n| n.to_os_string());
+    let target = file.clone();
+    let mut watcher = notify::recommended_watcher(move |event: notify::Result<notify::Event>| {
+        let Ok(event) = event else { return };
+        if event.kind.is_access() {
+            return;
+        }
+        if event
+            .paths
+            .iter()
+            .any(|p| p.file_name().map(|n| n.to_os_string()) == name)
+        {
+            let what = if target.exists() {
+                Watched::Changed
+            } else {
+                Watched::Gone
+            };
+            let _ = proxy.send_event(what);
+        }
+    })?;
+    watcher.watch(&dir, notify::RecursiveMode::NonRecursive)?;
+    Ok(watcher)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn scripts_parse_or_say_what_is_wrong() {
+        let s = parse_script("drag 180 0; zoom 2 ;key t;  pan -3 4.5").unwrap();
+        assert_eq!(
+            Vec::from(s),
+            [
+                Step::Drag(180.0, 0.0),
+                Step::Zoom(2.0),
+                Step::Key("t".into()),
+                Step::Pan(-3.0, 4.5)
+            ]
+        );
+        assert!(
+            parse_script("drag 1")
+                .unwrap_err()
+                .contains("`drag 1` needs a number")
+        );
+        assert!(
+            parse_script("spin 3")
+                .unwrap_err()
+                .contains("is not `drag DX DY`")
+        );
+    }
+}

@@ -1,0 +1,246 @@
+//! `sdfc view` in a real window under Xvfb (lavapipe presenting to X11): its picture is
+//! `sdfc render`'s, scripted input moves the camera as documented, a saved file shows at once,
+//! a broken one leaves the window and its last good picture with the diagnostics printed, and
+//! a deleted file is watched until it comes back. Without a display it is a clear error.
+//!
+//! Needs `xvfb-run` (Debian's `xvfb`), which `.ci/run` installs; without it the window tests
+//! say SKIPPED loudly, and fail instead when `SDFC_REQUIRE_DISPLAY=1` (as `.ci/run` sets).
+
+mod common;
+
+use common::{root, scratch, sdfc};
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Stdio};
+use std::time::{Duration, Instant};
+
+fn xvfb() -> bool {
+    let ok = Command::new("xvfb-run").arg("--help").output().is_ok();
+    if !ok {
+        assert!(
+            std::env::var("SDFC_REQUIRE_DISPLAY").is_err(),
+            "SDFC_REQUIRE_DISPLAY is set but xvfb-run is missing"
+        );
+        eprintln!(
+            "\n*** xvfb-run is missing: the window tests are SKIPPED (`.ci/run` installs xvfb) ***\n"
+        );
+    }
+    ok
+}
+
+/// `sdfc view` under a fresh Xvfb display, its standard error in `log`.
+fn view(args: &[&str], log: &Path) -> Child {
+    Command::new("xvfb-run")
+        .args([
+            "-a",
+            "-s",
+            "-screen 0 1280x1024x24",
+            env!("CARGO_BIN_EXE_sdfc"),
+            "view",
+        ])
+        .args(args)
+        .stdout(Stdio::null())
+        .stderr(std::fs::File::create(log).unwrap())
+        .spawn()
+        .unwrap()
+}
+
+/// Waits for `file` to appear (whole: a rename) or the child to end.
+fn wait_for(file: &Path, child: &mut Child, log: &Path) {
+    let start = Instant::now();
+    while !file.exists() {
+        if let Some(status) = child.try_wait().unwrap() {
+            panic!(
+                "sdfc view ended ({status}) before {}:\n{}",
+                file.display(),
+                std::fs::read_to_string(log).unwrap_or_default()
+            );
+        }
+        assert!(
+            start.elapsed() < Duration::from_secs(90),
+            "no {} after 90 s:\n{}",
+            file.display(),
+            std::fs::read_to_string(log).unwrap_or_default()
+        );
+        std::thread::sleep(Duration::from_millis(50));
+    }
+}
+
+/// `sdfc render` of `scene` at `size` (4 samples, as the viewer at rest).
+fn rendered(dir: &Path, scene: &str, name: &str) -> PathBuf {
+    let file = dir.join(format!("{name}.sdf"));
+    std::fs::write(&file, scene).unwrap();
+    let out = dir.join(format!("{name}.png"));
+    let o = sdfc(&[
+        "render",
+        file.to_str().unwrap(),
+        "--size",
+        "128x96",
+        "-o",
+        out.to_str().unwrap(),
+        "-q",
+    ]);
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    out
+}
+
+/// The share of pixels within 2 levels per channel.
+fn agreement(a: &Path, b: &Path) -> f64 {
+    let (a, b) = (
+        image::open(a).unwrap().to_rgba8(),
+        image::open(b).unwrap().to_rgba8(),
+    );
+    assert_eq!(a.dimensions(), b.dimensions());
+    let same = a
+        .pixels()
+        .zip(b.pixels())
+        .filter(|(p, q)| (0..3).all(|k| p[k].abs_diff(q[k]) <= 2))
+        .count();
+    same as f64 / a.pixels().len() as f64
+}
+
+const BASE: &str = "camera { eye (0, 1.5, -5)  target (0, 1, 0) }\n\
+                    sphere(0.8) at (0, 1, 0)\nbox((0.6, 0.6, 0.6)) at (1.4, 0.3, -0.4)\nplane(y, 0)\n";
+
+/// The first picture is `sdfc render`'s; `drag 180 0` turns the camera 90° about the target's
+/// vertical (0.5° a pixel) to world +x here, `zoom 2` brings it to 0.81 of the distance: each
+/// picture is `sdfc render` with that camera written in the scene.
+#[test]
+fn the_window_shows_render_and_scripted_input_moves_the_camera() {
+    if !xvfb() {
+        return;
+    }
+    let dir = scratch("view-input");
+    let shots = dir.join("shots");
+    let scene = dir.join("scene.sdf");
+    std::fs::write(&scene, BASE).unwrap();
+    let log = dir.join("view.log");
+    let mut child = view(
+        &[
+            scene.to_str().unwrap(),
+            "--size",
+            "128x96",
+            "--screenshots",
+            shots.to_str().unwrap(),
+            "--script",
+            "drag 180 0; zoom 2",
+            "--quit-after",
+            "3",
+        ],
+        &log,
+    );
+    wait_for(&shots.join("002.png"), &mut child, &log);
+    let status = child.wait().unwrap();
+    assert!(
+        status.success(),
+        "{}",
+        std::fs::read_to_string(&log).unwrap()
+    );
+    let body = BASE.lines().skip(1).collect::<Vec<_>>().join("\n");
+    let expected = [
+        rendered(&dir, BASE, "start"),
+        rendered(
+            &dir,
+            &format!("camera {{ eye (5, 1.5, 0)  target (0, 1, 0) }}\n{body}"),
+            "turned",
+        ),
+        rendered(
+            &dir,
+            &format!("camera {{ eye (4.05, 1.405, 0)  target (0, 1, 0) }}\n{body}"),
+            "zoomed",
+        ),
+    ];
+    for (k, want) in expected.iter().enumerate() {
+        let got = shots.join(format!("{k:03}.png"));
+        let share = agreement(&got, want);
+        println!(
+            "screenshot {k}: {:.2}% of pixels within 2 levels of sdfc render",
+            share * 100.0
+        );
+        assert!(share >= 0.995, "screenshot {k}: only {:.2}%", share * 100.0);
+    }
+}
+
+/// A save shows at once; a broken save keeps the window and its picture and prints the
+/// diagnostics; a deleted file is watched until it comes back.
+#[test]
+fn the_window_follows_the_file() {
+    if !xvfb() {
+        return;
+    }
+    let dir = scratch("view-reload");
+    let shots = dir.join("shots");
+    let scene = dir.join("scene.sdf");
+    std::fs::write(&scene, BASE).unwrap();
+    let log = dir.join("view.log");
+    let mut child = view(
+        &[
+            scene.to_str().unwrap(),
+            "--size",
+            "128x96",
+            "--screenshots",
+            shots.to_str().unwrap(),
+            "--quit-after",
+            "4",
+        ],
+        &log,
+    );
+    let shot = |k: u32| shots.join(format!("{k:03}.png"));
+    wait_for(&shot(0), &mut child, &log);
+    assert!(agreement(&shot(0), &rendered(&dir, BASE, "first")) >= 0.995);
+    let second = BASE.replace("sphere(0.8)", "torus(0.7, 0.25)");
+    std::fs::write(&scene, &second).unwrap();
+    wait_for(&shot(1), &mut child, &log);
+    let share = agreement(&shot(1), &rendered(&dir, &second, "second"));
+    assert!(share >= 0.995, "after the save: {:.2}%", share * 100.0);
+    std::fs::write(&scene, "sphere(1\n").unwrap();
+    wait_for(&shot(2), &mut child, &log);
+    assert!(
+        std::fs::read(shot(2)).unwrap() == std::fs::read(shot(1)).unwrap(),
+        "the picture after a broken save is not the last good one"
+    );
+    assert!(
+        child.try_wait().unwrap().is_none(),
+        "the window closed on a broken save"
+    );
+    std::fs::remove_file(&scene).unwrap();
+    std::thread::sleep(Duration::from_millis(500));
+    let third = BASE.replace("sphere(0.8)", "capsule(1, 0.4)");
+    std::fs::write(&scene, &third).unwrap();
+    wait_for(&shot(3), &mut child, &log);
+    let status = child.wait().unwrap();
+    let said = std::fs::read_to_string(&log).unwrap();
+    assert!(status.success(), "{said}");
+    let share = agreement(&shot(3), &rendered(&dir, &third, "third"));
+    assert!(
+        share >= 0.995,
+        "after the file came back: {:.2}%\n{said}",
+        share * 100.0
+    );
+    for needle in ["error: unclosed", "scene.sdf:1:7", "deleted", "reloaded"] {
+        assert!(said.contains(needle), "`{needle}` not said:\n{said}");
+    }
+    println!("{said}");
+}
+
+/// Without a display: an error that says what to do, exit 1, no panic.
+#[test]
+fn without_a_display_view_says_so() {
+    let scene = root().join("examples/gem.sdf");
+    let o = Command::new(env!("CARGO_BIN_EXE_sdfc"))
+        .args(["view", scene.to_str().unwrap()])
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(
+        err.starts_with("error: `sdfc view` needs a display") && err.contains("xvfb-run"),
+        "{err}"
+    );
+}
