@@ -98,6 +98,9 @@ enum Command {
         /// (docs/interface.md).
         #[arg(long, value_name = "FILE")]
         manifest: Option<PathBuf>,
+        /// Write the output again on every save of the scene file, until interrupted.
+        #[arg(long)]
+        watch: bool,
     },
     /// Render a scene to a PNG (or depth to `.npy`) on the GPU, headless.
     Render {
@@ -141,6 +144,9 @@ enum Command {
         /// Frames per second of `--frames`.
         #[arg(long, default_value_t = 30, requires = "frames")]
         fps: u32,
+        /// Render again on every save of the scene file, until interrupted.
+        #[arg(long)]
+        watch: bool,
     },
     /// Show a scene in a window, live: drag to orbit, right-drag to pan, wheel to zoom; the
     /// picture follows the file on every save. Keys: 1–5 colour/normal/depth/steps/material,
@@ -297,6 +303,18 @@ enum EntryArg {
     Shadertoy,
 }
 
+/// A command once, or with `--watch` again after every save of `file` (not for standard input).
+fn watching(file: &std::path::Path, watch: bool, mut once: impl FnMut() -> i32) -> i32 {
+    if !watch {
+        return once();
+    }
+    if file == std::path::Path::new("-") {
+        say!("error: `--watch` needs a scene file, not standard input");
+        return 1;
+    }
+    crate::view_events::watch_loop(file, once)
+}
+
 /// Runs the command line; returns the exit code (0 ok, 1 user error).
 pub fn run() -> i32 {
     let cli = match Cli::try_parse() {
@@ -343,6 +361,7 @@ pub fn run() -> i32 {
             tracer,
             prefix,
             manifest,
+            watch,
         } => {
             let shadertoy = matches!(entry, EntryArg::Shadertoy);
             let target = match (target, shadertoy) {
@@ -350,20 +369,23 @@ pub fn run() -> i32 {
                 (None, true) => TargetArg::Glsl,
                 (None, false) => TargetArg::Wgsl,
             };
-            crate::emit_cmd::run(
-                &file,
-                (target.into(), entry.into()),
-                (output.as_deref(), manifest.as_deref()),
-                &sdfc_compiler::emit::Settings {
-                    spirv_version: spirv_version.pair(),
-                    glsl_version: glsl_version.into(),
-                },
-                crate::emit_cmd::Extras {
-                    tracer: &tracer,
-                    prefix: prefix.as_deref(),
-                    shadertoy,
-                },
-            )
+            let once = || {
+                crate::emit_cmd::run(
+                    &file,
+                    (target.into(), entry.into()),
+                    (output.as_deref(), manifest.as_deref()),
+                    &sdfc_compiler::emit::Settings {
+                        spirv_version: spirv_version.pair(),
+                        glsl_version: glsl_version.into(),
+                    },
+                    crate::emit_cmd::Extras {
+                        tracer: &tracer,
+                        prefix: prefix.as_deref(),
+                        shadertoy,
+                    },
+                )
+            };
+            watching(&file, watch, once)
         }
         Command::Render {
             file,
@@ -378,19 +400,22 @@ pub fn run() -> i32 {
             time,
             frames,
             fps,
-        } => crate::render_cmd::run(&crate::render_cmd::RenderArgs {
-            file: &file,
-            output: &output,
-            size: &size,
-            tracer: &tracer,
-            backend: backend.into(),
-            channel: kind,
-            samples,
-            allow_slow_compile,
-            params: &params,
-            time,
-            frames: frames.as_deref(),
-            fps,
+            watch,
+        } => watching(&file, watch, || {
+            crate::render_cmd::run(&crate::render_cmd::RenderArgs {
+                file: &file,
+                output: &output,
+                size: &size,
+                tracer: &tracer,
+                backend: backend.into(),
+                channel: kind,
+                samples,
+                allow_slow_compile,
+                params: &params,
+                time,
+                frames: frames.as_deref(),
+                fps,
+            })
         }),
         Command::View {
             file,

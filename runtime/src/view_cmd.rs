@@ -84,7 +84,10 @@ pub fn run(args: ViewArgs) -> i32 {
             return 1;
         }
     };
-    let watcher = match watch(&args.file, event_loop.create_proxy()) {
+    let proxy = event_loop.create_proxy();
+    let watcher = match watch(&args.file, move |w| {
+        let _ = proxy.send_event(w);
+    }) {
         Ok(w) => w,
         Err(e) => {
             say!("error: cannot watch `{}`: {e}", args.file.display());

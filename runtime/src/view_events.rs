@@ -3,7 +3,6 @@
 
 use std::collections::VecDeque;
 use std::path::{Path, PathBuf};
-use winit::event_loop::EventLoopProxy;
 
 /// What the file watcher reports.
 #[derive(Debug)]
@@ -56,7 +55,7 @@ pub fn parse_script(text: &str) -> Result<VecDeque<Step>, String> {
 /// back) and reports events about the file.
 pub fn watch(
     file: &Path,
-    proxy: EventLoopProxy<Watched>,
+    report: impl Fn(Watched) + Send + 'static,
 ) -> notify::Result<notify::RecommendedWatcher> {
     use notify::Watcher;
     let file = std::path::absolute(file).unwrap_or_else(|_| file.to_path_buf());
@@ -81,11 +80,48 @@ pub fn watch(
             } else {
                 Watched::Gone
             };
-            let _ = proxy.send_event(what);
+            report(what);
         }
     })?;
     watcher.watch(&dir, notify::RecursiveMode::NonRecursive)?;
     Ok(watcher)
+}
+
+/// `--watch` of `render` and `emit`: runs the command, then again after every save of `file`
+/// (a burst of writes counts once), until interrupted; each run prints its own line or its
+/// diagnostics. Returns only if the file cannot be watched.
+pub fn watch_loop(file: &Path, mut run: impl FnMut() -> i32) -> i32 {
+    let (tx, rx) = std::sync::mpsc::channel();
+    let _watcher = match watch(file, move |w| {
+        let _ = tx.send(w);
+    }) {
+        Ok(w) => w,
+        Err(e) => {
+            say!("error: cannot watch `{}`: {e}", file.display());
+            return 1;
+        }
+    };
+    run();
+    say!(
+        "watching `{}`: every save runs the command again (Ctrl-C stops)",
+        file.display()
+    );
+    loop {
+        let Ok(event) = rx.recv() else { return 1 };
+        if let Watched::Gone = event {
+            say!(
+                "`{}` was deleted or moved away; watching for it to come back",
+                file.display()
+            );
+            continue;
+        }
+        // Let the burst of writes settle, then run once for all of it.
+        std::thread::sleep(crate::view_cmd::SETTLE);
+        while rx.try_recv().is_ok() {}
+        if file.exists() {
+            run();
+        }
+    }
 }
 
 #[cfg(test)]

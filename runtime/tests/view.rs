@@ -244,3 +244,143 @@ fn without_a_display_view_says_so() {
         "{err}"
     );
 }
+
+/// Waits until `ready` holds, the child still running.
+fn wait_until(what: &str, child: &mut Child, log: &Path, mut ready: impl FnMut() -> bool) {
+    let start = Instant::now();
+    while !ready() {
+        if let Some(status) = child.try_wait().unwrap() {
+            panic!(
+                "ended ({status}) before {what}:\n{}",
+                std::fs::read_to_string(log).unwrap_or_default()
+            );
+        }
+        assert!(
+            start.elapsed() < Duration::from_secs(60),
+            "no {what} after 60 s:\n{}",
+            std::fs::read_to_string(log).unwrap_or_default()
+        );
+        std::thread::sleep(Duration::from_millis(50));
+    }
+}
+
+/// `render --watch` and `emit --watch` write again on every save, one line each; a broken save
+/// prints its diagnostics and leaves the output and the watch as they were.
+#[test]
+fn watch_rebuilds_on_every_save() {
+    let dir = scratch("watch");
+    let scene = dir.join("scene.sdf");
+    std::fs::write(&scene, BASE).unwrap();
+    for (what, out, args) in [
+        (
+            "render",
+            dir.join("out.png"),
+            vec!["--size", "64x48", "--samples", "1"],
+        ),
+        ("emit", dir.join("out.wgsl"), vec![]),
+    ] {
+        std::fs::write(&scene, BASE).unwrap();
+        let log = dir.join(format!("{what}.log"));
+        let mut child = Command::new(env!("CARGO_BIN_EXE_sdfc"))
+            .args([
+                what,
+                scene.to_str().unwrap(),
+                "-o",
+                out.to_str().unwrap(),
+                "--watch",
+            ])
+            .args(&args)
+            .stdout(Stdio::null())
+            .stderr(std::fs::File::create(&log).unwrap())
+            .spawn()
+            .unwrap();
+        let said = || std::fs::read_to_string(&log).unwrap_or_default();
+        wait_until("the first output", &mut child, &log, || {
+            said().contains("watching")
+        });
+        let first = std::fs::read(&out).unwrap();
+        std::fs::write(&scene, BASE.replace("sphere(0.8)", "torus(0.7, 0.25)")).unwrap();
+        wait_until("a rebuild", &mut child, &log, || {
+            std::fs::read(&out).is_ok_and(|b| b != first)
+        });
+        let second = std::fs::read(&out).unwrap();
+        if what == "emit" {
+            assert!(String::from_utf8_lossy(&second).contains("fn sd_torus("));
+        }
+        std::fs::write(&scene, "sphere(1\n").unwrap();
+        wait_until("the diagnostics", &mut child, &log, || {
+            said().contains("error: unclosed")
+        });
+        std::thread::sleep(Duration::from_millis(300));
+        assert!(
+            child.try_wait().unwrap().is_none(),
+            "{what} --watch ended on a broken save"
+        );
+        assert!(
+            std::fs::read(&out).unwrap() == second,
+            "a broken save changed the output"
+        );
+        assert_eq!(said().matches("wrote ").count(), 2, "{}", said());
+        child.kill().unwrap();
+        let _ = child.wait();
+    }
+}
+
+/// The keys change a parameter live: `=` raises the selected one (the first) by a twentieth of
+/// its range, and the picture is `sdfc render --param` at that value.
+#[test]
+fn keys_change_a_parameter() {
+    if !xvfb() {
+        return;
+    }
+    let dir = scratch("view-param");
+    let shots = dir.join("shots");
+    let scene = dir.join("scene.sdf");
+    std::fs::write(
+        &scene,
+        BASE.replace("sphere(0.8)", "sphere(r)")
+            .replace("camera", "param r = 0.8 in 0.4..1.2\ncamera"),
+    )
+    .unwrap();
+    let log = dir.join("view.log");
+    let mut child = view(
+        &[
+            scene.to_str().unwrap(),
+            "--size",
+            "128x96",
+            "--screenshots",
+            shots.to_str().unwrap(),
+            "--script",
+            "key =",
+            "--quit-after",
+            "2",
+        ],
+        &log,
+    );
+    wait_for(&shots.join("001.png"), &mut child, &log);
+    assert!(child.wait().unwrap().success());
+    let want = dir.join("want.png");
+    let o = sdfc(&[
+        "render",
+        scene.to_str().unwrap(),
+        "--size",
+        "128x96",
+        "--param",
+        "r=0.84",
+        "-o",
+        want.to_str().unwrap(),
+        "-q",
+    ]);
+    assert_eq!(o.status.code(), Some(0));
+    let share = agreement(&shots.join("001.png"), &want);
+    assert!(
+        share >= 0.995,
+        "{:.2}%\n{}",
+        share * 100.0,
+        std::fs::read_to_string(&log).unwrap()
+    );
+    assert!(
+        agreement(&shots.join("000.png"), &want) < 0.99,
+        "the key changed nothing"
+    );
+}
