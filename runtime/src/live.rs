@@ -107,7 +107,8 @@ impl Live {
         self.orbit.rehome(&scene.camera);
         (self.full, self.coarse) = (full, coarse);
         (self.scene, self.options) = (scene, options);
-        self.restart();
+        // Coarse frames first, as when the camera moves: the change shows at once.
+        self.touch();
         Ok(())
     }
 
