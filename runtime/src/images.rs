@@ -104,14 +104,18 @@ impl Accumulator {
 
     /// Adds one frame's RGBA8 pixels.
     pub fn add(&mut self, rgba: &[u8]) {
-        use sdfc_compiler::color::to_linear;
+        // Each byte's value, decoded from sRGB (colour) or not: the same f64 arithmetic as
+        // before, computed once per byte value instead of once per pixel.
+        static TABLES: std::sync::OnceLock<[[f32; 256]; 2]> = std::sync::OnceLock::new();
+        let tables = TABLES.get_or_init(|| {
+            let plain = std::array::from_fn(|v| (v as f64 / 255.0) as f32);
+            let decoded =
+                std::array::from_fn(|v| sdfc_compiler::color::to_linear(v as f64 / 255.0) as f32);
+            [plain, decoded]
+        });
         for (i, (s, &v)) in self.sum.iter_mut().zip(rgba).enumerate() {
-            let v = v as f64 / 255.0;
-            *s += if self.srgb && i % 4 < 3 {
-                to_linear(v)
-            } else {
-                v
-            } as f32;
+            let decode = usize::from(self.srgb && i % 4 < 3);
+            *s += tables[decode][v as usize];
         }
         self.frames += 1;
     }
