@@ -8,7 +8,16 @@ use sdfc_compiler::manifest::{self, Origin};
 use sdfc_compiler::scene::Scene;
 
 fn compiled(scene: &Scene, entry: Entry, prefix: Option<&str>) -> (naga::Module, String) {
-    let (mut m, _) = emit::module(scene, entry, &Options::from_scene(scene)).unwrap();
+    compiled_with(scene, entry, prefix, &Options::from_scene(scene))
+}
+
+fn compiled_with(
+    scene: &Scene,
+    entry: Entry,
+    prefix: Option<&str>,
+    options: &Options,
+) -> (naga::Module, String) {
+    let (mut m, _) = emit::module(scene, entry, options).unwrap();
     if let Some(p) = prefix {
         manifest::prefix(&mut m, p);
     }
@@ -120,16 +129,25 @@ fn the_manifest_describes_the_module() {
     assert!(checked >= 30, "{checked}");
 }
 
-/// Two scenes' libraries, each with its own `--prefix`, in one host shader: they parse and
-/// validate together (nothing collides), and no name of either is left unprefixed.
+/// Two scenes' libraries, each with its own `--prefix` and the second's parameters at another
+/// binding (`--params-binding 10`), in one host shader: they parse and validate together
+/// (nothing collides), and no name of either is left unprefixed.
 #[test]
 fn prefixed_libraries_live_side_by_side() {
     let root = sdfc_tests::root();
     let a = sdfc_tests::example(&root.join("examples/lamp.sdf"));
-    let b = sdfc_tests::example(&root.join("examples/jewel.sdf"));
+    let b = sdfc_compiler::check::compile(
+        "param tint = #c04030\nparam size = 1 in 0.5..2\nmaterial red { color tint }\nsphere(size) : red\n",
+    )
+    .scene
+    .unwrap();
+    let mut options = Options::from_scene(&b);
+    options.params_binding = 10;
     let (_, la) = compiled(&a, Entry::Library, Some("lamp"));
-    let (_, lb) = compiled(&b, Entry::Library, Some("jewel"));
-    for (lib, p) in [(&la, "lamp"), (&lb, "jewel")] {
+    let (mb, lb) = compiled_with(&b, Entry::Library, Some("ball"), &options);
+    let described = describe(&b, &mb, Entry::Library, Some("ball"));
+    assert_eq!(described["params"]["binding"]["binding"], 10);
+    for (lib, p) in [(&la, "lamp"), (&lb, "ball")] {
         for line in lib.lines() {
             for head in ["fn ", "struct ", "const ", "var<"] {
                 if let Some(rest) = line.strip_prefix(head) {
@@ -146,8 +164,8 @@ fn prefixed_libraries_live_side_by_side() {
         "{la}\n{lb}\n@group(1) @binding(0) var<storage, read_write> out: array<vec4<f32>>;\n\
          @compute @workgroup_size(1)\nfn main() {{\n\
          let ro = vec3<f32>(0.0, 1.0, -5.0);\n  let rd = vec3<f32>(0.0, 0.0, 1.0);\n\
-         out[0] = lamp_color(ro, rd, 0.001) + jewel_color(ro, rd, 0.001);\n\
-         out[1] = vec4<f32>(f32(lamp_MATERIAL_brass + jewel_MATERIAL_gold), lamp_params.height, 0.0, 0.0);\n}}\n"
+         out[0] = lamp_color(ro, rd, 0.001) + ball_color(ro, rd, 0.001);\n\
+         out[1] = vec4<f32>(f32(lamp_MATERIAL_brass + ball_MATERIAL_red), lamp_params.height, ball_params.size, 0.0);\n}}\n"
     );
     let module = naga::front::wgsl::parse_str(&host)
         .unwrap_or_else(|e| panic!("does not parse:\n{}", e.emit_to_string(&host)));

@@ -215,12 +215,7 @@ pub fn manifest(scene: &Scene, module: &Module, origin: &Origin) -> Value {
         "functions": functions,
         "bindings": bindings.into_iter().map(|(_, _, v)| v).collect::<Vec<_>>(),
         "structs": structs,
-        "params": {
-            "struct": prefixed(origin.prefix, "Params"),
-            "binding": if scene.params.is_empty() { Value::Null } else { json!({"group": 0, "binding": crate::lower::params::PARAMS_BINDING}) },
-            "size": if scene.params.is_empty() { 0 } else { size },
-            "fields": params,
-        },
+        "params": params_section(module, origin.prefix, params, size),
         "materials": materials,
         "camera": {
             "eye": c.eye.to_array(),
@@ -232,6 +227,36 @@ pub fn manifest(scene: &Scene, module: &Module, origin: &Origin) -> Value {
         "background": scene.background.to_array(),
         "colors": "sRGB components in 0..1; shaders compute in linear light",
     })
+}
+
+/// The `params` section from the module itself: its `Params` global's binding (null when it
+/// is a private global, or when no function reads it, so a host binds nothing), its size and
+/// fields; no fields when the module has none (an entry that uses no parameter leaves the
+/// global out).
+fn params_section(module: &Module, prefix: Option<&str>, fields: Vec<Value>, size: u32) -> Value {
+    let name = prefixed(prefix, "Params");
+    let global = module
+        .global_variables
+        .iter()
+        .find(|(_, g)| module.types[g.ty].name.as_deref() == Some(name.as_str()));
+    let Some((handle, g)) = global else {
+        return json!({"struct": Value::Null, "binding": Value::Null, "size": 0, "fields": []});
+    };
+    let read = module
+        .functions
+        .iter()
+        .map(|(_, f)| f)
+        .chain(module.entry_points.iter().map(|e| &e.function))
+        .any(|f| {
+            f.expressions
+                .iter()
+                .any(|(_, e)| matches!(e, naga::Expression::GlobalVariable(h) if *h == handle))
+        });
+    let binding = match (&g.binding, read) {
+        (Some(b), true) => json!({"group": b.group, "binding": b.binding}),
+        _ => Value::Null,
+    };
+    json!({"struct": name, "binding": binding, "size": size, "fields": fields})
 }
 
 fn prefixed(prefix: Option<&str>, name: &str) -> String {

@@ -82,7 +82,14 @@ fn main_image(scene: &Scene) -> String {
         .params
         .iter()
         .map(|p| match p.kind {
-            _ if p.name == crate::check::TIME => "iTime".to_string(),
+            // (Wrapped into its declared range, where λ and bounds hold.)
+            _ if p.name == crate::check::TIME => match p.range {
+                Some((lo, hi)) if hi.x > lo.x => {
+                    format!("{} + mod(iTime, {})", float(lo.x), float(hi.x - lo.x))
+                }
+                Some((lo, _)) => float(lo.x),
+                None => "iTime".to_string(),
+            },
             ParamKind::Number | ParamKind::Angle => float(p.default.x),
             ParamKind::Vector | ParamKind::Color => vec3(p.default),
         })

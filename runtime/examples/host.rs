@@ -79,18 +79,18 @@ pub fn render(job: &Job) -> Result<Vec<u8>, String> {
     let camera = camera_bytes(&manifest, job.size);
     draw(
         &format!("{library}\n{HOST_WGSL}"),
-        &params,
+        params,
         &camera,
         job.size,
     )
 }
 
 /// The `Params` uniform from the manifest: each field's default, or the value asked for, at
-/// its offset.
+/// its offset; and its binding in group 0, if the shader reads it.
 fn params_bytes(
     manifest: &serde_json::Value,
     values: &HashMap<String, Vec<f64>>,
-) -> Result<Vec<u8>, String> {
+) -> Result<(Vec<u8>, Option<u32>), String> {
     let size = manifest["params"]["size"].as_u64().unwrap_or(0) as usize;
     let mut bytes = vec![0u8; size];
     for f in manifest["params"]["fields"]
@@ -115,7 +115,10 @@ fn params_bytes(
             bytes[at..at + 4].copy_from_slice(&(*x as f32).to_le_bytes());
         }
     }
-    Ok(bytes)
+    let binding = manifest["params"]["binding"]["binding"]
+        .as_u64()
+        .map(|b| b as u32);
+    Ok((bytes, binding))
 }
 
 /// The host's camera uniform from the manifest's camera: eye, right and up scaled by the
@@ -154,7 +157,12 @@ fn camera_bytes(manifest: &serde_json::Value, (w, h): (u32, u32)) -> Vec<u8> {
 }
 
 /// Renders the full-screen pass into an `Rgba8UnormSrgb` texture and reads it back.
-fn draw(wgsl: &str, params: &[u8], camera: &[u8], (w, h): (u32, u32)) -> Result<Vec<u8>, String> {
+fn draw(
+    wgsl: &str,
+    params: (Vec<u8>, Option<u32>),
+    camera: &[u8],
+    (w, h): (u32, u32),
+) -> Result<Vec<u8>, String> {
     let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
     desc.backends = wgpu::Backends::VULKAN | wgpu::Backends::GL;
     let instance = wgpu::Instance::new(desc);
@@ -215,14 +223,16 @@ fn draw(wgsl: &str, params: &[u8], camera: &[u8], (w, h): (u32, u32)) -> Result<
             resource: camera_buffer.as_entire_binding(),
         }],
     });
-    // The scene's parameters, if it has any: group 0, binding 9 (docs/interface.md).
-    let params_buffer = (!params.is_empty()).then(|| uniform("params", params));
-    let params_group = params_buffer.as_ref().map(|b| {
+    // The scene's parameters, where the manifest gives their binding (docs/interface.md).
+    let params_buffer = params
+        .1
+        .map(|binding| (uniform("params", &params.0), binding));
+    let params_group = params_buffer.as_ref().map(|(b, binding)| {
         device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("params"),
             layout: &pipeline.get_bind_group_layout(0),
             entries: &[wgpu::BindGroupEntry {
-                binding: 9,
+                binding: *binding,
                 resource: b.as_entire_binding(),
             }],
         })

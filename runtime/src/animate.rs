@@ -77,22 +77,32 @@ impl Sink {
 }
 
 /// The `Params` bytes of each frame: `time` = `start` + k/`fps` for frame k, every other
-/// parameter as the scene was loaded (its default or `--param`).
+/// parameter as given (its default or `--param`); an error if a frame's `time` leaves the
+/// range `time` was declared with (λ and bounds hold only there).
 pub fn settings(
     params: &[ParamDecl],
     frames: std::ops::Range<u32>,
     fps: f64,
     start: f64,
-) -> Vec<Vec<u8>> {
+) -> Result<Vec<Vec<u8>>, String> {
     frames
         .map(|k| {
             let mut p = params.to_vec();
             for d in &mut p {
                 if d.name == sdfc_compiler::check::TIME {
-                    d.value.x = start + f64::from(k) / fps;
+                    let t = start + f64::from(k) / fps;
+                    if let Some((lo, hi)) = d.range
+                        && !(lo.x..=hi.x).contains(&t)
+                    {
+                        return Err(format!(
+                            "error: frame {k} is at time {t} s, outside the range {}..{} the scene declares for `time`",
+                            lo.x, hi.x
+                        ));
+                    }
+                    d.value.x = t;
                 }
             }
-            sdfc_compiler::lower::params::bytes(&p)
+            Ok(sdfc_compiler::lower::params::bytes(&p))
         })
         .collect()
 }

@@ -149,6 +149,8 @@ fn bench(args: &BenchArgs) -> Result<(), String> {
         }
     }
     let gpu = Gpu::new(args.backend)?;
+    // A scene with parameters is measured at their defaults, as its ground truth is.
+    gpu.set_params(&sdfc_compiler::lower::params::bytes(&scene.params));
     let view = View::new(&scene.camera, w, h);
     let bar = progress_bar("measuring");
     if let Some(b) = &bar {

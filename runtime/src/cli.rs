@@ -101,6 +101,10 @@ enum Command {
         /// Write the output again on every save of the scene file, until interrupted.
         #[arg(long)]
         watch: bool,
+        /// The binding (in group 0) of the scene's `Params` uniform: another than the default
+        /// 9 lets two scenes' libraries (with `--prefix`) share a shader.
+        #[arg(long, value_name = "N", default_value_t = 9)]
+        params_binding: u32,
     },
     /// Render a scene to a PNG (or depth to `.npy`) on the GPU, headless.
     Render {
@@ -133,7 +137,8 @@ enum Command {
         /// `#rrggbb`); repeat for several. It must be within the parameter's range.
         #[arg(long = "param", value_name = "NAME=VALUE")]
         params: Vec<String>,
-        /// The scene's `time`, in seconds (default 0); with `--frames`, the first frame's.
+        /// The scene's `time`, in seconds (default 0); with `--frames`, added to each frame
+        /// k's k/fps.
         #[arg(long, allow_hyphen_values = true)]
         time: Option<f64>,
         /// Render an animation of `time`: frames START to END (excluded), each `1/fps` s
@@ -362,6 +367,7 @@ pub fn run() -> i32 {
             prefix,
             manifest,
             watch,
+            params_binding,
         } => {
             let shadertoy = matches!(entry, EntryArg::Shadertoy);
             let target = match (target, shadertoy) {
@@ -382,6 +388,7 @@ pub fn run() -> i32 {
                         tracer: &tracer,
                         prefix: prefix.as_deref(),
                         shadertoy,
+                        params_binding,
                     },
                 )
             };

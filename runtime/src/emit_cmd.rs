@@ -14,6 +14,8 @@ pub struct Extras<'a> {
     pub prefix: Option<&'a str>,
     /// `--entry shadertoy` (compiled as the library, written by `sdfc_compiler::shadertoy`).
     pub shadertoy: bool,
+    /// `--params-binding`.
+    pub params_binding: u32,
 }
 
 /// Runs `sdfc emit`; returns the exit code.
@@ -28,6 +30,7 @@ pub fn run(
         tracer,
         prefix,
         shadertoy,
+        params_binding,
     } = extras;
     if shadertoy && target != Target::Glsl {
         say!(
@@ -38,6 +41,12 @@ pub fn run(
     if shadertoy && prefix.is_some() {
         say!(
             "error: `--prefix` is for the library; the Shadertoy shader is a whole Image tab with its own `mainImage`"
+        );
+        return 1;
+    }
+    if params_binding <= 8 && !matches!(entry, Entry::Library) {
+        say!(
+            "error: `--params-binding {params_binding}`: the entry's own resources use bindings 0 to 8; give 9 or more"
         );
         return 1;
     }
@@ -85,6 +94,7 @@ pub fn run(
     let options = match tracer.settle(&mut scene) {
         Ok(mut o) => {
             o.private_params = shadertoy;
+            o.params_binding = params_binding;
             o
         }
         Err(e) => {

@@ -28,8 +28,10 @@ pub fn load_scene(path: &Path) -> Option<(String, String, sdfc_compiler::scene::
     load_scene_with(path, &std::collections::HashMap::new())
 }
 
-/// [`load_scene`] with parameters set to `values` (`sdfc render --param`) instead of their
-/// defaults.
+/// [`load_scene`] with `values` for parameters (`sdfc render --param`): they are checked as
+/// the scene is at those values (kind, range, every argument's type), but the scene returned
+/// is the defaults' — the module a host gets — whose `with_values` the caller applies to the
+/// uniform only.
 pub fn load_scene_with(
     path: &Path,
     values: &std::collections::HashMap<String, Vec<f64>>,
@@ -44,10 +46,23 @@ pub fn load_scene_with(
     let Checked {
         scene,
         mut diagnostics,
-    } = check::compile_with(&source, values);
+    } = check::compile(&source);
     if let Some(scene) = &scene {
         diagnostics.extend(lipschitz::verify_annotations(scene, Effort::Fast));
     }
+    if scene.is_some() && !values.is_empty() {
+        // The values must be valid: the diagnostics of the scene checked at them (its
+        // warnings are the defaults' already).
+        let at = check::compile_with(&source, values);
+        if at.scene.is_none() {
+            diagnostics = at.diagnostics;
+        }
+    }
+    let scene = if diagnostics.iter().any(|d| d.is_error()) {
+        None
+    } else {
+        scene
+    };
     say_raw!("{}", crate::messages::report(&diagnostics, &name, &source));
     let scene = scene?;
     let unknown = check::unknown_params(&scene, values);

@@ -60,9 +60,10 @@ pub struct Live {
     pub values: HashMap<String, Vec<f64>>,
     /// The parameter the keys change.
     pub selected: usize,
-    started: Instant,
+    /// When `time` last started running, and its value then.
+    started: (Instant, f64),
     /// `time` stopped at this value (space).
-    pub paused: Option<f64>,
+    paused: Option<f64>,
     /// The last frame's GPU time and mean evaluations per pixel.
     pub stats: (f64, f64),
     /// The last finished picture at full size (kept through a failed reload).
@@ -93,7 +94,7 @@ impl Live {
             moving_until: Instant::now(),
             values: HashMap::new(),
             selected: 0,
-            started: Instant::now(),
+            started: (Instant::now(), 0.0),
             paused: None,
             stats: (0.0, 0.0),
             last: Vec::new(),
@@ -104,6 +105,18 @@ impl Live {
     /// user turned it.
     pub fn replace(&mut self, scene: Scene, options: Options) -> Result<(), String> {
         let (full, coarse) = prepare(self.gpu, &scene, &options, self.size)?;
+        // Values set with the keys stay only where the new scene still has the parameter,
+        // of the same size, and within its range.
+        self.values.retain(|name, v| {
+            scene.params.iter().any(|p| {
+                p.name == *name
+                    && p.kind.components() == v.len()
+                    && p.range.is_none_or(|(lo, hi)| {
+                        (0..v.len()).all(|i| (lo[i]..=hi[i]).contains(&v[i]))
+                    })
+            })
+        });
+        self.selected = self.selected.min(scene.params.len().saturating_sub(1));
         self.orbit.rehome(&scene.camera);
         (self.full, self.coarse) = (full, coarse);
         (self.scene, self.options) = (scene, options);
@@ -160,10 +173,44 @@ impl Live {
         self.paused.is_none() && self.scene.params.iter().any(|p| p.name == TIME)
     }
 
-    /// The seconds `time` is at.
+    /// The seconds `time` is at: the clock since it last ran on, from where it stood, wrapped
+    /// into its declared range if it has one (λ and bounds hold only there).
     pub fn time(&self) -> f64 {
-        self.paused
-            .unwrap_or_else(|| self.started.elapsed().as_secs_f64())
+        let t = self
+            .paused
+            .unwrap_or_else(|| self.started.1 + self.started.0.elapsed().as_secs_f64());
+        let range = self
+            .scene
+            .params
+            .iter()
+            .find(|p| p.name == TIME)
+            .and_then(|p| p.range);
+        match range {
+            Some((lo, hi)) if hi.x > lo.x => lo.x + (t - lo.x).rem_euclid(hi.x - lo.x),
+            Some((lo, _)) => lo.x,
+            None => t,
+        }
+    }
+
+    /// Holds `time` where it is, or lets it run on from there; the value it is held at.
+    pub fn toggle_time(&mut self) -> Option<f64> {
+        match self.paused {
+            Some(t) => {
+                self.paused = None;
+                self.started = (Instant::now(), t);
+                None
+            }
+            None => {
+                let t = self.time();
+                self.paused = Some(t);
+                Some(t)
+            }
+        }
+    }
+
+    /// Holds `time` at `t` seconds (`--time`).
+    pub fn hold_time(&mut self, t: f64) {
+        self.paused = Some(t);
     }
 
     fn samples_now(&self) -> u32 {
@@ -203,6 +250,14 @@ impl Live {
         }
         let n = self.samples_now();
         if self.acc.frames() >= n {
+            if !self.animated() && self.last.len() == pixels(self.size) * 4 {
+                // A redraw the system asked for (an expose): the finished picture again.
+                return Ok(Picture {
+                    rgba: self.last.clone(),
+                    size: self.size,
+                    finished: false,
+                });
+            }
             self.restart();
         }
         let k = self.acc.frames();

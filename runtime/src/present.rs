@@ -91,14 +91,16 @@ impl Present {
         })
     }
 
-    /// Draws `rgba` (sRGB, `size`, row-major) over the whole of `surface`'s next frame.
+    /// Draws `rgba` (sRGB, `size`, row-major) over the whole of `surface`'s next frame; false
+    /// when the surface had no frame to give (outdated after a resize, lost, hidden or timed
+    /// out: configure it again and draw later).
     pub fn show(
         &mut self,
         gpu: &Gpu,
         surface: &wgpu::Surface,
         rgba: &[u8],
         size: (u32, u32),
-    ) -> Result<(), String> {
+    ) -> Result<bool, String> {
         let (w, h) = size;
         if self.picture.as_ref().map(|p| p.1) != Some(size) {
             let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
@@ -150,7 +152,10 @@ impl Present {
         let frame = match surface.get_current_texture() {
             wgpu::CurrentSurfaceTexture::Success(f)
             | wgpu::CurrentSurfaceTexture::Suboptimal(f) => f,
-            other => return Err(format!("the window's surface is not ready: {other:?}")),
+            wgpu::CurrentSurfaceTexture::Validation => {
+                return Err("internal error: the window's surface refused a frame".into());
+            }
+            _ => return Ok(false),
         };
         let target = frame.texture.create_view(&Default::default());
         let mut encoder = gpu.device.create_command_encoder(&Default::default());
@@ -174,6 +179,6 @@ impl Present {
         }
         gpu.queue.submit([encoder.finish()]);
         gpu.queue.present(frame);
-        Ok(())
+        Ok(true)
     }
 }

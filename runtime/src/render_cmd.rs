@@ -169,7 +169,9 @@ fn render(args: &RenderArgs) -> Result<(), String> {
         .map_err(|e| format!("{INTERNAL}: {}", e.0))?;
     let calls = check_driver_size(&module, (&name, &source, &scene), args.allow_slow_compile)?;
     let gpu = Gpu::new(args.backend)?;
-    gpu.set_params(&sdfc_compiler::lower::params::bytes(&scene.params));
+    // The defaults' module, the values in its uniform only (as a host sets them).
+    let valued = scene.with_values(&values);
+    gpu.set_params(&sdfc_compiler::lower::params::bytes(&valued.params));
     if calls >= SLOW_COMPILE {
         // The driver compiles the shader at pipeline creation, silently.
         say!(
@@ -193,11 +195,11 @@ fn render(args: &RenderArgs) -> Result<(), String> {
     if let Some((range, sink)) = animation {
         let first = range.start;
         let settings = crate::animate::settings(
-            &scene.params,
+            &valued.params,
             range,
             f64::from(args.fps),
             args.time.unwrap_or(0.0),
-        );
+        )?;
         let count = settings.len();
         let mut writer = crate::animate::Writer::new(sink, first, f64::from(args.fps), (w, h))?;
         let mut sum = images::Accumulator::new((w * h) as usize, true);

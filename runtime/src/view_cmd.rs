@@ -8,7 +8,7 @@ use sdfc::gpu::{BackendChoice, Gpu};
 use sdfc::images::Channel;
 use sdfc::present::Present;
 use std::collections::VecDeque;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 use winit::event::MouseButton;
@@ -42,6 +42,10 @@ pub(crate) const SETTLE: Duration = Duration::from_millis(80);
 
 /// Runs `sdfc view`; returns the exit code.
 pub fn run(args: ViewArgs) -> i32 {
+    if args.file == Path::new("-") {
+        say!("error: `sdfc view` follows a file; standard input cannot be watched");
+        return 1;
+    }
     if std::env::var_os("DISPLAY").is_none() && std::env::var_os("WAYLAND_DISPLAY").is_none() {
         say!(
             "error: `sdfc view` needs a display, and neither DISPLAY nor WAYLAND_DISPLAY is set\nhelp: without one, run it under Xvfb: `xvfb-run -a sdfc view FILE`, or render a picture with `sdfc render`"
@@ -107,6 +111,7 @@ pub fn run(args: ViewArgs) -> i32 {
         drag: None,
         reload_at: None,
         shots: 0,
+        saved: 0,
         script,
         broken: false,
         _watcher: watcher,
@@ -156,6 +161,8 @@ pub(crate) struct App {
     pub(crate) drag: Option<MouseButton>,
     pub(crate) reload_at: Option<Instant>,
     pub(crate) shots: u32,
+    /// Pictures saved with `s`.
+    pub(crate) saved: u32,
     pub(crate) script: VecDeque<Step>,
     /// Whether the file on disk has errors (the picture is the last good one).
     pub(crate) broken: bool,
@@ -191,7 +198,9 @@ impl App {
         let present = Present::new(gpu, config.format)?;
         let (scene, options) = self.first.take().expect("the first scene");
         let mut live = Live::new(gpu, scene, options, size)?;
-        live.paused = self.args.time;
+        if let Some(t) = self.args.time {
+            live.hold_time(t);
+        }
         self.window = Some(window);
         self.surface = Some((surface, config));
         self.present = Some(present);
@@ -242,12 +251,21 @@ impl App {
     /// Renders and shows the next frame; screenshots and script steps on a finished picture.
     pub(crate) fn frame(&mut self, event_loop: &ActiveEventLoop) -> Result<(), String> {
         let picture = self.live.as_mut().expect("started").step()?;
-        let (surface, _) = self.surface.as_ref().expect("started");
+        let (surface, config) = self.surface.as_ref().expect("started");
         let gpu = self.gpu();
-        self.present
-            .as_mut()
-            .expect("started")
-            .show(gpu, surface, &picture.rgba, picture.size)?;
+        let shown = self.present.as_mut().expect("started").show(
+            gpu,
+            surface,
+            &picture.rgba,
+            picture.size,
+        )?;
+        if !shown {
+            // (Routine while a window is resized: configure again and draw the next time.)
+            gpu.configure(surface, config);
+            if let Some(w) = &self.window {
+                w.request_redraw();
+            }
+        }
         if picture.finished {
             self.title();
             self.finished(event_loop, &picture)?;
@@ -328,15 +346,10 @@ impl App {
             "q" | "Escape" => event_loop.exit(),
             "r" | "Home" => live.orbit.reset(),
             "a" => live.samples = if live.samples > 1 { 1 } else { 4 },
-            " " | "Space" => {
-                live.paused = match live.paused {
-                    Some(t) => {
-                        say!("time runs from {t:.2} s");
-                        None
-                    }
-                    None => Some(live.time()),
-                }
-            }
+            " " | "Space" => match live.toggle_time() {
+                Some(t) => say!("time held at {t:.2} s"),
+                None => say!("time runs on from {:.2} s", live.time()),
+            },
             "t" => match live.cycle_method() {
                 Ok(m) => say!(
                     "tracer: {}",
@@ -345,12 +358,30 @@ impl App {
                 Err(e) => say!("{e}"),
             },
             "[" | "]" => {
+                // The parameters the keys may change: not `time`, which runs with the clock.
                 let n = live.scene.params.len().max(1);
-                live.selected = (live.selected + if k == "]" { 1 } else { n - 1 }) % n;
+                for _ in 0..n {
+                    live.selected = (live.selected + if k == "]" { 1 } else { n - 1 }) % n;
+                    let time = sdfc_compiler::check::TIME;
+                    if live
+                        .scene
+                        .params
+                        .get(live.selected)
+                        .is_some_and(|p| p.name != time)
+                    {
+                        break;
+                    }
+                }
             }
             "-" | "=" | "+" => {
                 let up = k != "-";
-                if let Some(p) = live.scene.params.get(live.selected).cloned() {
+                if let Some(p) = live
+                    .scene
+                    .params
+                    .get(live.selected)
+                    .filter(|p| p.name != sdfc_compiler::check::TIME)
+                    .cloned()
+                {
                     let now = live
                         .values
                         .get(&p.name)
@@ -371,17 +402,16 @@ impl App {
                 }
             }
             "s" => {
-                let n = self.shots;
-                let path = PathBuf::from(format!("sdfc-view-{n:03}.png"));
-                if let Ok(p) = live.step() {
-                    match sdfc::images::png(p.rgba, p.size.0, p.size.1)
-                        .map(|b| sdfc::files::write_file(&path, &b))
-                    {
-                        Ok(Ok(())) => say!("saved {}", path.display()),
-                        _ => say!("error: cannot save `{}`", path.display()),
-                    }
+                // The last finished picture, numbered apart from `--screenshots`.
+                self.saved += 1;
+                let path = PathBuf::from(format!("sdfc-view-{:03}.png", self.saved));
+                let (w, h) = live.size();
+                match sdfc::images::png(live.last_picture(), w, h)
+                    .and_then(|b| sdfc::files::write_file(&path, &b).map_err(|e| e.to_string()))
+                {
+                    Ok(()) => say!("saved {}", path.display()),
+                    Err(e) => say!("error: cannot save `{}`: {e}", path.display()),
                 }
-                self.shots += 1;
                 return;
             }
             c => match channel(c) {

@@ -238,6 +238,7 @@ fn passes_miss_nothing_the_ground_truth_hits() {
                     work as f64 / got.len() as f64
                 );
                 assert_eq!(missed, 0, "{row}");
+                assert!(slivers <= 4, "{row}");
             }
             report += &row;
             report.push('\n');

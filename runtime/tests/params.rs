@@ -264,3 +264,36 @@ fn animation_frames_are_renders_at_their_times() {
     assert_eq!(decoded.len(), 3);
     assert_eq!(decoded[0].buffer().dimensions(), (64, 48));
 }
+
+/// `render --frames` refuses a frame whose `time` leaves the range the scene declares for it
+/// (λ and bounds hold only there), before rendering anything.
+#[test]
+fn frames_stay_in_the_range_of_time() {
+    let dir = common::scratch("time-range");
+    let scene = dir.join("spin.sdf");
+    std::fs::write(
+        &scene,
+        "param time = 0 in 0..1\nbox(1) |> rotate(y, time * 90deg)\n",
+    )
+    .unwrap();
+    let out = dir.join("a.gif");
+    let o = common::sdfc(&[
+        "render",
+        scene.to_str().unwrap(),
+        "--frames",
+        "0..40",
+        "--fps",
+        "30",
+        "--size",
+        "16x16",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains("frame 31 is at time 1.0333") && err.contains("outside the range 0..1"),
+        "{err}"
+    );
+    assert!(!out.exists());
+}

@@ -165,6 +165,18 @@ impl Checker<'_> {
             Some((lo, hi)) => {
                 let (a, b) = (self.range_end(lo, kind), self.range_end(hi, kind));
                 let (a, b) = (a?, b?);
+                if (0..n).any(|i| !catalog::fits_gpu(a[i]) || !catalog::fits_gpu(b[i])) {
+                    self.diags.push(
+                        Diagnostic::error(lo.span.to(hi.span), "this range goes beyond what the GPU's f32 arithmetic can use")
+                            .label("out of range")
+                            .note(format!(
+                                "a host may set any value in the range: its ends must be 0 or between {:e} and {:e} in size",
+                                catalog::GPU_RANGE.0,
+                                catalog::GPU_RANGE.1
+                            )),
+                    );
+                    return None;
+                }
                 if (0..n).any(|i| a[i] > b[i]) {
                     self.diags.push(
                         Diagnostic::error(lo.span.to(hi.span), "this range is empty")
@@ -365,7 +377,7 @@ impl Checker<'_> {
                 self.diags.push(
                     Diagnostic::warning(p.span, format!("parameter `{}` is never used", p.name))
                         .label("declared here")
-                        .note("it stays in the shader's `Params` uniform, for the host"),
+                        .note("the library keeps it in its `Params` uniform for a host; the other entries leave it out"),
                 );
             }
         }

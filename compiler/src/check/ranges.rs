@@ -45,7 +45,8 @@ impl Rules {
 const GRID: usize = 17;
 /// Random samples, besides the corners, when a node reads three or more ranged components.
 const RANDOM: usize = 64;
-/// Most ranged components whose corners are all sampled.
+/// Most ranged components one node may read: all its corners are sampled (a monotone rule's
+/// extremes are at corners), 256 of them at most.
 const MAX_CORNER_DIMS: usize = 8;
 
 /// The parameter components a context reads, each once.
@@ -73,15 +74,14 @@ fn sample_points(dims: &[ParamRef]) -> Vec<Vec<f64>> {
             .map(|i| vec![lerp(0, step(i % GRID)), lerp(1, step(i / GRID))])
             .collect(),
         _ => {
+            // Every corner (the callers refuse more than `MAX_CORNER_DIMS` components).
             let mut pts = Vec::new();
-            if d <= MAX_CORNER_DIMS {
-                for corner in 0..1usize << d {
-                    pts.push(
-                        (0..d)
-                            .map(|k| lerp(k, ((corner >> k) & 1) as f64))
-                            .collect(),
-                    );
-                }
+            for corner in 0..1usize << d {
+                pts.push(
+                    (0..d)
+                        .map(|k| lerp(k, ((corner >> k) & 1) as f64))
+                        .collect(),
+                );
             }
             // A fixed sequence, so that a scene checks the same every time.
             let mut state = 0x9e37_79b9_7f4a_7c15_u64;
@@ -127,6 +127,17 @@ impl Checker<'_> {
         }
         let (ranged, free): (Vec<ParamRef>, Vec<ParamRef>) =
             components(ctx).into_iter().partition(ParamRef::ranged);
+        if ranged.len() > MAX_CORNER_DIMS {
+            self.diags.push(
+                Diagnostic::error(span, format!("this `{what}` reads too many ranged parameter components"))
+                    .label(format!("{} components (a vector is 3)", ranged.len()))
+                    .note(format!(
+                        "its Lipschitz bound and bounds are taken over every corner of the parameters' box, at most {MAX_CORNER_DIMS} components"
+                    ))
+                    .help("split it: move by one vector with `at`, then by the other"),
+            );
+            return None;
+        }
         let mut out = here;
         let mut samples: Vec<Rules> = Vec::new();
         for pt in sample_points(&ranged) {
@@ -144,12 +155,21 @@ impl Checker<'_> {
             combine(&mut out, s);
         }
         if out.bound.is_finite() && samples.len() > 1 {
+            // How far a bound moves between neighbouring samples: its centre, and each side
+            // of its box (a shape turned about its own centre moves its box, not its centre).
+            let step = |a: &Rules, b: &Rules| {
+                let sides = (a.bound.lo - b.bound.lo)
+                    .abs()
+                    .max((a.bound.hi - b.bound.hi).abs())
+                    .max_element();
+                (a.bound.center - b.bound.center).length().max(sides)
+            };
             let gap = samples
                 .iter()
                 .map(|a| {
                     samples
                         .iter()
-                        .map(|b| (a.bound.center - b.bound.center).length())
+                        .map(|b| step(a, b))
                         .filter(|&d| d > 0.0)
                         .fold(0.0_f64, |m, d| if m == 0.0 { d } else { m.min(d) })
                 })

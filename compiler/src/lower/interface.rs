@@ -13,12 +13,20 @@ pub const MATERIAL_CONSTANT: &str = "MATERIAL_";
 /// end in digits) or is a WGSL reserved word or built-in (`loop` → `loop_`). Another
 /// language's reserved word may still get a `_` from that back end (docs/interface.md).
 pub fn shader_name(name: &str) -> String {
-    let reserved = naga::keywords::wgsl::RESERVED.contains(&name)
-        || naga::keywords::wgsl::BUILTIN_IDENTIFIERS.contains(&name);
-    if name.ends_with(|c: char| c.is_ascii_digit()) || reserved {
-        format!("{name}_")
+    // naga's namer first collapses runs of `_` and drops trailing ones (`r_` → `r`).
+    let mut base = String::with_capacity(name.len());
+    for c in name.chars() {
+        if !(c == '_' && base.ends_with('_')) {
+            base.push(c);
+        }
+    }
+    let base = base.trim_end_matches('_');
+    let reserved = naga::keywords::wgsl::RESERVED.contains(&base)
+        || naga::keywords::wgsl::BUILTIN_IDENTIFIERS.contains(&base);
+    if base.ends_with(|c: char| c.is_ascii_digit()) || reserved {
+        format!("{base}_")
     } else {
-        name.to_string()
+        base.to_string()
     }
 }
 

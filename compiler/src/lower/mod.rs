@@ -42,7 +42,11 @@ pub use tracer::Entry;
 /// Builds the module for a scene and an entry kind. Validation happens in `emit`.
 pub fn lower(scene: &Scene, entry: Entry, options: &tracer::Options) -> naga::Module {
     let mut mb = ModuleBuilder::default();
-    mb.params = params::add(&mut mb, scene, options.private_params);
+    mb.params = params::add(
+        &mut mb,
+        scene,
+        (options.private_params, options.params_binding),
+    );
     let reachable = scene.reachable();
     add_primitive_functions(&mut mb, scene, &reachable);
     add_operator_helpers(&mut mb, scene, &reachable);

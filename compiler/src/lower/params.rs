@@ -50,12 +50,12 @@ pub fn wgsl_type(kind: ParamKind) -> &'static str {
     }
 }
 
-/// Adds `var<uniform> params: Params` when the scene has parameters (`var<private>` if
-/// `private`: `Options::private_params`).
+/// Adds `var<uniform> params: Params` at group 0, `binding` when the scene has parameters
+/// (`var<private>` if `private`: `Options::private_params`).
 pub(super) fn add(
     mb: &mut ModuleBuilder,
     scene: &Scene,
-    private: bool,
+    (private, binding): (bool, u32),
 ) -> Option<Handle<naga::GlobalVariable>> {
     if scene.params.is_empty() {
         return None;
@@ -96,7 +96,7 @@ pub(super) fn add(
         "params",
         ty,
         AddressSpace::Uniform,
-        PARAMS_BINDING,
+        binding,
     ))
 }
 

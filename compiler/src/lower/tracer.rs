@@ -57,6 +57,9 @@ pub struct Options {
     /// Keep the parameters in a private global the shader itself sets (`params = Params(…)`)
     /// instead of the `Params` uniform: for hosts without uniforms of their own (Shadertoy).
     pub private_params: bool,
+    /// The `Params` uniform's binding in group 0 (`emit --params-binding`, so that two
+    /// scenes' libraries can share a shader).
+    pub params_binding: u32,
 }
 
 impl Options {
@@ -68,6 +71,7 @@ impl Options {
             bounding_volumes: false,
             fixed_offset: false,
             private_params: false,
+            params_binding: super::params::PARAMS_BINDING,
         }
     }
 }

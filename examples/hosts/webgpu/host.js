@@ -98,10 +98,10 @@ export async function createHost(base, format) {
     layout: pipeline.getBindGroupLayout(1),
     entries: [{ binding: 0, resource: { buffer: cameraBuffer } }],
   });
-  // The scene's parameters, if it has any: group 0, binding 9 (docs/interface.md).
+  // The scene's parameters, where the manifest gives their binding (docs/interface.md).
   let paramsBuffer = null;
   let paramsGroup = null;
-  if (manifest.params.fields.length) {
+  if (manifest.params.binding) {
     paramsBuffer = device.createBuffer({
       size: Math.max(manifest.params.size, 16),
       usage: GPUBufferUsage.UNIFORM | GPUBufferUsage.COPY_DST,
@@ -207,7 +207,13 @@ async function main() {
     // What the page is doing, for its test (examples/hosts/webgpu/test/render.mjs).
     window.sdfcLive = { frames: 0, eye: null };
     const frame = () => {
-      if (m.params.fields.some((f) => f.name === "time")) values.time = [(performance.now() - started) / 1000];
+      const time = m.params.fields.find((f) => f.name === "time");
+      if (time) {
+        // Seconds since the page started, wrapped into `time`'s declared range if it has one.
+        let t = (performance.now() - started) / 1000;
+        if (time.min && time.max[0] > time.min[0]) t = time.min[0] + (t % (time.max[0] - time.min[0]));
+        values.time = [t];
+      }
       const eye = add(target, offset);
       const encoder = host.draw(context.getCurrentTexture().createView(), canvas.width, canvas.height, eye, values);
       host.device.queue.submit([encoder.finish()]);
