@@ -78,8 +78,11 @@ impl Gpu {
             let Ok(surface) = instance.create_surface(window.clone()) else {
                 continue;
             };
-            if let Some(adapter) = adapter(&instance, Some(&surface)) {
-                return Ok((Gpu::open(&adapter)?, surface));
+            // (A device that refuses to open is another reason to try the next backend.)
+            if let Some(adapter) = adapter(&instance, Some(&surface))
+                && let Ok(gpu) = Gpu::open(&adapter)
+            {
+                return Ok((gpu, surface));
             }
         }
         Err("no GPU adapter can draw to this window (tried Vulkan and GL).\nhelp: `apt-get install mesa-vulkan-drivers` gives lavapipe".into())

@@ -222,11 +222,27 @@ impl Live {
         }
     }
 
-    /// The `Params` bytes now: the values set, `time` running.
+    /// The `Params` bytes now: the values set, `time` running (only the declarations change:
+    /// the shader reads nothing else of them).
     fn params(&self) -> Vec<u8> {
-        let mut values = self.values.clone();
-        values.insert(TIME.into(), vec![self.time()]);
-        bytes(&self.scene.with_values(&values).params)
+        let time = self.time();
+        let params: Vec<_> = self
+            .scene
+            .params
+            .iter()
+            .map(|p| {
+                let mut p = p.clone();
+                if p.name == TIME {
+                    p.value.x = time;
+                } else if let Some(v) = self.values.get(&p.name) {
+                    for (i, x) in v.iter().take(p.kind.components()).enumerate() {
+                        p.value[i] = *x;
+                    }
+                }
+                p
+            })
+            .collect();
+        bytes(&params)
     }
 
     /// Renders the next frame: coarse while moving, else the next sample of the full picture.
