@@ -55,6 +55,36 @@ pub fn show_val(v: Val, ty: Ty) -> String {
     }
 }
 
+/// `translate(0, 1, 0)`, `box(1, 2, 3)`: three plain numbers where the first parameter is a
+/// vector and there are fewer than three parameters; the vector meant, said once.
+fn loose_vector(what: &str, params: &[Param], args: &[Arg]) -> Option<Diagnostic> {
+    let vector = params
+        .first()
+        .is_some_and(|p| matches!(p.ty, Ty::Vec3 | Ty::Size | Ty::Scale | Ty::Axis | Ty::Color));
+    let numbers: Vec<String> = args
+        .iter()
+        .map(|a| match (&a.name, &a.value.kind) {
+            (None, ExprKind::Number { value, unit: None }) => Some(format!("{value}")),
+            _ => None,
+        })
+        .collect::<Option<_>>()?;
+    if !vector || numbers.len() != 3 || params.len() >= 3 || is_settings(what) {
+        return None;
+    }
+    let span = args[0].value.span.to(args[2].value.span);
+    Some(
+        Diagnostic::error(
+            span,
+            format!(
+                "`{}` is a vector, written in its own parentheses",
+                params[0].name
+            ),
+        )
+        .label("three numbers")
+        .help(format!("write `{what}(({}))`", numbers.join(", "))),
+    )
+}
+
 /// Whether `what` names a settings block rather than a call.
 fn is_settings(what: &str) -> bool {
     super::settings::BLOCK_KEYWORDS
@@ -94,6 +124,10 @@ impl Checker<'_> {
         call_span: Span,
         run_time: RunTime,
     ) -> Option<(Vec<Val>, catalog::ArgSyms)> {
+        if let Some(d) = loose_vector(what, params, args) {
+            self.diags.push(d);
+            return None;
+        }
         let mut syms: catalog::ArgSyms = vec![None; params.len()];
         let mut slots: Vec<Option<(Val, Span)>> = vec![None; params.len()];
         let mut ok = true;
@@ -129,6 +163,11 @@ impl Checker<'_> {
                             .label("give this one a name too")
                             .help(Self::shape_of(what, params)),
                     );
+                    ok = false;
+                    continue;
+                }
+                None if i >= params.len() && i > params.len() => {
+                    // Reported once, with the first extra argument.
                     ok = false;
                     continue;
                 }

@@ -65,6 +65,16 @@ impl Checker<'_> {
         if let Some(op) = catalog::operator(name) {
             let args = self.bind_args(name, op.params, &call.args, call.span, RunTime::All);
             let children = self.children(call, piped, op.arity)?;
+            if children.len() == 1 && matches!(op.arity, Arity::AtLeast(_)) {
+                self.diags.push(
+                    Diagnostic::warning(call.span, format!("`{name}` of one shape is that shape"))
+                        .label("only one shape")
+                        .note(format!(
+                            "`{name}` combines the shapes in its block; `a |> {name}(…)` gives it only `a`"
+                        ))
+                        .help(format!("give it the others: `{name}(…) {{ a b }}`")),
+                );
+            }
             return self
                 .operator_node(name, args?, children, call.span)
                 .map(Value::Shape);

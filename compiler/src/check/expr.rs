@@ -99,8 +99,25 @@ impl Checker<'_> {
                 other => self.no_arithmetic(e.span, "-", &other),
             },
             ExprKind::Binary(op, a, b) => {
-                let (a, b) = (self.value(a), self.value(b));
-                self.binary(*op, a?, b?, e.span)
+                let at =
+                    matches!(a.kind, ExprKind::At(..)) && matches!(op, BinOp::Add | BinOp::Sub);
+                let (va, vb) = (self.value(a), self.value(b));
+                let (va, vb) = (va?, vb?);
+                if at
+                    && matches!(va, Value::Shape(_))
+                    && matches!(vb, Value::Vec3(_) | Value::Param(_))
+                {
+                    self.diags.push(
+                        Diagnostic::error(
+                            e.span,
+                            format!("`at` binds tighter than `{}`", op.symbol()),
+                        )
+                        .label("this moves the shape, then adds a vector to it")
+                        .help("put the whole offset in parentheses: `s at (a + b)`"),
+                    );
+                    return None;
+                }
+                self.binary(*op, va, vb, e.span)
             }
             ExprKind::Pipe(lhs, call) => {
                 let child = self.shape(lhs)?;
@@ -264,6 +281,10 @@ impl Checker<'_> {
             let lets: Vec<&str> = self.lets.keys().map(String::as_str).collect();
             if let Some(s) = did_you_mean(&id.name, lets) {
                 d = d.help(format!("did you mean `{s}`?"));
+            } else if let Some(k) =
+                did_you_mean(&id.name, super::settings::BLOCK_KEYWORDS.iter().copied())
+            {
+                d = d.help(format!("did you mean the `{k}` block?"));
             } else if ["x", "y", "z"].contains(&id.name.as_str()) {
                 d = d.note("coordinates exist only inside `implicit { ... }`");
             }

@@ -6,6 +6,7 @@ use pest::iterators::Pair;
 use pest::pratt_parser::{Assoc, Op, PrattParser};
 use std::sync::LazyLock;
 
+mod hints;
 mod scan;
 use scan::{bracket_error, check_comments, check_control, check_nesting};
 
@@ -236,6 +237,9 @@ fn syntax_error(source: &str, e: pest::error::Error<Rule>) -> Diagnostic {
         }
         ErrorVariant::CustomError { message } => (message.clone(), String::new()),
     };
+    if let Some(d) = hints::meant(source, span) {
+        return d;
+    }
     let mut d = Diagnostic::error(span, message).label(label);
     if source[span.start..].starts_with(')') && vector_of_two(source, span.start) {
         d = d.help("a vector has three components: `(x, y, z)`");

@@ -1,0 +1,80 @@
+//! Syntax errors said as what was meant, where the text around them makes it plain.
+
+use crate::diag::{Diagnostic, Span};
+
+/// Syntax errors whose cause is plain from the text around them, said as what was meant: a
+/// unit after a space (`30 deg`), a degree sign (`30°`), a named argument with `:`
+/// (`sphere(radius: 2)`).
+pub(super) fn meant(source: &str, span: Span) -> Option<Diagnostic> {
+    let before = &source[..span.start];
+    let after = &source[span.start..];
+    let number_before = |text: &str| {
+        text.trim_end()
+            .chars()
+            .next_back()
+            .is_some_and(|c| c.is_ascii_digit() || c == '.')
+    };
+    let word: String = after
+        .chars()
+        .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
+        .collect();
+    if ["deg", "rad"].contains(&word.as_str())
+        && before.ends_with(char::is_whitespace)
+        && number_before(before)
+    {
+        let number: String = before
+            .trim_end()
+            .chars()
+            .rev()
+            .take_while(|c| c.is_ascii_digit() || *c == '.')
+            .collect::<Vec<_>>()
+            .into_iter()
+            .rev()
+            .collect();
+        let gap = before.len() - before.trim_end().len();
+        return Some(
+            Diagnostic::error(
+                Span::new(span.start - gap, span.start + word.len()),
+                "a unit is written right after its number",
+            )
+            .label("no space before the unit")
+            .help(format!("write `{number}{word}`")),
+        );
+    }
+    if after.starts_with('°') {
+        return Some(
+            Diagnostic::error(
+                Span::new(span.start, span.start + '°'.len_utf8()),
+                "angles are written with a unit, not `°`",
+            )
+            .label("a degree sign")
+            .help("write the number with `deg` after it, e.g. `30deg`"),
+        );
+    }
+    // `name: value` inside a call's parentheses: `:` gives a shape its material.
+    let colon = before.trim_end();
+    if let Some(rest) = colon.strip_suffix(':') {
+        let name: String = rest
+            .trim_end()
+            .chars()
+            .rev()
+            .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
+            .collect::<Vec<_>>()
+            .into_iter()
+            .rev()
+            .collect();
+        let head = rest.trim_end()[..rest.trim_end().len() - name.len()].trim_end();
+        if !name.is_empty() && (head.ends_with('(') || head.ends_with(',')) {
+            let at = colon.len() - 1;
+            return Some(
+                Diagnostic::error(
+                    Span::new(at, at + 1),
+                    "a named argument is written with `=`",
+                )
+                .label("`:` gives a shape its material")
+                .help(format!("write `{name} = …`")),
+            );
+        }
+    }
+    None
+}
