@@ -2,7 +2,7 @@
 //! derivatives (for inferring an `implicit`'s Lipschitz bound).
 
 use crate::interval::Interval;
-use std::ops::{Add, Div, Mul, Neg};
+use std::ops::{Add, Div, Mul, Neg, Sub};
 
 /// A math function of the expression language.
 pub struct MathFn {
@@ -203,4 +203,97 @@ pub static MATH_FUNCTIONS: &[MathFn] = &[
             vec![a[1].div(r2), a[0].neg().div(r2)]
         },
     },
+    MathFn {
+        name: "clamp",
+        defined: EVERYWHERE,
+        units: Units::Same,
+        lower: naga::MathFunction::Clamp,
+        arity: 3,
+        doc: "a kept within [b, c]: min(max(a, b), c)",
+        eval: |a| a[0].max(a[1]).min(a[2]),
+        range: |a| {
+            let m = Interval::new(a[0].lo.max(a[1].lo), a[0].hi.max(a[1].hi));
+            Interval::new(m.lo.min(a[2].lo), m.hi.min(a[2].hi))
+        },
+        partials: |a| {
+            let (x, lo, hi) = (a[0], a[1], a[2]);
+            let inner = Interval::new(x.lo.max(lo.lo), x.hi.max(lo.hi));
+            vec![
+                switch(x.lo > lo.hi && x.hi < hi.lo, x.hi < lo.lo || x.lo > hi.hi),
+                switch(lo.lo > x.hi && lo.hi < hi.lo, lo.hi < x.lo || lo.lo > hi.hi),
+                switch(hi.hi < inner.lo, hi.lo > inner.hi),
+            ]
+        },
+    },
+    MathFn {
+        name: "mix",
+        defined: EVERYWHERE,
+        units: Units::Plain,
+        lower: naga::MathFunction::Mix,
+        arity: 3,
+        doc: "a·(1 − c) + b·c (with shapes, `mix(w) { a b }` is the operator)",
+        eval: |a| a[0] * (1.0 - a[2]) + a[1] * a[2],
+        range: |a| {
+            let one = Interval::point(1.0);
+            a[0].mul(one.sub(a[2])).add(a[1].mul(a[2]))
+        },
+        partials: |a| vec![Interval::point(1.0).sub(a[2]), a[2], a[1].sub(a[0])],
+    },
+    MathFn {
+        name: "sign",
+        defined: EVERYWHERE,
+        units: Units::Plain,
+        lower: naga::MathFunction::Sign,
+        arity: 1,
+        doc: "−1, 0 or 1 as a is negative, zero or positive (a jump at 0: no slope bound across it)",
+        eval: |a| {
+            if a[0] > 0.0 {
+                1.0
+            } else if a[0] < 0.0 {
+                -1.0
+            } else {
+                0.0
+            }
+        },
+        range: |a| sign(a[0]),
+        partials: |a| vec![jump(a[0].lo > 0.0 || a[0].hi < 0.0, 0.0)],
+    },
+    MathFn {
+        name: "floor",
+        defined: EVERYWHERE,
+        units: Units::Same,
+        lower: naga::MathFunction::Floor,
+        arity: 1,
+        doc: "the largest whole number ≤ a (a jump at each whole number: no slope bound across one)",
+        eval: |a| a[0].floor(),
+        range: |a| Interval::new(a[0].lo.floor(), a[0].hi.floor()),
+        partials: |a| vec![jump(a[0].lo.floor() == a[0].hi.floor(), 0.0)],
+    },
+    MathFn {
+        name: "fract",
+        defined: EVERYWHERE,
+        units: Units::Same,
+        lower: naga::MathFunction::Fract,
+        arity: 1,
+        doc: "a − floor(a), in [0, 1) (a jump at each whole number)",
+        eval: |a| a[0] - a[0].floor(),
+        range: |a| {
+            if a[0].lo.floor() == a[0].hi.floor() {
+                Interval::new(a[0].lo - a[0].lo.floor(), a[0].hi - a[0].lo.floor())
+            } else {
+                Interval::new(0.0, 1.0)
+            }
+        },
+        partials: |a| vec![jump(a[0].lo.floor() == a[0].hi.floor(), 1.0)],
+    },
 ];
+
+/// A derivative of `slope` where the function is continuous over the interval (`smooth`), or
+/// no bound where it may jump inside it.
+fn jump(smooth: bool, slope: f64) -> Interval {
+    if smooth {
+        Interval::point(slope)
+    } else {
+        Interval::ALL
+    }
+}

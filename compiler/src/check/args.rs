@@ -384,10 +384,16 @@ impl Checker<'_> {
         match (ty, value) {
             (Ty::Angle, Value::Num(x, Dim::Angle)) => Some(Val::Num(x)),
             (Ty::Angle, Value::Num(x, Dim::None)) => {
+                let help = if matches!(e.kind, ExprKind::Number { .. }) {
+                    format!("write `{x}deg` or `{x}rad`")
+                } else {
+                    // A computed number (`pi / 4`): its unit is a factor.
+                    "multiply it by a unit: `(…) * 1rad` for radians, `* 1deg` for degrees".into()
+                };
                 self.diags.push(
                     Diagnostic::error(e.span, format!("`{param}` is an angle and needs a unit"))
                         .label("no unit")
-                        .help(format!("write `{x}deg` or `{x}rad`")),
+                        .help(help),
                 );
                 None
             }

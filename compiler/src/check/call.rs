@@ -13,7 +13,11 @@ impl Checker<'_> {
     /// given by `lhs |> call`.
     pub(super) fn call(&mut self, call: &Call, piped: Option<NodeId>) -> Option<Value> {
         let name = call.name.name.as_str();
-        if let Some(f) = catalog::math_fn(name) {
+        // `mix` is both: the operator when it has shapes (a block or `|>`), else the number.
+        let shapes = call.block.is_some() || piped.is_some();
+        if let Some(f) = catalog::math_fn(name)
+            && !(shapes && catalog::operator(name).is_some())
+        {
             return self.math_call(f, call);
         }
         if name == "implicit" {

@@ -9,6 +9,10 @@ use crate::scene::{Field, NodeId, binary};
 use crate::syntax::{BinOp, Expr, ExprKind, Ident};
 use glam::DVec3;
 
+/// Named constants: π and τ = 2π.
+pub(super) const CONSTANTS: &[(&str, f64)] =
+    &[("pi", std::f64::consts::PI), ("tau", std::f64::consts::TAU)];
+
 /// Units a number may carry, and the factor to radians.
 const UNITS: &[(&str, f64)] = &[("deg", std::f64::consts::PI / 180.0), ("rad", 1.0)];
 
@@ -237,6 +241,11 @@ impl Checker<'_> {
         }
         if let Some(v) = self.param_ref(&id.name) {
             return Some(v);
+        }
+        // The circle constants, plain numbers (radians need no unit where a number is taken;
+        // an angle argument takes `pi * 1rad`).
+        if let Some(&(_, x)) = CONSTANTS.iter().find(|(n, _)| *n == id.name) {
+            return Some(Value::Num(x, Dim::None));
         }
         if self.failed.contains(&id.name) {
             return None;

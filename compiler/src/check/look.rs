@@ -153,7 +153,11 @@ impl Checker<'_> {
             );
             return;
         };
-        if let Some(d) = self.reserved_name(name) {
+        // (A material is only ever named after `:`, so a math function's name, such as the
+        // common `floor`, cannot be mistaken for it.)
+        if let Some(d) = self.reserved_name(name)
+            && crate::catalog::math_fn(&name.name).is_none()
+        {
             self.diags.push(d);
             self.failed.insert(name.name.clone());
             return;

@@ -172,6 +172,28 @@ pub fn estimate(f: &Field, p: DVec3) -> Est {
                     }
                     through.min(2.0 * PI) + ulps(4096.0, v)
                 }
+                // One of the arguments, unchanged.
+                "clamp" => a[0].e.max(a[1].e).max(a[2].e),
+                // Through each argument, then the products and sum (or a + t(b − a)).
+                "mix" => {
+                    let (ea, eb, et) = (a[0].e, a[1].e, a[2].e);
+                    let through = ea * (1.0 - x[2]).abs()
+                        + eb * x[2].abs()
+                        + (x[1] - x[0]).abs() * et
+                        + et * (ea + eb);
+                    through
+                        + 4.0 * U * (x[0].abs() + x[1].abs()) * (1.0 + x[2].abs())
+                        + ulps(2.0, v)
+                }
+                // Exact, unless the argument may be on the other side of 0 (or at it).
+                "sign" if x[0].abs() > a[0].e => 0.0,
+                "sign" => 2.0,
+                // Exact, unless a whole number lies within the argument's error.
+                "floor" | "fract" if (x[0] - a[0].e).floor() != (x[0] + a[0].e).floor() => {
+                    1.0 + a[0].e
+                }
+                "floor" => 0.0,
+                "fract" => a[0].e + rounded(v) + U * x[0].abs(),
                 other => panic!("no f32 error model for `{other}`: add one to tests/field.rs"),
             };
             est(v, e, off)
