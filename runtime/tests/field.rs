@@ -312,6 +312,21 @@ fn print_table(rows: &[Row]) {
     }
 }
 
+/// The row of math function `f`: `implicit { f(args) }` for each argument list.
+fn math_row(gpu: &sdfc::gpu::Gpu, f: &sdfc_compiler::catalog::MathFn, r: &mut Rng) -> Row {
+    let mut row = Row::new(f.name);
+    for args in argument_lists(f.arity) {
+        let args: Vec<String> = args.iter().map(|a| in_domain(f.name, a)).collect();
+        let source = format!(
+            "implicit {{ {}({}) }} @lipschitz(1)",
+            f.name,
+            args.join(", ")
+        );
+        implicit_case(gpu, &mut row, &source, r);
+    }
+    row
+}
+
 /// Math functions whose cases are drawn after all the others (see below).
 const LATER: &[&str] = &["clamp", "mix", "sign", "floor", "fract"];
 
@@ -329,17 +344,7 @@ fn gpu_field_equals_the_cpu_reference_within_f32() {
         .iter()
         .partition(|f| !LATER.contains(&f.name));
     for f in old {
-        let mut row = Row::new(f.name);
-        for args in argument_lists(f.arity) {
-            let args: Vec<String> = args.iter().map(|a| in_domain(f.name, a)).collect();
-            let source = format!(
-                "implicit {{ {}({}) }} @lipschitz(1)",
-                f.name,
-                args.join(", ")
-            );
-            implicit_case(&gpu, &mut row, &source, &mut r);
-        }
-        rows.push(row);
+        rows.push(math_row(&gpu, f, &mut r));
     }
     let powers: [(&str, Vec<i32>); 3] = [
         ("a ^ n, n = 1..16", (1..=16).collect()),
@@ -381,17 +386,7 @@ fn gpu_field_equals_the_cpu_reference_within_f32() {
     }
 
     for f in new {
-        let mut row = Row::new(f.name);
-        for args in argument_lists(f.arity) {
-            let args: Vec<String> = args.iter().map(|a| in_domain(f.name, a)).collect();
-            let source = format!(
-                "implicit {{ {}({}) }} @lipschitz(1)",
-                f.name,
-                args.join(", ")
-            );
-            implicit_case(&gpu, &mut row, &source, &mut r);
-        }
-        rows.push(row);
+        rows.push(math_row(&gpu, f, &mut r));
     }
     print_table(&rows);
     // A row that compared (almost) nothing would pass without showing anything.

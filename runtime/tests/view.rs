@@ -46,22 +46,67 @@ fn view(args: &[&str], log: &Path) -> Child {
 
 /// Waits for `file` to appear (whole: a rename) or the child to end.
 fn wait_for(file: &Path, child: &mut Child, log: &Path) {
+    let what = file.display().to_string();
+    wait_until(&what, child, log, Duration::from_secs(90), || file.exists());
+}
+
+/// Waits until `ready` holds, the child still running, at most `limit`.
+fn wait_until(
+    what: &str,
+    child: &mut Child,
+    log: &Path,
+    limit: Duration,
+    mut ready: impl FnMut() -> bool,
+) {
     let start = Instant::now();
-    while !file.exists() {
+    while !ready() {
         if let Some(status) = child.try_wait().unwrap() {
             panic!(
-                "sdfc view ended ({status}) before {}:\n{}",
-                file.display(),
+                "ended ({status}) before {what}:\n{}",
                 std::fs::read_to_string(log).unwrap_or_default()
             );
         }
         assert!(
-            start.elapsed() < Duration::from_secs(90),
-            "no {} after 90 s:\n{}",
-            file.display(),
+            start.elapsed() < limit,
+            "no {what} after {} s:\n{}",
+            limit.as_secs(),
             std::fs::read_to_string(log).unwrap_or_default()
         );
         std::thread::sleep(Duration::from_millis(50));
+    }
+}
+
+/// A `sdfc view` under way: its process, scene file, screenshot directory and log.
+struct Viewer {
+    child: Child,
+    scene: PathBuf,
+    shots: PathBuf,
+    log: PathBuf,
+}
+
+/// `sdfc view` of `source` (written to `dir/scene.sdf`) at 128×96, screenshots in
+/// `dir/shots`, with `extra` arguments.
+fn start_view(dir: &Path, source: &str, extra: &[&str]) -> Viewer {
+    let (scene, shots, log) = (
+        dir.join("scene.sdf"),
+        dir.join("shots"),
+        dir.join("view.log"),
+    );
+    std::fs::write(&scene, source).unwrap();
+    let mut args = vec![
+        scene.to_str().unwrap(),
+        "--size",
+        "128x96",
+        "--screenshots",
+        shots.to_str().unwrap(),
+    ];
+    args.extend(extra);
+    let child = view(&args, &log);
+    Viewer {
+        child,
+        scene,
+        shots,
+        log,
     }
 }
 
@@ -115,24 +160,13 @@ fn the_window_shows_render_and_scripted_input_moves_the_camera() {
         return;
     }
     let dir = scratch("view-input");
-    let shots = dir.join("shots");
-    let scene = dir.join("scene.sdf");
-    std::fs::write(&scene, BASE).unwrap();
-    let log = dir.join("view.log");
-    let mut child = view(
-        &[
-            scene.to_str().unwrap(),
-            "--size",
-            "128x96",
-            "--screenshots",
-            shots.to_str().unwrap(),
-            "--script",
-            "drag 180 0; zoom 2",
-            "--quit-after",
-            "3",
-        ],
-        &log,
-    );
+    let extra = ["--script", "drag 180 0; zoom 2", "--quit-after", "3"];
+    let Viewer {
+        mut child,
+        shots,
+        log,
+        ..
+    } = start_view(&dir, BASE, &extra);
     wait_for(&shots.join("002.png"), &mut child, &log);
     let status = child.wait().unwrap();
     assert!(
@@ -173,22 +207,12 @@ fn the_window_follows_the_file() {
         return;
     }
     let dir = scratch("view-reload");
-    let shots = dir.join("shots");
-    let scene = dir.join("scene.sdf");
-    std::fs::write(&scene, BASE).unwrap();
-    let log = dir.join("view.log");
-    let mut child = view(
-        &[
-            scene.to_str().unwrap(),
-            "--size",
-            "128x96",
-            "--screenshots",
-            shots.to_str().unwrap(),
-            "--quit-after",
-            "4",
-        ],
-        &log,
-    );
+    let Viewer {
+        mut child,
+        scene,
+        shots,
+        log,
+    } = start_view(&dir, BASE, &["--quit-after", "4"]);
     let shot = |k: u32| shots.join(format!("{k:03}.png"));
     wait_for(&shot(0), &mut child, &log);
     assert!(agreement(&shot(0), &rendered(&dir, BASE, "first")) >= 0.995);
@@ -245,25 +269,6 @@ fn without_a_display_view_says_so() {
     );
 }
 
-/// Waits until `ready` holds, the child still running.
-fn wait_until(what: &str, child: &mut Child, log: &Path, mut ready: impl FnMut() -> bool) {
-    let start = Instant::now();
-    while !ready() {
-        if let Some(status) = child.try_wait().unwrap() {
-            panic!(
-                "ended ({status}) before {what}:\n{}",
-                std::fs::read_to_string(log).unwrap_or_default()
-            );
-        }
-        assert!(
-            start.elapsed() < Duration::from_secs(60),
-            "no {what} after 60 s:\n{}",
-            std::fs::read_to_string(log).unwrap_or_default()
-        );
-        std::thread::sleep(Duration::from_millis(50));
-    }
-}
-
 /// `render --watch` and `emit --watch` write again on every save, one line each; a broken save
 /// prints its diagnostics and leaves the output and the watch as they were.
 #[test]
@@ -295,22 +300,34 @@ fn watch_rebuilds_on_every_save() {
             .spawn()
             .unwrap();
         let said = || std::fs::read_to_string(&log).unwrap_or_default();
-        wait_until("the first output", &mut child, &log, || {
-            said().contains("watching")
-        });
+        wait_until(
+            "the first output",
+            &mut child,
+            &log,
+            Duration::from_secs(60),
+            || said().contains("watching"),
+        );
         let first = std::fs::read(&out).unwrap();
         std::fs::write(&scene, BASE.replace("sphere(0.8)", "torus(0.7, 0.25)")).unwrap();
-        wait_until("a rebuild", &mut child, &log, || {
-            std::fs::read(&out).is_ok_and(|b| b != first)
-        });
+        wait_until(
+            "a rebuild",
+            &mut child,
+            &log,
+            Duration::from_secs(60),
+            || std::fs::read(&out).is_ok_and(|b| b != first),
+        );
         let second = std::fs::read(&out).unwrap();
         if what == "emit" {
             assert!(String::from_utf8_lossy(&second).contains("fn sd_torus("));
         }
         std::fs::write(&scene, "sphere(1\n").unwrap();
-        wait_until("the diagnostics", &mut child, &log, || {
-            said().contains("error: unclosed")
-        });
+        wait_until(
+            "the diagnostics",
+            &mut child,
+            &log,
+            Duration::from_secs(60),
+            || said().contains("error: unclosed"),
+        );
         std::thread::sleep(Duration::from_millis(300));
         assert!(
             child.try_wait().unwrap().is_none(),
@@ -334,29 +351,16 @@ fn keys_change_a_parameter() {
         return;
     }
     let dir = scratch("view-param");
-    let shots = dir.join("shots");
-    let scene = dir.join("scene.sdf");
-    std::fs::write(
-        &scene,
-        BASE.replace("sphere(0.8)", "sphere(r)")
-            .replace("camera", "param r = 0.8 in 0.4..1.2\ncamera"),
-    )
-    .unwrap();
-    let log = dir.join("view.log");
-    let mut child = view(
-        &[
-            scene.to_str().unwrap(),
-            "--size",
-            "128x96",
-            "--screenshots",
-            shots.to_str().unwrap(),
-            "--script",
-            "key =",
-            "--quit-after",
-            "2",
-        ],
-        &log,
-    );
+    let source = BASE
+        .replace("sphere(0.8)", "sphere(r)")
+        .replace("camera", "param r = 0.8 in 0.4..1.2\ncamera");
+    let extra = ["--script", "key =", "--quit-after", "2"];
+    let Viewer {
+        mut child,
+        scene,
+        shots,
+        log,
+    } = start_view(&dir, &source, &extra);
     wait_for(&shots.join("001.png"), &mut child, &log);
     assert!(child.wait().unwrap().success());
     let want = dir.join("want.png");
