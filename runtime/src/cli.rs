@@ -1,12 +1,12 @@
 //! Command-line parsing and the subcommands' drivers.
 
+use crate::cli_values::{BackendArg, EntryArg, SpirvVersion, TargetArg};
 use crate::input::check_command;
 pub use crate::input::{exit_code, load_scene, print_out};
 pub use crate::tracer_args::TracerArgs;
+use crate::view_events::watching;
 use clap::{Parser, Subcommand};
-use sdfc_compiler::emit::Target;
 use sdfc_compiler::lipschitz::Effort;
-use sdfc_compiler::lower::Entry;
 use std::path::PathBuf;
 
 /// The version `--version` prints: the package's, and the commit it was built from when the
@@ -255,71 +255,6 @@ enum Command {
     },
 }
 
-/// A SPIR-V version.
-#[derive(Clone, Copy, clap::ValueEnum)]
-enum SpirvVersion {
-    #[value(name = "1.0")]
-    V10,
-    #[value(name = "1.1")]
-    V11,
-    #[value(name = "1.2")]
-    V12,
-    #[value(name = "1.3")]
-    V13,
-    #[value(name = "1.4")]
-    V14,
-    #[value(name = "1.5")]
-    V15,
-    #[value(name = "1.6")]
-    V16,
-}
-
-impl SpirvVersion {
-    fn pair(self) -> (u8, u8) {
-        (1, self as u8)
-    }
-}
-
-#[derive(Clone, Copy, clap::ValueEnum)]
-enum BackendArg {
-    Auto,
-    Vulkan,
-    Gl,
-}
-
-#[derive(Clone, Copy, clap::ValueEnum)]
-enum TargetArg {
-    Wgsl,
-    Spirv,
-    Glsl,
-    Msl,
-    Hlsl,
-}
-
-#[derive(Clone, Copy, clap::ValueEnum)]
-enum EntryArg {
-    Compute,
-    Fragment,
-    Library,
-    /// The trace-only compute entry `sdfc bench` times (t and steps per pixel).
-    Trace,
-    /// A Shadertoy Image shader: GLSL ES 3.00 with `mainImage`, `iTime` for `time`, an orbit
-    /// camera on `iMouse` (target glsl).
-    Shadertoy,
-}
-
-/// A command once, or with `--watch` again after every save of `file` (not for standard input).
-fn watching(file: &std::path::Path, watch: bool, mut once: impl FnMut() -> i32) -> i32 {
-    if !watch {
-        return once();
-    }
-    if file == std::path::Path::new("-") {
-        say!("error: `--watch` needs a scene file, not standard input");
-        return 1;
-    }
-    crate::view_events::watch_loop(file, once)
-}
-
 /// Runs the command line; returns the exit code (0 ok, 1 user error).
 pub fn run() -> i32 {
     let cli = match Cli::try_parse() {
@@ -480,39 +415,5 @@ pub fn run() -> i32 {
             fixed_offset,
             allow_slow_compile,
         }),
-    }
-}
-
-impl From<BackendArg> for sdfc::gpu::BackendChoice {
-    fn from(b: BackendArg) -> Self {
-        match b {
-            BackendArg::Auto => sdfc::gpu::BackendChoice::Auto,
-            BackendArg::Vulkan => sdfc::gpu::BackendChoice::Vulkan,
-            BackendArg::Gl => sdfc::gpu::BackendChoice::Gl,
-        }
-    }
-}
-
-impl From<TargetArg> for Target {
-    fn from(t: TargetArg) -> Target {
-        match t {
-            TargetArg::Wgsl => Target::Wgsl,
-            TargetArg::Spirv => Target::Spirv,
-            TargetArg::Glsl => Target::Glsl,
-            TargetArg::Msl => Target::Msl,
-            TargetArg::Hlsl => Target::Hlsl,
-        }
-    }
-}
-
-impl From<EntryArg> for Entry {
-    fn from(e: EntryArg) -> Entry {
-        match e {
-            EntryArg::Compute => Entry::Compute,
-            EntryArg::Fragment => Entry::Fragment,
-            EntryArg::Library => Entry::Library,
-            EntryArg::Trace => Entry::Trace,
-            EntryArg::Shadertoy => Entry::Library,
-        }
     }
 }

@@ -20,6 +20,7 @@ macro_rules! say_raw {
 mod animate;
 mod bench_cmd;
 mod cli;
+mod cli_values;
 mod emit_cmd;
 mod input;
 mod live;

@@ -124,6 +124,18 @@ pub fn watch_loop(file: &Path, mut run: impl FnMut() -> i32) -> i32 {
     }
 }
 
+/// A command once, or with `--watch` again after every save of `file` (not for standard input).
+pub(crate) fn watching(file: &std::path::Path, watch: bool, mut once: impl FnMut() -> i32) -> i32 {
+    if !watch {
+        return once();
+    }
+    if file == std::path::Path::new("-") {
+        say!("error: `--watch` needs a scene file, not standard input");
+        return 1;
+    }
+    watch_loop(file, once)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
