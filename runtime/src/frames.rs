@@ -156,7 +156,7 @@ impl Gpu {
             }
         };
         let pipeline = self.pipeline(module);
-        let params = self.params_buffer(module);
+        let params = self.params_buffer(module)?;
         // (bytes per pixel, binding)
         let sizes: Vec<(u64, u32)> = match layout {
             Layout::Full { .. } => vec![(4, 1), (4, 2), (16, 3), (4, 4), (4, 5), (4, 8)],

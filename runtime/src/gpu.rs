@@ -150,20 +150,32 @@ impl Gpu {
     }
 
     /// The `Params` uniform for a module that reads one (binding
-    /// `sdfc_compiler::lower::params::PARAMS_BINDING`), holding the values last set, padded
-    /// with zeros to the struct's size.
-    pub(crate) fn params_buffer(&self, module: &naga::Module) -> Option<(wgpu::Buffer, u32)> {
+    /// `sdfc_compiler::lower::params::PARAMS_BINDING`), holding the values last set
+    /// ([`Gpu::set_params`]); an internal error when those are not the module's (none set, or
+    /// another scene's), rather than a scene drawn at zeros.
+    pub(crate) fn params_buffer(
+        &self,
+        module: &naga::Module,
+    ) -> Result<Option<(wgpu::Buffer, u32)>, String> {
         let binding = sdfc_compiler::lower::params::PARAMS_BINDING;
-        let global = module
+        let Some(global) = module
             .global_variables
             .iter()
-            .find(|(_, g)| g.binding == Some(naga::ResourceBinding { group: 0, binding }))?;
+            .find(|(_, g)| g.binding == Some(naga::ResourceBinding { group: 0, binding }))
+        else {
+            return Ok(None);
+        };
         let size = match module.types[global.1.ty].inner {
             naga::TypeInner::Struct { span, .. } => span,
-            _ => return None,
+            _ => return Ok(None),
         };
-        let mut bytes = lock(&self.params).clone();
-        bytes.resize(size as usize, 0);
+        let bytes = lock(&self.params).clone();
+        if bytes.len() != size as usize {
+            return Err(format!(
+                "internal error: the module reads {size} bytes of scene parameters, and {} were set (Gpu::set_params)",
+                bytes.len()
+            ));
+        }
         let buffer = self.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("params"),
             size: u64::from(size),
@@ -171,7 +183,7 @@ impl Gpu {
             mapped_at_creation: false,
         });
         self.queue.write_buffer(&buffer, 0, &bytes);
-        Some((buffer, binding))
+        Ok(Some((buffer, binding)))
     }
 
     /// The backend in use, as a word.
@@ -341,7 +353,7 @@ impl Gpu {
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
             mapped_at_creation: false,
         });
-        let params = self.params_buffer(module);
+        let params = self.params_buffer(module)?;
         let mut entries = vec![
             wgpu::BindGroupEntry {
                 binding: 0,

@@ -66,6 +66,7 @@ fn one_module_draws_every_setting_as_the_cpu_reference() {
     let (module, _) = emit::module(&scene, Entry::Compute, &Options::from_scene(&scene))
         .unwrap_or_else(|e| panic!("{}", e.0));
     let view = View::new(&scene.camera, 96, 64);
+    gpu.set_params(&bytes(&scene.params));
     let prepared = gpu
         .prepare(
             Source::Module(&module),
