@@ -42,7 +42,9 @@ pub fn with_stack<T: Send + 'static>(f: impl FnOnce() -> T + Send + 'static) -> 
 
 /// Compiles a source that must be valid; panics with the rendered diagnostics otherwise.
 pub fn scene(name: &str, source: &str) -> Scene {
-    let Checked { scene, diagnostics } = check::compile(source);
+    let Checked {
+        scene, diagnostics, ..
+    } = check::compile(source);
     match scene {
         Some(s) => s,
         None => panic!(

@@ -1,7 +1,8 @@
 //! Diagnostics: errors and warnings with source spans, rendered with codespan-reporting.
 
+use crate::source::Sources;
 use codespan_reporting::diagnostic as cs;
-use codespan_reporting::files::SimpleFile;
+use codespan_reporting::files::SimpleFiles;
 use codespan_reporting::term;
 
 /// A byte range in the source text.
@@ -17,6 +18,11 @@ impl Span {
     /// The span from `start` to `end`.
     pub fn new(start: usize, end: usize) -> Span {
         Span { start, end }
+    }
+
+    /// Whether `other` lies within this span.
+    pub fn contains(self, other: Span) -> bool {
+        self.start <= other.start && other.end <= self.end
     }
 
     /// The smallest span covering both.
@@ -115,16 +121,16 @@ impl Diagnostic {
 fn emit(
     out: &mut String,
     config: &term::Config,
-    file: &SimpleFile<&str, &str>,
-    diagnostic: &cs::Diagnostic<()>,
+    files: &SimpleFiles<&str, String>,
+    diagnostic: &cs::Diagnostic<usize>,
     color: bool,
 ) {
     if color {
         let mut buffer = term::termcolor::Buffer::ansi();
-        let _ = term::emit_to_write_style(&mut buffer, config, file, diagnostic);
+        let _ = term::emit_to_write_style(&mut buffer, config, files, diagnostic);
         out.push_str(&String::from_utf8_lossy(buffer.as_slice()));
     } else {
-        let _ = term::emit_to_string(out, config, file, diagnostic);
+        let _ = term::emit_to_string(out, config, files, diagnostic);
     }
 }
 
@@ -141,28 +147,49 @@ pub fn render_styled(
     source: &str,
     color: bool,
 ) -> String {
+    render_sources(diagnostics, &Sources::single(file_name, source), color)
+}
+
+/// Renders diagnostics whose spans point into any of a scene's files (imports included), each
+/// label shown in its own file.
+pub fn render_sources(diagnostics: &[Diagnostic], sources: &Sources, color: bool) -> String {
     // Control characters are shown as `?` (same length, so spans still fit): echoed raw they
     // would act on the terminal.
-    let shown: String = source
-        .chars()
-        .map(|c| {
-            if c.is_control() && !matches!(c, '\t' | '\n' | '\r') && c.len_utf8() == 1 {
-                '?'
-            } else {
-                c
-            }
-        })
-        .collect();
-    let source = shown.as_str();
-    let file = SimpleFile::new(file_name, source);
+    let mut files = SimpleFiles::new();
+    for f in &sources.files {
+        let shown: String = f
+            .text
+            .chars()
+            .map(|c| {
+                if c.is_control() && !matches!(c, '\t' | '\n' | '\r') && c.len_utf8() == 1 {
+                    '?'
+                } else {
+                    c
+                }
+            })
+            .collect();
+        files.add(f.name.as_str(), shown);
+    }
+    if sources.files.is_empty() {
+        files.add("<input>", String::new());
+    }
+    // A span as (file, range in that file), clamped to the file as the report needs.
+    let place = |s: Span| {
+        let id = sources.file_of(s.start);
+        let base = sources.files.get(id).map_or(0, |f| f.base);
+        let len = sources.files.get(id).map_or(0, |f| f.text.len());
+        let end = s.end.saturating_sub(base).min(len);
+        (id, s.start.saturating_sub(base).min(end)..end)
+    };
     let config = term::Config::default();
     let mut out = String::new();
     for d in diagnostics.iter().take(MAX_SHOWN) {
-        let clamp = |s: Span| {
-            let end = s.end.min(source.len());
-            s.start.min(end)..end
+        let (id, range) = place(d.span);
+        let (name, source) = match sources.files.get(id) {
+            Some(f) => (f.name.as_str(), f.text.as_str()),
+            None => ("<input>", ""),
         };
-        if let Some(note) = long_line(file_name, source, clamp(d.span), &d.label) {
+        if let Some(note) = long_line(name, source, range.clone(), &d.label) {
             // A line too long to echo (one error printed megabytes): the place and an excerpt.
             let diagnostic = match d.severity {
                 Severity::Error => cs::Diagnostic::error(),
@@ -174,16 +201,14 @@ pub fn render_styled(
                     .chain(d.notes.iter().map(|n| shorten(n)))
                     .collect(),
             );
-            emit(&mut out, &config, &file, &diagnostic, color);
+            emit(&mut out, &config, &files, &diagnostic, color);
             continue;
         }
-        let mut labels =
-            vec![cs::Label::primary((), clamp(d.span)).with_message(shorten(&d.label))];
-        labels.extend(
-            d.secondary
-                .iter()
-                .map(|(s, m)| cs::Label::secondary((), clamp(*s)).with_message(shorten(m))),
-        );
+        let mut labels = vec![cs::Label::primary(id, range).with_message(shorten(&d.label))];
+        labels.extend(d.secondary.iter().map(|(s, m)| {
+            let (id, range) = place(*s);
+            cs::Label::secondary(id, range).with_message(shorten(m))
+        }));
         let diagnostic = match d.severity {
             Severity::Error => cs::Diagnostic::error(),
             Severity::Warning => cs::Diagnostic::warning(),
@@ -191,7 +216,7 @@ pub fn render_styled(
         .with_message(shorten(&d.message))
         .with_labels(labels)
         .with_notes(d.notes.iter().map(|n| shorten(n)).collect());
-        emit(&mut out, &config, &file, &diagnostic, color);
+        emit(&mut out, &config, &files, &diagnostic, color);
     }
     if diagnostics.len() > MAX_SHOWN {
         let rest = &diagnostics[MAX_SHOWN..];

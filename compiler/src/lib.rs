@@ -17,6 +17,7 @@ pub mod passes;
 pub mod scene;
 pub mod shadertoy;
 pub mod shading;
+pub mod source;
 pub mod syntax;
 pub mod texture;
 pub mod trace;

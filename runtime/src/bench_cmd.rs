@@ -113,20 +113,17 @@ fn bench(args: &BenchArgs) -> Result<(), String> {
         None => None,
     };
     crate::tracer_args::check_passes(args.passes)?;
-    let Some((name, source, scene)) = load_scene(args.file) else {
+    let Some((sources, scene)) = load_scene(args.file) else {
         return Err(String::new());
     };
+    let name = sources.main_name().to_string();
     let mut options = sdfc_compiler::lower::tracer::Options::from_scene(&scene);
     options.bounding_volumes = args.bvh;
     options.fixed_offset = args.fixed_offset;
     let (module, _) =
         sdfc_compiler::emit::module(&scene, sdfc_compiler::lower::Entry::Compute, &options)
             .map_err(|e| format!("internal compiler error: {}", e.0))?;
-    crate::render_cmd::check_driver_size(
-        &module,
-        (&name, &source, &scene),
-        args.allow_slow_compile,
-    )?;
+    crate::render_cmd::check_driver_size(&module, (&sources, &scene), args.allow_slow_compile)?;
     let tracers: Vec<&str> = split(args.tracers);
     let budgets: Vec<&str> = split(args.steps);
     if tracers.is_empty() || budgets.is_empty() {

@@ -88,9 +88,10 @@ pub fn run(
         );
         return 1;
     }
-    let Some((name, _, mut scene)) = load_scene(file) else {
+    let Some((sources, mut scene)) = load_scene(file) else {
         return 1;
     };
+    let name = sources.main_name();
     let options = match tracer.settle(&mut scene) {
         Ok(mut o) => {
             o.private_params = shadertoy;
@@ -120,7 +121,7 @@ pub fn run(
     let result = compiled.and_then(|(m, info)| {
         if manifest.is_some() {
             let origin = sdfc_compiler::manifest::Origin {
-                scene: &name,
+                scene: name,
                 target: target_name(target),
                 entry,
                 prefix,

@@ -4,6 +4,7 @@
 use sdfc_compiler::check::{self, Checked};
 use sdfc_compiler::diag::Diagnostic;
 use sdfc_compiler::lipschitz::{self, Effort};
+use sdfc_compiler::source::Sources;
 use std::path::Path;
 
 /// The exit code of a command: 0, or 1 after printing its error (empty when the diagnostics
@@ -24,7 +25,7 @@ pub fn exit_code(result: Result<(), String>) -> i32 {
 }
 
 /// Reads and checks a scene, printing diagnostics; `None` (after printing) when it has errors.
-pub fn load_scene(path: &Path) -> Option<(String, String, sdfc_compiler::scene::Scene)> {
+pub fn load_scene(path: &Path) -> Option<(Sources, sdfc_compiler::scene::Scene)> {
     load_scene_with(path, &std::collections::HashMap::new())
 }
 
@@ -35,7 +36,7 @@ pub fn load_scene(path: &Path) -> Option<(String, String, sdfc_compiler::scene::
 pub fn load_scene_with(
     path: &Path,
     values: &std::collections::HashMap<String, Vec<f64>>,
-) -> Option<(String, String, sdfc_compiler::scene::Scene)> {
+) -> Option<(Sources, sdfc_compiler::scene::Scene)> {
     let (name, source) = match read_source(path) {
         Ok(x) => x,
         Err(e) => {
@@ -46,14 +47,15 @@ pub fn load_scene_with(
     let Checked {
         scene,
         mut diagnostics,
-    } = check::compile(&source);
+        sources,
+    } = compile(&name, &source, &std::collections::HashMap::new());
     if let Some(scene) = &scene {
         diagnostics.extend(lipschitz::verify_annotations(scene, Effort::Fast));
     }
     if scene.is_some() && !values.is_empty() {
         // The values must be valid: the diagnostics of the scene checked at them (its
         // warnings are the defaults' already).
-        let at = check::compile_with(&source, values);
+        let at = compile(&name, &source, values);
         if at.scene.is_none() {
             diagnostics = at.diagnostics;
         }
@@ -63,7 +65,7 @@ pub fn load_scene_with(
     } else {
         scene
     };
-    say_raw!("{}", crate::messages::report(&diagnostics, &name, &source));
+    say_raw!("{}", crate::messages::report(&diagnostics, &sources));
     let scene = scene?;
     let unknown = check::unknown_params(&scene, values);
     if let Some((bad, near)) = unknown.first() {
@@ -83,7 +85,16 @@ pub fn load_scene_with(
         say!("error: `--param {bad}`: `{name}` has no parameter `{bad}`\n{help}");
         return None;
     }
-    Some((name, source, scene))
+    Some((sources, scene))
+}
+
+/// Checks the file `name` (text `source`) with its imports read from disk relative to it.
+pub fn compile(
+    name: &str,
+    source: &str,
+    values: &std::collections::HashMap<String, Vec<f64>>,
+) -> Checked {
+    check::compile_file(name, source, values, &sdfc_compiler::syntax::FsLoader)
 }
 
 /// `--param NAME=VALUE`s and `--time T` as values for [`load_scene_with`]: a VALUE is a number
@@ -218,11 +229,12 @@ pub fn check_command(path: &Path, effort: Effort) -> i32 {
     let Checked {
         scene,
         mut diagnostics,
-    } = check::compile(&source);
+        sources,
+    } = compile(&name, &source, &std::collections::HashMap::new());
     if let Some(scene) = &scene {
         diagnostics.extend(lipschitz::verify_annotations(scene, effort));
     }
-    say_raw!("{}", crate::messages::report(&diagnostics, &name, &source));
+    say_raw!("{}", crate::messages::report(&diagnostics, &sources));
     let Some(scene) = scene else { return 1 };
     let warnings = diagnostics
         .iter()

@@ -4,6 +4,7 @@
 //! a bad flag — stay `error: …` lines.)
 
 use sdfc_compiler::diag::{self, Diagnostic, Severity, Span};
+use sdfc_compiler::source::Sources;
 use std::io::IsTerminal;
 use std::sync::OnceLock;
 
@@ -42,15 +43,30 @@ pub fn configure(format: Format, color: Color) {
     let _ = STYLE.set((format, colored));
 }
 
-/// The diagnostics of `source` (named `name`) as the user asked for them.
-pub fn report(diagnostics: &[Diagnostic], name: &str, source: &str) -> String {
+/// The diagnostics of a scene's files as the user asked for them.
+pub fn report(diagnostics: &[Diagnostic], sources: &Sources) -> String {
     let (format, colored) = STYLE.get().copied().unwrap_or((Format::Human, false));
     match format {
-        Format::Human => diag::render_styled(diagnostics, name, source, colored),
+        Format::Human => diag::render_sources(diagnostics, sources, colored),
         Format::Json => diagnostics
             .iter()
-            .map(|d| json(d, name, source).to_string() + "\n")
+            .map(|d| json(d, sources).to_string() + "\n")
             .collect(),
+    }
+}
+
+/// The file a span points into: its name, its text, and the span within it.
+fn locate(sources: &Sources, span: Span) -> (&str, &str, Span) {
+    match sources.files.get(sources.file_of(span.start)) {
+        Some(f) => (
+            f.name.as_str(),
+            f.text.as_str(),
+            Span::new(
+                span.start.saturating_sub(f.base),
+                span.end.saturating_sub(f.base),
+            ),
+        ),
+        None => ("<input>", "", span),
     }
 }
 
@@ -80,15 +96,17 @@ fn place(source: &str, span: Span) -> serde_json::Value {
 
 /// One diagnostic as JSON: file, severity, message, its span (bytes, line and column), the
 /// label under the caret, the other places with their labels, and the notes.
-fn json(d: &Diagnostic, name: &str, source: &str) -> serde_json::Value {
+fn json(d: &Diagnostic, sources: &Sources) -> serde_json::Value {
+    let (name, source, span) = locate(sources, d.span);
     serde_json::json!({
         "file": name,
         "severity": match d.severity { Severity::Error => "error", Severity::Warning => "warning" },
         "message": d.message,
-        "span": place(source, d.span),
+        "span": place(source, span),
         "label": d.label,
         "secondary": d.secondary.iter().map(|(s, l)| {
-            serde_json::json!({ "span": place(source, *s), "label": l })
+            let (file, source, span) = locate(sources, *s);
+            serde_json::json!({ "file": file, "span": place(source, span), "label": l })
         }).collect::<Vec<_>>(),
         "notes": d.notes,
     })

@@ -89,7 +89,10 @@ pub const MAX_DRIVER_CALLS: usize = 4096;
 /// reasonable time (see [`MAX_DRIVER_CALLS`]); else its calls of distance functions.
 pub fn check_driver_size(
     module: &naga::Module,
-    (name, source, scene): (&str, &str, &sdfc_compiler::scene::Scene),
+    (sources, scene): (
+        &sdfc_compiler::source::Sources,
+        &sdfc_compiler::scene::Scene,
+    ),
     allow: bool,
 ) -> Result<usize, String> {
     let calls = emit::distance_calls(module);
@@ -103,7 +106,7 @@ pub fn check_driver_size(
             "sdfc renders at most {MAX_DRIVER_CALLS} calls: on lavapipe a flat union of 2 048 shapes took 21 s to compile and 4 096 took 113 s, growing quadratically"
         ))
         .help("share repeated shapes with `let` or `repeat`, or pass `--allow-slow-compile` to wait; `sdfc emit` writes the shader for other engines");
-        say_raw!("{}", crate::messages::report(&[d], name, source));
+        say_raw!("{}", crate::messages::report(&[d], sources));
         return Err(String::new());
     }
     Ok(calls)
@@ -161,13 +164,13 @@ fn render(args: &RenderArgs) -> Result<(), String> {
         );
     }
     let values = crate::input::param_values(args.params, args.time)?;
-    let Some((name, source, mut scene)) = crate::input::load_scene_with(args.file, &values) else {
+    let Some((sources, mut scene)) = crate::input::load_scene_with(args.file, &values) else {
         return Err(String::new());
     };
     let options = args.tracer.settle(&mut scene)?;
     let (module, _) = emit::module(&scene, Entry::Compute, &options)
         .map_err(|e| format!("{INTERNAL}: {}", e.0))?;
-    let calls = check_driver_size(&module, (&name, &source, &scene), args.allow_slow_compile)?;
+    let calls = check_driver_size(&module, (&sources, &scene), args.allow_slow_compile)?;
     let gpu = Gpu::new(args.backend)?;
     // The defaults' module, the values in its uniform only (as a host sets them).
     let valued = scene.with_values(&values);

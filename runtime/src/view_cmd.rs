@@ -130,7 +130,7 @@ fn load(
     sdfc_compiler::scene::Scene,
     sdfc_compiler::lower::tracer::Options,
 )> {
-    let (_, _, mut scene) = crate::input::load_scene(&args.file)?;
+    let (_, mut scene) = crate::input::load_scene(&args.file)?;
     match args.tracer.settle(&mut scene) {
         Ok(mut options) => {
             // One pass: the viewer's coarse frames take the passes' place.

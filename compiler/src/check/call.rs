@@ -23,6 +23,9 @@ impl Checker<'_> {
         if name == "implicit" {
             return self.implicit(call, piped);
         }
+        if self.fns.contains_key(name) && (self.visible(name) || self.in_frame(name)) {
+            return self.fn_call(call, piped);
+        }
         if let Some(prim) = catalog::primitive(name) {
             if piped.is_some() {
                 self.diags.push(
@@ -107,13 +110,43 @@ impl Checker<'_> {
             );
             return None;
         }
+        if let Some(def) = self.declared.get(name).copied() {
+            // A function (or other definition) written further down.
+            let what = if self.fns.contains_key(name) || self.failed.contains(name) {
+                "a function defined later in the file"
+            } else {
+                "defined later in the file"
+            };
+            let d = if self.failed.contains(name) {
+                None
+            } else {
+                Some(
+                    Diagnostic::error(
+                        call.name.span,
+                        format!("`{name}` is used before its definition"),
+                    )
+                    .label(what)
+                    .also(def, "defined here")
+                    .help("move the definition above its first use"),
+                )
+            };
+            self.diags.extend(d);
+            for a in &call.args {
+                self.value(&a.value);
+            }
+            return None;
+        }
         let mut d = Diagnostic::error(
             call.name.span,
             format!("unknown function or shape `{name}`"),
         )
         .label("not in the catalog");
-        let candidates = catalog::all_names().chain(["implicit"]);
-        d = match did_you_mean(name, candidates) {
+        let candidates: Vec<String> = catalog::all_names()
+            .chain(["implicit"])
+            .map(str::to_string)
+            .chain(self.fns.keys().cloned())
+            .collect();
+        d = match did_you_mean(name, candidates.iter().map(String::as_str)) {
             Some(s) => d.help(format!("did you mean `{s}`?")),
             None => d.note("`sdfc check --list` prints the primitives and operators"),
         };
@@ -188,6 +221,10 @@ impl Checker<'_> {
     }
 
     pub(super) fn material_ref(&mut self, id: &Ident) -> Option<u32> {
+        if !self.visible(&id.name) {
+            self.defined_after_fn(id);
+            return None;
+        }
         if let Some(i) = self.materials.iter().position(|m| m.name == id.name) {
             return Some(i as u32);
         }

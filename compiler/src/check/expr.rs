@@ -2,7 +2,7 @@
 //! where annotations apply (`call.rs` has calls, `implicit.rs` the `implicit` bodies).
 
 use super::params::{Sym, SymKind};
-use super::{Binding, Checker, Dim, MAX_DEPTH, Value};
+use super::{Binding, Checker, Dim, MAX_DEPTH, Value, functions};
 use crate::catalog;
 use crate::diag::{Diagnostic, Span, did_you_mean};
 use crate::scene::{Field, NodeId, binary};
@@ -233,6 +233,12 @@ impl Checker<'_> {
         {
             return Some(Value::Field(Field::Coord(i)));
         }
+        if let Some(v) = self.fn_arg(&id.name) {
+            return Some(v);
+        }
+        if !self.visible(&id.name) {
+            return self.defined_after_fn(id);
+        }
         if let Some((binding, _)) = self.lets.get(&id.name) {
             return match binding {
                 Binding::Value(v) => Some(v.clone()),
@@ -250,7 +256,12 @@ impl Checker<'_> {
         if self.failed.contains(&id.name) {
             return None;
         }
-        let d = if let Some((name, def)) = self.defining.filter(|(n, _)| *n == id.name) {
+        let d = if let Some(f) = self.fns.get(&id.name) {
+            Diagnostic::error(id.span, format!("`{}` is a function", id.name))
+                .label("a function, written without its arguments")
+                .also(f.def.name.span, "defined here")
+                .help(format!("call it: `{}`", functions::signature(f.def)))
+        } else if let Some((name, def)) = self.defining.filter(|(n, _)| *n == id.name) {
             let mut d = Diagnostic::error(id.span, format!("`{name}` refers to itself"))
                 .label("used inside its own definition")
                 .note("definitions cannot be recursive");

@@ -4,6 +4,7 @@
 mod args;
 mod call;
 mod expr;
+mod functions;
 mod implicit;
 mod look;
 mod nodes;
@@ -20,6 +21,7 @@ pub use tracer::TRACE_METHODS;
 
 use crate::diag::{Diagnostic, Span};
 use crate::scene::{Field, Material, Node, NodeId, Scene};
+use crate::source::Sources;
 use crate::syntax::{self, Expr, Item};
 use glam::DVec3;
 use std::collections::HashMap;
@@ -50,6 +52,8 @@ pub struct Checked {
     pub scene: Option<Scene>,
     /// Errors and warnings in source order.
     pub diagnostics: Vec<Diagnostic>,
+    /// The files read (the main one and its imports), for showing the diagnostics.
+    pub sources: Sources,
 }
 
 /// Parses and checks source text.
@@ -62,11 +66,28 @@ pub fn compile(source: &str) -> Checked {
 /// them, for the CPU reference. A value outside a parameter's range is an error; names the
 /// scene does not declare are ignored (see [`unknown_params`]).
 pub fn compile_with(source: &str, values: &HashMap<String, Vec<f64>>) -> Checked {
-    match syntax::parse(source) {
-        Ok(file) => check_with_lines(&file, source, values),
-        Err(d) => Checked {
+    compile_file("<input>", source, values, &syntax::FsLoader)
+}
+
+/// Parses and checks the file `name` (its imports read by `loader`, relative to `name`'s
+/// directory) with parameters at `values` (see [`compile_with`]).
+pub fn compile_file(
+    name: &str,
+    source: &str,
+    values: &HashMap<String, Vec<f64>>,
+    loader: &dyn syntax::Loader,
+) -> Checked {
+    let loaded = syntax::load(name, source, loader);
+    match loaded.file {
+        Some(file) => {
+            let mut checked = check_with_lines(&file, &loaded.sources, values);
+            checked.sources = loaded.sources;
+            checked
+        }
+        None => Checked {
             scene: None,
-            diagnostics: vec![d],
+            diagnostics: loaded.diagnostics,
+            sources: loaded.sources,
         },
     }
 }
@@ -91,23 +112,25 @@ pub fn unknown_params<'v>(
 
 /// Checks a parsed file.
 pub fn check(file: &syntax::File) -> Checked {
-    check_with_lines(file, "", &HashMap::new())
+    check_with_lines(file, &Sources::default(), &HashMap::new())
 }
 
 fn check_with_lines(
     file: &syntax::File,
-    source: &str,
+    sources: &Sources,
     values: &HashMap<String, Vec<f64>>,
 ) -> Checked {
     let mut c = Checker::new(file);
     c.overrides = values.clone();
-    c.line_starts = std::iter::once(0)
-        .chain(source.match_indices('\n').map(|(i, _)| i + 1))
-        .collect();
+    c.line_starts = sources.line_starts();
     let mut roots = Vec::new();
-    for item in &file.items {
+    for (index, item) in file.items.iter().enumerate() {
         c.depth_reported = false;
+        c.item = index;
         match item {
+            Item::Fn(def) => c.fn_definition(def, index),
+            // Spliced in by `syntax::load`; a file checked without loading has none to read.
+            Item::Import { .. } => {}
             Item::Let { name, value } => c.let_binding(name, value),
             Item::Param {
                 name,
@@ -150,6 +173,7 @@ fn check_with_lines(
         }
     };
     c.unused_params();
+    c.unused_fns(sources.files.first().map_or(usize::MAX, |f| f.text.len()));
     if let Some(root) = root {
         c.check_bounded(root);
         c.check_bound(root);
@@ -157,13 +181,21 @@ fn check_with_lines(
         c.check_f32_range(root);
     }
     c.diags.sort_by_key(|d| (d.span.start, d.span.end));
+    // A body's mistake is found at every call: shown once, with the first call.
+    let mut seen = std::collections::HashSet::new();
+    c.diags
+        .retain(|d| seen.insert((d.span, d.message.clone(), d.label.clone())));
     let ok = !c.diags.iter().any(Diagnostic::is_error);
     let diagnostics = std::mem::take(&mut c.diags);
     let scene = match (ok, root) {
         (true, Some(root)) => Some(c.finish(root)),
         _ => None,
     };
-    Checked { scene, diagnostics }
+    Checked {
+        scene,
+        diagnostics,
+        sources: Sources::default(),
+    }
 }
 
 fn file_end(file: &syntax::File) -> usize {
@@ -173,7 +205,10 @@ fn file_end(file: &syntax::File) -> usize {
             Item::Let { value, .. } | Item::Value { value, .. } | Item::Scene(value) => {
                 value.span.end
             }
-            Item::Block { span, .. } | Item::Param { span, .. } => span.end,
+            Item::Block { span, .. } | Item::Param { span, .. } | Item::Import { span, .. } => {
+                span.end
+            }
+            Item::Fn(def) => def.span.end,
         })
         .max()
         .unwrap_or(0)
@@ -255,6 +290,17 @@ pub(crate) struct Checker<'a> {
     param_used: Vec<bool>,
     /// Values asked for parameters instead of their defaults (`compile_with`).
     overrides: HashMap<String, Vec<f64>>,
+    /// Declared functions by name.
+    fns: HashMap<String, functions::FnEntry<'a>>,
+    /// The calls being checked, innermost last.
+    frames: Vec<functions::Frame>,
+    /// The statement index of each `let`, parameter, function and material: a body sees only
+    /// those before its function.
+    item_of: HashMap<String, usize>,
+    /// The statement being checked.
+    item: usize,
+    /// Calls expanded so far.
+    calls: usize,
 }
 
 impl<'a> Checker<'a> {
@@ -265,6 +311,11 @@ impl<'a> Checker<'a> {
             match item {
                 Item::Let { name, .. } | Item::Param { name, .. } => {
                     declared.entry(name.name.clone()).or_insert(name.span);
+                }
+                Item::Fn(def) => {
+                    declared
+                        .entry(def.name.name.clone())
+                        .or_insert(def.name.span);
                 }
                 Item::Block {
                     keyword,
@@ -295,6 +346,11 @@ impl<'a> Checker<'a> {
             param_index: HashMap::new(),
             param_used: Vec::new(),
             overrides: HashMap::new(),
+            fns: HashMap::new(),
+            frames: Vec::new(),
+            item_of: HashMap::new(),
+            item: 0,
+            calls: 0,
         }
     }
 
@@ -305,6 +361,8 @@ impl<'a> Checker<'a> {
             return;
         }
         if self.defined_twice(name) {
+            // Uses of the name find the first definition, or stay quiet.
+            self.failed.insert(name.name.clone());
             return;
         }
         self.defining = Some((&name.name, name.span));
@@ -318,15 +376,21 @@ impl<'a> Checker<'a> {
         };
         self.defining = None;
         self.lets.insert(name.name.clone(), (binding, name.span));
+        self.item_of.insert(name.name.clone(), self.item);
     }
 
     /// Whether `name` was already defined by a `let` or `param` (reported if so).
     fn defined_twice(&mut self, name: &syntax::Ident) -> bool {
-        let first = self.lets.get(&name.name).map(|(_, s)| *s).or_else(|| {
-            self.param_index
-                .get(&name.name)
-                .map(|&i| self.params[i].span)
-        });
+        let first = self
+            .lets
+            .get(&name.name)
+            .map(|(_, s)| *s)
+            .or_else(|| {
+                self.param_index
+                    .get(&name.name)
+                    .map(|&i| self.params[i].span)
+            })
+            .or_else(|| self.fns.get(&name.name).map(|e| e.def.name.span));
         if let Some(first) = first {
             self.diags.push(
                 Diagnostic::error(name.span, format!("`{}` is defined twice", name.name))

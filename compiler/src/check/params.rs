@@ -103,6 +103,7 @@ impl Checker<'_> {
             Some(d) => {
                 self.param_index
                     .insert(name.name.clone(), self.params.len());
+                self.item_of.insert(name.name.clone(), self.item);
                 self.params.push(d);
                 self.param_used.push(false);
             }

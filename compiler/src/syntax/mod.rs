@@ -6,9 +6,16 @@ use pest::iterators::Pair;
 use pest::pratt_parser::{Assoc, Op, PrattParser};
 use std::sync::LazyLock;
 
+mod errors;
 mod hints;
+mod imports;
+mod items;
 mod scan;
-use scan::{bracket_error, check_comments, check_control, check_nesting};
+mod shift;
+use errors::syntax_error;
+pub use imports::{FsLoader, Loader, MapLoader, load};
+use items::item;
+use scan::{check_comments, check_control, check_nesting};
 
 #[derive(pest_derive::Parser)]
 #[grammar = "../../grammar/sdf.pest"]
@@ -76,6 +83,41 @@ pub enum Item {
     },
     /// A shape of the scene.
     Scene(Expr),
+    /// `fn name(params) = body`: a shape or value defined once and used by calls.
+    Fn(FnDef),
+    /// `import "path"`: the definitions of another file.
+    Import {
+        /// The path as written, without its quotes.
+        path: String,
+        /// The quoted path.
+        path_span: Span,
+        /// The whole statement.
+        span: Span,
+    },
+}
+
+/// `fn name(a, b: shape, c = 1) = body`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FnDef {
+    /// The function's name.
+    pub name: Ident,
+    /// Its parameters in order.
+    pub params: Vec<FnParam>,
+    /// What a call stands for.
+    pub body: Expr,
+    /// The whole statement.
+    pub span: Span,
+}
+
+/// One parameter of a `fn`: a name, an optional type (`: shape`) and an optional default.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FnParam {
+    /// The name.
+    pub name: Ident,
+    /// The declared type, as written (`number`, `angle`, `vector`, `color`, `shape`).
+    pub ty: Option<Ident>,
+    /// The value when a call leaves it out.
+    pub default: Option<Expr>,
 }
 
 /// `key value` inside a settings block.
@@ -209,163 +251,14 @@ pub fn parse(source: &str) -> Result<File, Diagnostic> {
     Ok(File { items })
 }
 
-fn syntax_error(source: &str, e: pest::error::Error<Rule>) -> Diagnostic {
-    use pest::error::{ErrorVariant, InputLocation};
-    let span = match e.location {
-        InputLocation::Pos(p) => Span::new(p, p),
-        InputLocation::Span((a, b)) => Span::new(a, b),
-    };
-    if let Some(d) = bracket_error(source, span.start) {
-        return d;
-    }
-    let (message, label) = match &e.variant {
-        ErrorVariant::ParsingError { positives, .. } => {
-            let mut names: Vec<&str> = positives.iter().map(|r| rule_name(*r)).collect();
-            names.sort();
-            names.dedup();
-            // Colours, names and numbers are expressions; units are noise after a number.
-            if names.contains(&"an expression") {
-                names.retain(|n| !["a colour", "a name", "a number"].contains(n));
-            }
-            names.retain(|n| *n != "a unit");
-            let expected = match names.as_slice() {
-                [] => "something else".to_string(),
-                [one] => one.to_string(),
-                [init @ .., last] => format!("{}, or {}", init.join(", "), last),
-            };
-            ("syntax error".to_string(), format!("expected {expected}"))
-        }
-        ErrorVariant::CustomError { message } => (message.clone(), String::new()),
-    };
-    if let Some(d) = hints::meant(source, span) {
-        return d;
-    }
-    let mut d = Diagnostic::error(span, message).label(label);
-    if source[span.start..].starts_with(')') && vector_of_two(source, span.start) {
-        d = d.help("a vector has three components: `(x, y, z)`");
-    }
-    d
-}
-
-/// Whether the parenthesis closing at `close` holds exactly one top-level comma.
-fn vector_of_two(source: &str, close: usize) -> bool {
-    let mut depth = 0;
-    let mut commas = 0;
-    for &b in source.as_bytes()[..close].iter().rev() {
-        match b {
-            b')' | b'}' => depth += 1,
-            b'(' | b'{' if depth == 0 => return commas == 1,
-            b'(' | b'{' => depth -= 1,
-            b',' if depth == 0 => commas += 1,
-            _ => {}
-        }
-    }
-    false
-}
-
-/// Words a user understands for the grammar's rules.
-fn rule_name(rule: Rule) -> &'static str {
-    match rule {
-        Rule::EOI => "end of file",
-        Rule::ident | Rule::name => "a name",
-        Rule::number | Rule::quantity => "a number",
-        Rule::unit => "a unit",
-        Rule::color => "a colour",
-        Rule::group | Rule::call | Rule::neg | Rule::expr | Rule::arg => "an expression",
-        Rule::add | Rule::sub | Rule::mul | Rule::div | Rule::pow => "an operator",
-        Rule::pipe | Rule::tag | Rule::annotation | Rule::at | Rule::at_kw => {
-            "`|>`, `:`, `@`, `at`"
-        }
-        Rule::args | Rule::arg_list => "`(`",
-        Rule::block => "`{`",
-        Rule::settings_body => "`{`",
-        Rule::setting => "a setting",
-        Rule::in_kw => "`in`",
-        Rule::let_stmt
-        | Rule::param_stmt
-        | Rule::param_kw
-        | Rule::block_stmt
-        | Rule::block_kw
-        | Rule::value_stmt
-        | Rule::value_kw
-        | Rule::scene_expr
-        | Rule::file => "a statement",
-        Rule::keyword => "a keyword",
-        Rule::WHITESPACE | Rule::COMMENT => "a space",
-        Rule::statement => "a statement",
-        Rule::term | Rule::infix | Rule::prefix | Rule::postfix | Rule::primary => "an expression",
-        Rule::ident_char => "a letter or digit",
-    }
-}
-
-fn ident(p: Pair<Rule>) -> Ident {
+pub(super) fn ident(p: Pair<Rule>) -> Ident {
     Ident {
         name: p.as_str().to_string(),
         span: p.as_span().into(),
     }
 }
 
-fn item(p: Pair<Rule>) -> Item {
-    let span: Span = p.as_span().into();
-    match p.as_rule() {
-        Rule::let_stmt => {
-            let mut it = p.into_inner();
-            let name = ident(it.next().expect("let name"));
-            let value = expr(it.next().expect("let value"));
-            Item::Let { name, value }
-        }
-        Rule::param_stmt => {
-            let mut it = p.into_inner().filter(|q| q.as_rule() != Rule::in_kw);
-            let _keyword = it.next();
-            let name = ident(it.next().expect("param name"));
-            let value = expr(it.next().expect("param value"));
-            let range = it
-                .next()
-                .map(|lo| Box::new((expr(lo), expr(it.next().expect("range end")))));
-            Item::Param {
-                name,
-                value,
-                range,
-                span,
-            }
-        }
-        Rule::block_stmt => {
-            let mut keyword = None;
-            let mut kind = None;
-            let mut settings = Vec::new();
-            for q in p.into_inner() {
-                match q.as_rule() {
-                    Rule::block_kw => keyword = Some(ident(q)),
-                    Rule::ident => kind = Some(ident(q)),
-                    _ => settings = q.into_inner().map(setting).collect(),
-                }
-            }
-            Item::Block {
-                keyword: keyword.expect("block keyword"),
-                kind,
-                settings,
-                span,
-            }
-        }
-        Rule::value_stmt => {
-            let mut it = p.into_inner();
-            let keyword = ident(it.next().expect("value keyword"));
-            let value = expr(it.next().expect("value"));
-            Item::Value { keyword, value }
-        }
-        _ => Item::Scene(expr(p.into_inner().next().expect("scene expression"))),
-    }
-}
-
-fn setting(p: Pair<Rule>) -> Setting {
-    let mut it = p.into_inner();
-    Setting {
-        key: ident(it.next().expect("setting key")),
-        value: expr(it.next().expect("setting value")),
-    }
-}
-
-fn expr(p: Pair<Rule>) -> Expr {
+pub(super) fn expr(p: Pair<Rule>) -> Expr {
     PRATT
         .map_primary(primary)
         .map_prefix(|op, rhs| Expr {

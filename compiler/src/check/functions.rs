@@ -1,0 +1,501 @@
+//! User-defined functions: `fn name(params) = body`. A call binds its arguments (positional,
+//! named, defaults; typed by annotation or default) and checks the body in a scope that sees
+//! the arguments and what was defined before the `fn` — an expansion, so λ, bounds and
+//! materials flow through a call exactly as through `let`. Errors in a body are shown at the
+//! body with the call beside them; recursion is refused.
+
+use super::params::SymKind;
+use super::{Checker, Dim, Value};
+use crate::diag::{Diagnostic, Span, did_you_mean};
+use crate::scene::NodeId;
+use crate::syntax::{Call, Expr, ExprKind, FnDef, FnParam};
+use std::collections::HashMap;
+
+/// Most function calls one file's check may expand (a chain of functions each calling the
+/// next twice doubles the work per level).
+pub const MAX_CALLS: usize = 100_000;
+
+/// Most calls of a chain a diagnostic in a body shows.
+const MAX_CALL_LABELS: usize = 3;
+
+/// The types a parameter may declare.
+const TYPES: &[&str] = &["number", "angle", "vector", "color", "shape"];
+
+/// A declared function.
+pub(super) struct FnEntry<'a> {
+    pub def: &'a FnDef,
+    /// The index of its statement: its body sees what was defined before it.
+    pub item: usize,
+    pub used: bool,
+}
+
+/// A call being checked: its arguments by name and what its body may see.
+pub(super) struct Frame {
+    pub args: HashMap<String, Value>,
+    /// Statements before this index are visible.
+    pub horizon: usize,
+    pub name: String,
+}
+
+impl<'a> Checker<'a> {
+    /// `fn name(params) = body`: recorded; the body is checked at each call.
+    pub(super) fn fn_definition(&mut self, def: &'a FnDef, item: usize) {
+        if let Some(d) = self.reserved_name(&def.name) {
+            self.diags.push(d);
+            self.failed.insert(def.name.name.clone());
+            return;
+        }
+        if self.defined_twice(&def.name) {
+            return;
+        }
+        let mut ok = true;
+        for (i, p) in def.params.iter().enumerate() {
+            if let Some(d) = self.reserved_name(&p.name) {
+                self.diags.push(d);
+                ok = false;
+            }
+            if let Some(first) = def.params[..i].iter().find(|q| q.name.name == p.name.name) {
+                self.diags.push(
+                    Diagnostic::error(
+                        p.name.span,
+                        format!(
+                            "`{}` has two parameters named `{}`",
+                            def.name.name, p.name.name
+                        ),
+                    )
+                    .label("second parameter")
+                    .also(first.name.span, "first parameter"),
+                );
+                ok = false;
+            }
+            if let Some(t) = &p.ty
+                && !TYPES.contains(&t.name.as_str())
+                && t.name != "colour"
+            {
+                let mut d = Diagnostic::error(t.span, format!("unknown type `{}`", t.name))
+                    .label("not a type");
+                d = match did_you_mean(&t.name, TYPES.iter().copied()) {
+                    Some(s) => d.help(format!("did you mean `{s}`?")),
+                    None => d.note("the types are number, angle, vector, color and shape"),
+                };
+                self.diags.push(d);
+                ok = false;
+            }
+        }
+        if !ok {
+            self.failed.insert(def.name.name.clone());
+            return;
+        }
+        self.item_of.insert(def.name.name.clone(), item);
+        self.fns.insert(
+            def.name.name.clone(),
+            FnEntry {
+                def,
+                item,
+                used: false,
+            },
+        );
+    }
+
+    /// A call of a user-defined function; `piped` is its first argument (`s |> f(…)`).
+    pub(super) fn fn_call(&mut self, call: &Call, piped: Option<NodeId>) -> Option<Value> {
+        let name = call.name.name.as_str();
+        let (def, item) = {
+            let entry = self.fns.get_mut(name)?;
+            entry.used = true;
+            (entry.def, entry.item)
+        };
+        if self.frames.iter().any(|f| f.name == name) {
+            let chain: Vec<&str> = self
+                .frames
+                .iter()
+                .map(|f| f.name.as_str())
+                .skip_while(|n| *n != name)
+                .chain([name])
+                .collect();
+            self.diags.push(
+                Diagnostic::error(call.name.span, format!("`{name}` calls itself"))
+                    .label("a recursive call")
+                    .also(def.name.span, "defined here")
+                    .note(format!("the chain: {}", chain.join(" → ")))
+                    .note("a call is expanded where it is written, so a function cannot recurse; write the levels out, or use `repeat`"),
+            );
+            return None;
+        }
+        if let Some(block) = &call.block {
+            let span = block.first().map_or(call.span, |e| e.span);
+            self.diags.push(
+                Diagnostic::error(span, format!("`{name}` is a function and takes no block"))
+                    .label("unexpected block")
+                    .also(def.name.span, "defined here")
+                    .help("pass shapes as arguments: `fn f(s: shape) = …` and `f(sphere(1))`"),
+            );
+            return None;
+        }
+        self.calls += 1;
+        if self.calls > MAX_CALLS {
+            if self.calls == MAX_CALLS + 1 {
+                self.diags.push(
+                    Diagnostic::error(call.span, "too many function calls")
+                        .label(format!("more than {MAX_CALLS} calls expanded"))
+                        .note("each call is expanded where it is written; functions that call others several times grow exponentially"),
+                );
+            }
+            return None;
+        }
+        let given = self.fn_args(def, call, piped)?;
+        // The body's scope: the arguments, then defaults in order (each sees the earlier ones).
+        let saved_defining = self.defining.take();
+        self.frames.push(Frame {
+            args: HashMap::new(),
+            horizon: item,
+            name: name.to_string(),
+        });
+        let mut ok = true;
+        for (p, g) in def.params.iter().zip(given) {
+            let v = match g {
+                Some(v) => Some(v),
+                None => {
+                    let default = p.default.as_ref().expect("checked: missing ones reported");
+                    self.in_body(call, |c| c.value(default))
+                }
+            };
+            match v {
+                Some(v) => {
+                    let frame = self.frames.last_mut().expect("pushed");
+                    frame.args.insert(p.name.name.clone(), v);
+                }
+                None => ok = false,
+            }
+        }
+        let out = if ok {
+            self.in_body(call, |c| c.value(&def.body))
+        } else {
+            None
+        };
+        self.frames.pop();
+        self.defining = saved_defining;
+        if let Some(Value::Shape(n)) = out {
+            self.nodes[n].name.get_or_insert_with(|| name.to_string());
+        }
+        out
+    }
+
+    /// Runs `f` (checking part of a body for the call `call`): its diagnostics point into the
+    /// body and show the call beside them (the innermost [`MAX_CALL_LABELS`] calls of a
+    /// chain). The same message for later calls is dropped at the end of the check.
+    fn in_body(
+        &mut self,
+        call: &Call,
+        f: impl FnOnce(&mut Self) -> Option<Value>,
+    ) -> Option<Value> {
+        let start = self.diags.len();
+        let v = f(self);
+        let label = format!("in this call of `{}`", call.name.name);
+        for d in &mut self.diags[start..] {
+            let calls = d
+                .secondary
+                .iter()
+                .filter(|(_, l)| l.starts_with("in this call of"))
+                .count();
+            if !call.span.contains(d.span) && calls < MAX_CALL_LABELS {
+                d.secondary.push((call.span, label.clone()));
+            }
+        }
+        v
+    }
+
+    /// The arguments of a call by parameter (none where the default applies), each checked in
+    /// the caller's scope and against the parameter's type; every problem reported.
+    fn fn_args(
+        &mut self,
+        def: &FnDef,
+        call: &Call,
+        piped: Option<NodeId>,
+    ) -> Option<Vec<Option<Value>>> {
+        let name = &def.name.name;
+        let n = def.params.len();
+        let mut slots: Vec<Option<(Value, Span)>> = vec![None; n];
+        let mut ok = true;
+        let mut next = 0;
+        if let Some(s) = piped {
+            if n == 0 {
+                self.diags.push(
+                    Diagnostic::error(
+                        call.span,
+                        format!("`{name}` takes no arguments, so no shape from `|>`"),
+                    )
+                    .label("a shape piped in")
+                    .also(def.name.span, "defined here"),
+                );
+                return None;
+            }
+            slots[0] = Some((Value::Shape(s), call.span));
+            next = 1;
+        }
+        let mut seen_named = false;
+        let mut extra_reported = false;
+        // A misspelt name is likely the missing argument: not reported twice.
+        let mut unknown_named = false;
+        for arg in &call.args {
+            let value = self.value(&arg.value);
+            let index = match &arg.name {
+                Some(a) => {
+                    seen_named = true;
+                    match def.params.iter().position(|p| p.name.name == a.name) {
+                        Some(k) => k,
+                        None => {
+                            let mut d = Diagnostic::error(
+                                a.span,
+                                format!("`{name}` has no parameter `{}`", a.name),
+                            )
+                            .label("unknown parameter")
+                            .also(def.name.span, "defined here");
+                            let names = def.params.iter().map(|p| p.name.name.as_str());
+                            d = match did_you_mean(&a.name, names) {
+                                Some(s) => d.help(format!("did you mean `{s}`?")),
+                                None => d.help(format!("the parameters are: {}", signature(def))),
+                            };
+                            self.diags.push(d);
+                            ok = false;
+                            unknown_named = true;
+                            continue;
+                        }
+                    }
+                }
+                None if seen_named => {
+                    self.diags.push(
+                        Diagnostic::error(arg.value.span, "positional argument after a named one")
+                            .label("give this one a name too")
+                            .help(signature(def)),
+                    );
+                    ok = false;
+                    continue;
+                }
+                None if next >= n => {
+                    if !extra_reported {
+                        let s = if n == 1 { "" } else { "s" };
+                        self.diags.push(
+                            Diagnostic::error(
+                                arg.value.span,
+                                format!("`{name}` takes {n} argument{s}, but more were given"),
+                            )
+                            .label("unexpected argument")
+                            .also(def.name.span, "defined here")
+                            .help(signature(def)),
+                        );
+                        extra_reported = true;
+                    }
+                    ok = false;
+                    continue;
+                }
+                None => {
+                    next += 1;
+                    next - 1
+                }
+            };
+            let param = &def.params[index];
+            if let Some((_, first)) = &slots[index] {
+                self.diags.push(
+                    Diagnostic::error(
+                        arg.value.span,
+                        format!("`{}` is given twice", param.name.name),
+                    )
+                    .label("second value")
+                    .also(*first, "first value"),
+                );
+                ok = false;
+                continue;
+            }
+            let Some(value) = value else {
+                ok = false;
+                continue;
+            };
+            if let Some(want) = self.param_type(param)
+                && !fits(want, &value)
+            {
+                self.diags.push(
+                    Diagnostic::error(
+                        arg.value.span,
+                        format!("`{}` of `{name}` takes {}", param.name.name, article(want)),
+                    )
+                    .label(format!("this is {}", value.describe()))
+                    .also(
+                        param.name.span,
+                        format!("declared {}", declared_how(param, want)),
+                    ),
+                );
+                ok = false;
+            }
+            slots[index] = Some((value, arg.value.span));
+        }
+        for (p, slot) in def.params.iter().zip(&slots) {
+            if slot.is_none() && p.default.is_none() && !unknown_named {
+                self.diags.push(
+                    Diagnostic::error(
+                        call.span,
+                        format!("`{name}` needs its argument `{}`", p.name.name),
+                    )
+                    .label("missing argument")
+                    .also(p.name.span, "a parameter without a default")
+                    .help(signature(def)),
+                );
+                ok = false;
+            }
+        }
+        ok.then(|| slots.into_iter().map(|s| s.map(|(v, _)| v)).collect())
+    }
+
+    /// A parameter's type: declared, or its default's when that is written as a literal.
+    fn param_type(&self, p: &FnParam) -> Option<&'static str> {
+        match &p.ty {
+            Some(t) => TYPES
+                .iter()
+                .copied()
+                .find(|n| *n == t.name || (t.name == "colour" && *n == "color")),
+            None => p.default.as_ref().and_then(literal_type),
+        }
+    }
+
+    /// Whether `name` (a `let`, parameter, function or material) may be used here: inside a
+    /// body, only what was defined before the function.
+    pub(super) fn visible(&self, name: &str) -> bool {
+        match self.frames.last() {
+            None => true,
+            Some(f) => self.item_of.get(name).is_none_or(|&i| i < f.horizon),
+        }
+    }
+
+    /// Whether a call of `name` is being checked (a call of it again recurses).
+    pub(super) fn in_frame(&self, name: &str) -> bool {
+        self.frames.iter().any(|f| f.name == name)
+    }
+
+    /// The error for a body's use of a name defined after its function.
+    pub(super) fn defined_after_fn(&mut self, id: &crate::syntax::Ident) -> Option<Value> {
+        let frame = self
+            .frames
+            .last()
+            .map(|f| f.name.clone())
+            .unwrap_or_default();
+        let def = self.fns.get(&frame).map(|e| e.def.name.span);
+        let mut d = Diagnostic::error(
+            id.span,
+            format!("`{}` is defined after the function `{frame}`", id.name),
+        )
+        .label("not visible in this body");
+        if let Some(def) = def {
+            d = d.also(def, "the function");
+        }
+        if let Some(at) = self.declared.get(&id.name) {
+            d = d.also(*at, "defined here");
+        }
+        self.diags.push(
+            d.help("a body sees its arguments and what is defined above the `fn`; move the definition up or pass it as an argument"),
+        );
+        None
+    }
+
+    /// An argument of the innermost call being checked, by name.
+    pub(super) fn fn_arg(&self, name: &str) -> Option<Value> {
+        self.frames.last()?.args.get(name).cloned()
+    }
+
+    /// Functions of the main file never called: a warning (their bodies were never checked).
+    pub(super) fn unused_fns(&mut self, main_len: usize) {
+        if self.diags.iter().any(Diagnostic::is_error) {
+            // A call with a mistake may be the one meant.
+            return;
+        }
+        let mut unused: Vec<&FnDef> = self
+            .fns
+            .values()
+            .filter(|e| !e.used && e.def.span.start <= main_len)
+            .map(|e| e.def)
+            .collect();
+        unused.sort_by_key(|d| d.span.start);
+        for def in unused {
+            self.diags.push(
+                Diagnostic::warning(
+                    def.name.span,
+                    format!("`{}` is never called", def.name.name),
+                )
+                .label("unused function")
+                .note("a function's body is checked where it is called"),
+            );
+        }
+    }
+}
+
+/// The type of a default written as a literal: `1`, `30deg`, `(0, 1, 0)`, `#fff`, or a shape
+/// (a primitive or operator call, or a shape moved, tagged, piped or annotated).
+fn literal_type(e: &Expr) -> Option<&'static str> {
+    match &e.kind {
+        ExprKind::Number { unit: None, .. } => Some("number"),
+        ExprKind::Number { unit: Some(_), .. } => Some("angle"),
+        ExprKind::Color(_) => Some("color"),
+        ExprKind::Vector(_) => Some("vector"),
+        ExprKind::Neg(a) => literal_type(a),
+        ExprKind::Call(c)
+            if crate::catalog::primitive(&c.name.name).is_some()
+                || (crate::catalog::operator(&c.name.name).is_some() && c.block.is_some()) =>
+        {
+            Some("shape")
+        }
+        ExprKind::At(..) | ExprKind::Tag(..) | ExprKind::Annotation(..) => Some("shape"),
+        _ => None,
+    }
+}
+
+/// Whether `v` is of the type `ty` names.
+fn fits(ty: &str, v: &Value) -> bool {
+    match (ty, v) {
+        ("number", Value::Num(_, Dim::None) | Value::Field(_)) => true,
+        ("angle", Value::Num(_, Dim::Angle)) => true,
+        ("vector", Value::Vec3(_)) => true,
+        ("color", Value::Color(_)) => true,
+        ("shape", Value::Shape(_)) => true,
+        (_, Value::Param(s)) => matches!(
+            (ty, s.kind),
+            ("number", SymKind::Num(Dim::None))
+                | ("angle", SymKind::Num(Dim::Angle))
+                | ("vector", SymKind::Vec3)
+                | ("color", SymKind::Color)
+        ),
+        _ => false,
+    }
+}
+
+fn article(ty: &str) -> String {
+    match ty {
+        "angle" => "an angle".into(),
+        "shape" => "a shape".into(),
+        _ => format!("a {ty}"),
+    }
+}
+
+fn declared_how(p: &FnParam, ty: &str) -> String {
+    match &p.ty {
+        Some(_) => format!("`{}: {ty}` here", p.name.name),
+        None => format!("{} by its default", article(ty)),
+    }
+}
+
+/// `pillar(h, r = 0.2)` for messages.
+pub(super) fn signature(def: &FnDef) -> String {
+    let ps: Vec<String> = def
+        .params
+        .iter()
+        .map(|p| {
+            let mut s = p.name.name.clone();
+            if let Some(t) = &p.ty {
+                s += &format!(": {}", t.name);
+            }
+            if p.default.is_some() {
+                s += " = …";
+            }
+            s
+        })
+        .collect();
+    format!("{}({})", def.name.name, ps.join(", "))
+}
