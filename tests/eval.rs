@@ -274,3 +274,68 @@ fn noise_is_periodic_and_defined_everywhere() {
         assert!((0.0..=1.0).contains(&v), "{q}: {v}");
     }
 }
+
+/// `repeat_polar` is the union of its copies: its field (own sector, window or every copy)
+/// equals the smallest of the shape's field at the point turned back by each copy's angle, for
+/// random shapes placed off the axis, across it and turned (so every plan is taken).
+#[test]
+fn polar_repeat_is_the_union_of_its_copies() {
+    use sdfc_compiler::catalog::polar::{self, PolarPlan};
+    let shapes = [
+        "sphere(0.3)",
+        "box((0.4, 0.2, 0.1))",
+        "torus(0.3, 0.08)",
+        "cone(0.3, 0.5, 0.1)",
+        "capsule(0.6, 0.1) |> rotate(x, 70deg)",
+        "octahedron(0.4)",
+    ];
+    let mut rng = sdfc_tests::Rng::new(11);
+    let mut plans = [0usize; 3];
+    let mut compared = 0;
+    for case in 0..120 {
+        let shape = shapes[case % shapes.len()];
+        let n = 1 + rng.below(12);
+        let r = match case % 4 {
+            0 => 0.0,
+            _ => rng.range(0.1, 2.0),
+        };
+        let (y, z) = (rng.range(-0.5, 0.5), [0.0, rng.range(-0.4, 0.4)][case % 2]);
+        let source = format!("repeat_polar({n}) {{ {shape} at ({r:.4}, {y:.4}, {z:.4}) }}");
+        let scene = sdfc_compiler::check::compile(&source)
+            .scene
+            .unwrap_or_else(|| panic!("{source} checks"));
+        let sdfc_compiler::scene::NodeKind::Operator { ctx, children, .. } =
+            &scene.nodes[scene.root].kind
+        else {
+            panic!("{source}: the root is the operator");
+        };
+        plans[match polar::plan(ctx).1 {
+            PolarPlan::Own => 0,
+            PolarPlan::Window(_) => 1,
+            PolarPlan::All => 2,
+        }] += 1;
+        let alpha = std::f64::consts::TAU / n as f64;
+        for _ in 0..200 {
+            let p = DVec3::new(
+                rng.range(-3.0, 3.0),
+                rng.range(-1.0, 1.0),
+                rng.range(-3.0, 3.0),
+            );
+            let copies = (0..n)
+                .map(|k| {
+                    let (s, c) = (k as f64 * alpha).sin_cos();
+                    let q = DVec3::new(p.x * c + p.z * s, p.y, -p.x * s + p.z * c);
+                    eval::node(&scene, children[0], q).d
+                })
+                .fold(f64::INFINITY, f64::min);
+            let field = eval::distance(&scene, p);
+            assert!(
+                (field - copies).abs() < 1e-9,
+                "{source} at {p}: {field}, the copies {copies}"
+            );
+            compared += 1;
+        }
+    }
+    assert!(plans.iter().all(|&k| k > 5), "plans taken: {plans:?}");
+    assert_eq!(compared, 24_000);
+}

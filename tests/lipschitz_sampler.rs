@@ -4,6 +4,7 @@
 #![allow(dead_code)]
 
 use glam::DVec3;
+use sdfc_compiler::catalog::polar;
 use sdfc_compiler::catalog::repeat::{AxisPlan, Plan};
 use sdfc_compiler::catalog::{PRIMITIVES, Param, Ty};
 use sdfc_compiler::eval;
@@ -264,7 +265,7 @@ pub(crate) fn exact(scene: &Scene, id: NodeId) -> bool {
         NodeKind::Implicit { .. } => false,
         NodeKind::Operator { op, ctx, children } => {
             let keeps = match op.name {
-                "union" | "translate" | "rotate" | "round" | "repeat" => true,
+                "union" | "translate" | "rotate" | "round" | "repeat" | "repeat_polar" => true,
                 "scale" => ctx.vec(0).min_element() == ctx.vec(0).max_element(),
                 _ => false,
             };
@@ -282,6 +283,10 @@ pub(crate) fn steps_allowed(scene: &Scene, id: NodeId) -> bool {
         NodeKind::Operator { op, ctx, children } if op.name == "repeat" => {
             let plan = Plan::new(ctx);
             let several = plan.axes.iter().any(|a| matches!(a, AxisPlan::Window(_)));
+            several && !exact(scene, children[0])
+        }
+        NodeKind::Operator { op, ctx, children } if op.name == "repeat_polar" => {
+            let several = matches!(polar::plan(ctx).1, polar::PolarPlan::Window(_));
             several && !exact(scene, children[0])
         }
         _ => false,

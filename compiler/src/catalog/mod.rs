@@ -6,6 +6,7 @@
 mod bound;
 mod math;
 pub mod operators;
+pub mod polar;
 pub mod primitives;
 pub mod prune;
 pub mod repeat;

@@ -493,4 +493,5 @@ pub static OPERATORS: &[Operator] = &[
             child(0, p - p.clamp(-h, h))
         },
     },
+    super::polar::REPEAT_POLAR,
 ];

@@ -90,12 +90,18 @@ impl Checker<'_> {
         let rules =
             self.rules_over_ranges(&ctx, span, name, &|c| ranges::Rules::operator(op, c))?;
         let (lambda, bound) = (rules.lambda, rules.bound);
-        let copies = if name == "repeat" {
-            let copies = crate::catalog::repeat::Plan::new(&ctx).copies();
-            self.check_repeat_copies(&ctx, copies, span);
-            copies
-        } else {
-            1.0
+        let copies = match name {
+            "repeat" => {
+                let copies = crate::catalog::repeat::Plan::new(&ctx).copies();
+                self.check_repeat_copies(&ctx, copies, span);
+                copies
+            }
+            "repeat_polar" => {
+                let copies = crate::catalog::polar::copies(&ctx);
+                self.check_polar_copies(copies, span);
+                copies
+            }
+            _ => 1.0,
         };
         let each: f64 = children.iter().map(|&c| self.nodes[c].evaluations).sum();
         let evaluations = each * copies;
@@ -150,6 +156,20 @@ impl Checker<'_> {
                     ))
                     .note(format!("at most {} copies are evaluated per point", crate::catalog::repeat::MAX_COPIES))
                     .help("use a larger spacing, or a smaller shape"),
+            );
+        }
+    }
+
+    /// A `repeat_polar` whose shape spans too many sectors, or surrounds the axis with more
+    /// copies than one evaluation may look at: an error.
+    fn check_polar_copies(&mut self, copies: f64, span: Span) {
+        let most = crate::catalog::repeat::MAX_COPIES;
+        if copies > most as f64 {
+            self.diags.push(
+                Diagnostic::error(span, "the turned shape spans too many sectors")
+                    .label(format!("each evaluation would look at {copies:.0} copies"))
+                    .note(format!("at most {most} copies are evaluated per point; a shape around the y axis needs every copy"))
+                    .help("use fewer copies, or move the shape away from the axis (`at (r, 0, 0)`)"),
             );
         }
     }
