@@ -3,7 +3,7 @@
 
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngSeed};
-use sdfc_compiler::{check, diag};
+use sdfc_compiler::{check, diag, syntax};
 
 /// Inputs per property; the totals are stated in the issue notes.
 const CASES: u32 = 20_000;
@@ -17,10 +17,29 @@ fn config(seed: u64) -> Config {
     }
 }
 
+/// The virtual file system the fuzzed sources import from: a library, a file in a cycle with
+/// it, one with a syntax error, one with a scene in it (the standard library is built in).
+fn files() -> syntax::MapLoader {
+    syntax::MapLoader(
+        [
+            (
+                "lib.sdf",
+                "fn pillar(h, r = 0.2) = cylinder(r, h)\nlet w = 2\nmaterial gold { color #d4af37 }\nimport \"cyc.sdf\"\n",
+            ),
+            ("cyc.sdf", "import \"lib.sdf\"\nfn ring(s: shape, n = 4) = repeat_polar(n) { s at (1, 0, 0) }\n"),
+            ("bad.sdf", "fn broken(a) = union { sphere(a)\n"),
+            ("scene.sdf", "sphere(1)\ncamera { eye (0, 0, -3) }\n"),
+        ]
+        .into_iter()
+        .map(|(p, t)| (std::path::PathBuf::from(p), t.to_string()))
+        .collect(),
+    )
+}
+
 /// Compiles and renders diagnostics; a panic anywhere fails the property.
 fn front_end(source: &str) {
-    let checked = check::compile(source);
-    let text = diag::render(&checked.diagnostics, "fuzz.sdf", source);
+    let checked = check::compile_file("fuzz.sdf", source, &Default::default(), &files());
+    let text = diag::render_sources(&checked.diagnostics, &checked.sources, false);
     assert_eq!(
         checked.scene.is_none(),
         checked.diagnostics.iter().any(|d| d.is_error())
@@ -110,6 +129,26 @@ const TOKENS: &[&str] = &[
     "-1e300",
     "64",
     "65",
+    "fn",
+    "import",
+    "\"lib.sdf\"",
+    "\"cyc.sdf\"",
+    "\"bad.sdf\"",
+    "\"scene.sdf\"",
+    "\"std/gears.sdf\"",
+    "\"missing.sdf\"",
+    "pillar",
+    "ring",
+    "gear",
+    "f",
+    "f(1)",
+    "fn f(a, b = 1) = sphere(a)",
+    "fn g(s: shape) = s",
+    "h",
+    ": shape",
+    ": number",
+    "repeat_polar",
+    "w",
 ];
 
 proptest! {

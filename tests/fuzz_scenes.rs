@@ -120,6 +120,24 @@ fn scene(seed: u64) -> String {
             );
         }
         (lets, format!("s{levels}"))
+    } else if r.below(3) == 0 {
+        // Functions: the shape as a body, called through others (a shape argument, a
+        // default and a named argument), and the standard library's.
+        let defs = format!(
+            "import \"std/gears.sdf\"\nfn body() = {}\nfn pair(s: shape, d = 1.5) = union {{ s  s at (d, 0, 0) }}\nfn ring(s: shape, n) = repeat_polar(n) {{ s at ({}, 0, 0) }}\n",
+            shape(&mut r, depth),
+            number(&mut r, Ty::Length)
+        );
+        let call = match r.below(3) {
+            0 => format!("pair(body(), d = {})", number(&mut r, Ty::Number)),
+            1 => format!("ring(pair(body()), {})", 1 + r.below(9)),
+            _ => format!(
+                "union {{ body()  gear(teeth = {}, radius = {}) }}",
+                1 + r.below(40),
+                number(&mut r, Ty::Positive)
+            ),
+        };
+        (defs, call)
     } else {
         (String::new(), shape(&mut r, depth))
     };

@@ -99,6 +99,14 @@ impl Checker<'_> {
             "repeat_polar" => {
                 let copies = crate::catalog::polar::copies(&ctx);
                 self.check_polar_copies(copies, span);
+                if copies > 4.0 && !ctx.child_bound[0].is_finite() {
+                    self.diags.push(
+                        Diagnostic::warning(span, format!("every one of the {copies:.0} copies is evaluated at every point"))
+                            .label("the shape's bound is not known")
+                            .note("with a bounded shape only the own sector, or the few copies that can be nearest, are evaluated; a smooth blend, `round` or `onion` of a shape whose field is not a distance has no bound")
+                            .help("use `union` instead of a smooth blend inside the repeated shape"),
+                    );
+                }
                 copies
             }
             _ => 1.0,

@@ -13,7 +13,7 @@ mod items;
 mod scan;
 mod shift;
 use errors::syntax_error;
-pub use imports::{FsLoader, Loader, MapLoader, load};
+pub use imports::{FsLoader, Loader, MapLoader, STD, load};
 use items::item;
 use scan::{check_comments, check_control, check_nesting};
 
