@@ -88,6 +88,26 @@ pub fn load_scene_with(
     Some((sources, scene))
 }
 
+/// The files on disk `path` imports (transitively, as far as they can be read and parsed;
+/// the standard library is built in): what `--watch` and `sdfc view` follow besides it.
+pub fn imported_files(path: &Path) -> Vec<std::path::PathBuf> {
+    if path == Path::new("-") {
+        return Vec::new();
+    }
+    let Ok((name, source)) = read_source(path) else {
+        return Vec::new();
+    };
+    let loaded = sdfc_compiler::syntax::load(&name, &source, &sdfc_compiler::syntax::FsLoader);
+    loaded
+        .sources
+        .files
+        .iter()
+        .skip(1)
+        .filter(|f| !sdfc_compiler::syntax::STD.iter().any(|(n, _)| *n == f.name))
+        .map(|f| std::path::PathBuf::from(&f.name))
+        .collect()
+}
+
 /// Checks the file `name` (text `source`) with its imports read from disk relative to it.
 pub fn compile(
     name: &str,

@@ -114,7 +114,7 @@ pub fn run(args: ViewArgs) -> i32 {
         saved: 0,
         script,
         broken: false,
-        _watcher: watcher,
+        watcher,
     };
     if let Err(e) = event_loop.run_app(&mut app) {
         say!("error: the window's event loop failed: {e}");
@@ -166,7 +166,7 @@ pub(crate) struct App {
     pub(crate) script: VecDeque<Step>,
     /// Whether the file on disk has errors (the picture is the last good one).
     pub(crate) broken: bool,
-    pub(crate) _watcher: notify::RecommendedWatcher,
+    pub(crate) watcher: crate::view_events::SceneWatcher,
 }
 
 impl App {
@@ -430,7 +430,9 @@ impl App {
             return;
         };
         let started = Instant::now();
-        match load(&self.args) {
+        let loaded = load(&self.args);
+        self.watcher.follow(&self.args.file);
+        match loaded {
             Some((scene, options)) => match live.replace(scene, options) {
                 Ok(()) => {
                     self.broken = false;

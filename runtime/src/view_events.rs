@@ -1,8 +1,9 @@
-//! What drives `sdfc view` besides the window: the watcher of the scene file and the
-//! scripted input of `--script`.
+//! What drives `sdfc view` besides the window: the watcher of the scene file (and the files
+//! it imports) and the scripted input of `--script`.
 
-use std::collections::VecDeque;
+use std::collections::{HashSet, VecDeque};
 use std::path::{Path, PathBuf};
+use std::sync::{Arc, Mutex};
 
 /// What the file watcher reports.
 #[derive(Debug)]
@@ -51,30 +52,72 @@ pub fn parse_script(text: &str) -> Result<VecDeque<Step>, String> {
         .collect()
 }
 
-/// Watches the scene file's directory (editors replace files, and a deleted file may come
-/// back) and reports events about the file.
+/// Watches the scene file and the files it imports: their directories (editors replace
+/// files, and a deleted file may come back), reporting events about those files.
+pub struct SceneWatcher {
+    watcher: notify::RecommendedWatcher,
+    /// Directories watched.
+    dirs: HashSet<PathBuf>,
+    /// Absolute paths of the imported files followed (the main file is always followed).
+    imports: Arc<Mutex<HashSet<PathBuf>>>,
+}
+
+impl SceneWatcher {
+    /// Follows the files `file` imports now (after a reload the set may have changed); a
+    /// directory that cannot be watched is skipped with a message.
+    pub fn follow(&mut self, file: &Path) {
+        use notify::Watcher;
+        let files: HashSet<PathBuf> = crate::input::imported_files(file)
+            .into_iter()
+            .map(|f| std::path::absolute(&f).unwrap_or(f))
+            .collect();
+        for f in &files {
+            let dir = parent(f);
+            if !self.dirs.contains(&dir) {
+                match self
+                    .watcher
+                    .watch(&dir, notify::RecursiveMode::NonRecursive)
+                {
+                    Ok(()) => {
+                        self.dirs.insert(dir);
+                    }
+                    Err(e) => say!("cannot watch `{}`: {e}", dir.display()),
+                }
+            }
+        }
+        if let Ok(mut imports) = self.imports.lock() {
+            *imports = files;
+        }
+    }
+}
+
+fn parent(file: &Path) -> PathBuf {
+    file.parent()
+        .map(Path::to_path_buf)
+        .unwrap_or_else(|| PathBuf::from("."))
+}
+
+/// Starts watching `file` (and, through [`SceneWatcher::follow`], what it imports).
 pub fn watch(
     file: &Path,
     report: impl Fn(Watched) + Send + 'static,
-) -> notify::Result<notify::RecommendedWatcher> {
+) -> notify::Result<SceneWatcher> {
     use notify::Watcher;
     let file = std::path::absolute(file).unwrap_or_else(|_| file.to_path_buf());
-    let dir = file
-        .parent()
-        .map(Path::to_path_buf)
-        .unwrap_or_else(|| PathBuf::from("."));
-    let name = file.file_name().map(|n| n.to_os_string());
+    let dir = parent(&file);
+    let imports: Arc<Mutex<HashSet<PathBuf>>> = Arc::default();
+    let followed = imports.clone();
     let target = file.clone();
     let mut watcher = notify::recommended_watcher(move |event: notify::Result<notify::Event>| {
         let Ok(event) = event else { return };
         if event.kind.is_access() {
             return;
         }
-        if event
-            .paths
-            .iter()
-            .any(|p| p.file_name().map(|n| n.to_os_string()) == name)
-        {
+        let ours = |p: &PathBuf| {
+            let p = std::path::absolute(p).unwrap_or_else(|_| p.clone());
+            p == target || followed.lock().is_ok_and(|f| f.contains(&p))
+        };
+        if event.paths.iter().any(ours) {
             let what = if target.exists() {
                 Watched::Changed
             } else {
@@ -84,7 +127,13 @@ pub fn watch(
         }
     })?;
     watcher.watch(&dir, notify::RecursiveMode::NonRecursive)?;
-    Ok(watcher)
+    let mut w = SceneWatcher {
+        watcher,
+        dirs: HashSet::from([dir]),
+        imports,
+    };
+    w.follow(&file);
+    Ok(w)
 }
 
 /// `--watch` of `render` and `emit`: runs the command, then again after every save of `file`
@@ -92,7 +141,7 @@ pub fn watch(
 /// diagnostics. Returns only if the file cannot be watched.
 pub fn watch_loop(file: &Path, mut run: impl FnMut() -> i32) -> i32 {
     let (tx, rx) = std::sync::mpsc::channel();
-    let _watcher = match watch(file, move |w| {
+    let mut watcher = match watch(file, move |w| {
         let _ = tx.send(w);
     }) {
         Ok(w) => w,
@@ -120,6 +169,7 @@ pub fn watch_loop(file: &Path, mut run: impl FnMut() -> i32) -> i32 {
         while rx.try_recv().is_ok() {}
         if file.exists() {
             run();
+            watcher.follow(file);
         }
     }
 }

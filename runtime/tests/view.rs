@@ -388,3 +388,80 @@ fn keys_change_a_parameter() {
         "the key changed nothing"
     );
 }
+
+/// `--watch` follows the files a scene imports too: a save of a library in another directory
+/// rebuilds, and so does a library imported only after a reload.
+#[test]
+fn watch_follows_imported_files() {
+    let dir = scratch("watch-imports");
+    std::fs::create_dir_all(dir.join("lib")).unwrap();
+    let scene = dir.join("scene.sdf");
+    let lib = dir.join("lib/parts.sdf");
+    let later = dir.join("lib/later.sdf");
+    std::fs::write(&lib, "fn part() = sphere(0.8)\n").unwrap();
+    std::fs::write(&later, "fn other() = box((1, 1, 1))\n").unwrap();
+    std::fs::write(&scene, "import \"lib/parts.sdf\"\npart()\n").unwrap();
+    let out = dir.join("out.wgsl");
+    let log = dir.join("emit.log");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_sdfc"))
+        .args([
+            "emit",
+            scene.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+            "--watch",
+        ])
+        .stdout(Stdio::null())
+        .stderr(std::fs::File::create(&log).unwrap())
+        .spawn()
+        .unwrap();
+    let said = || std::fs::read_to_string(&log).unwrap_or_default();
+    wait_until(
+        "the first output",
+        &mut child,
+        &log,
+        Duration::from_secs(60),
+        || said().contains("watching"),
+    );
+    let wrote = |n: usize| move || said().matches("wrote ").count() >= n;
+    std::fs::write(&lib, "fn part() = torus(0.7, 0.25)\n").unwrap();
+    wait_until(
+        "a rebuild for the library",
+        &mut child,
+        &log,
+        Duration::from_secs(60),
+        wrote(2),
+    );
+    assert!(
+        std::fs::read_to_string(&out)
+            .unwrap()
+            .contains("fn sd_torus(")
+    );
+    std::fs::write(
+        &scene,
+        "import \"lib/parts.sdf\"\nimport \"lib/later.sdf\"\nunion { part() other() }\n",
+    )
+    .unwrap();
+    wait_until(
+        "a rebuild for the scene",
+        &mut child,
+        &log,
+        Duration::from_secs(60),
+        wrote(3),
+    );
+    std::fs::write(&later, "fn other() = capsule(1, 0.2)\n").unwrap();
+    wait_until(
+        "a rebuild for the new import",
+        &mut child,
+        &log,
+        Duration::from_secs(60),
+        wrote(4),
+    );
+    assert!(
+        std::fs::read_to_string(&out)
+            .unwrap()
+            .contains("fn sd_capsule(")
+    );
+    let _ = child.kill();
+    let _ = child.wait();
+}
