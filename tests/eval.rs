@@ -23,6 +23,9 @@ fn primitives_match_the_independent_reference() {
             "rounded_box" => format!("rounded_box({a}, {b})"),
             "plane" => format!("plane(y, {a})"),
             "cone" => format!("cone({a}, {b}, {c})"),
+            "round_cone" => format!("round_cone({a}, {b}, {c})"),
+            "rounded_cylinder" => format!("rounded_cylinder({a}, {b}, {c})"),
+            "link" => format!("link({a}, {b}, {c})"),
             name if !b.is_empty() => format!("{name}({a}, {b})"),
             name => format!("{name}({a})"),
         };
@@ -338,4 +341,64 @@ fn polar_repeat_is_the_union_of_its_copies() {
     }
     assert!(plans.iter().all(|&k| k > 5), "plans taken: {plans:?}");
     assert_eq!(compared, 24_000);
+}
+
+/// Solids made of 2D shapes are the solids written directly (whose fields the independent
+/// reference checks): extrusions of a rectangle and a circle are a box and a cylinder, a
+/// revolved circle is a torus (a negative radius too) — equal everywhere; a revolved rectangle
+/// touching the axis is a
+/// cylinder — equal outside, and inside never farther from zero than the true distance (its
+/// 2D distance counts the edge on the axis, which is inside the solid).
+#[test]
+fn extruded_and_revolved_shapes_are_exact() {
+    let mut rng = sdfc_tests::Rng::new(17);
+    let cases = [
+        (
+            "extrude(0.6) { rectangle(1.2, 0.8) }",
+            "box((1.2, 0.8, 0.6))",
+            true,
+        ),
+        (
+            "extrude(1.4) { circle(0.5) }",
+            "cylinder(0.5, 1.4) |> rotate(x, 90deg)",
+            true,
+        ),
+        ("revolve(1.1) { circle(0.3) }", "torus(1.1, 0.3)", true),
+        (
+            "revolve(0) { rectangle(0.7, 1.5) at (0.35, 0, 0) }",
+            "cylinder(0.7, 1.5)",
+            false,
+        ),
+        (
+            "revolve(-0.2) { circle(0.1) at (0.6, 0, 0) }",
+            "torus(0.4, 0.1)",
+            true,
+        ),
+    ];
+    let mut compared = 0;
+    for (made, direct, everywhere) in cases {
+        let (a, b) = (
+            sdfc_tests::scene("made", made),
+            sdfc_tests::scene("direct", direct),
+        );
+        assert!(a.nodes[a.root].exact, "{made} is exact by its rules");
+        for _ in 0..4000 {
+            let p = DVec3::new(
+                rng.range(-2.0, 2.0),
+                rng.range(-1.5, 1.5),
+                rng.range(-2.0, 2.0),
+            );
+            let (f, t) = (eval::distance(&a, p), eval::distance(&b, p));
+            if everywhere || t >= 0.0 {
+                assert!((f - t).abs() < 1e-12, "{made} at {p}: {f}, {direct} {t}");
+            } else {
+                assert!(
+                    f <= 0.0 && f >= t - 1e-12,
+                    "{made} at {p}: {f} inside, the distance {t}"
+                );
+            }
+            compared += 1;
+        }
+    }
+    assert_eq!(compared, 20_000);
 }

@@ -35,6 +35,7 @@ fn number(r: &mut Rng, ty: Ty) -> String {
         Ty::Angle => format!("{}deg", *r.pick(&[0.0, 30.0, 90.0, 360.0, -45.0, 720.0])),
         Ty::Count => format!("{}", 1 + r.below(6)),
         Ty::CountTo(n) => format!("{}", 1 + r.below(n.min(8) as usize)),
+        Ty::WholeIn(lo, hi) => format!("{}", lo as usize + r.below((hi - lo).min(8) as usize + 1)),
         Ty::UpTo(n) => format!("{}", r.below(n.min(8) as usize + 1)),
         Ty::ZeroOrAtLeast(lo) => format!("{}", if r.below(2) == 0 { 0.0 } else { lo.max(m) }),
         Ty::Range(lo, hi) => format!("{}", lo + (hi - lo) * 0.5 * r.below(2) as f64),
@@ -86,6 +87,11 @@ fn shape(r: &mut Rng, depth: usize) -> String {
     if depth == 0 || r.below(3) == 0 {
         let p = r.pick(PRIMITIVES);
         let s = format!("{}({})", p.name, args(r, p.params));
+        let s = if sdfc_compiler::catalog::planar::is_planar_primitive(p.name) {
+            sdfc_tests::solid_of_2d(r, s)
+        } else {
+            s
+        };
         return match r.below(4) {
             0 => format!(
                 "{s} at ({}, {}, {})",

@@ -118,7 +118,13 @@ pub fn operator_block(
     mut child: impl FnMut(&mut Rng) -> String,
 ) -> String {
     use sdfc_compiler::catalog::{Arity, OPERATORS};
-    let op = r.pick(OPERATORS);
+    // `extrude` and `revolve` take 2D shapes: made by `solid_of_2d` where one is drawn.
+    let op = loop {
+        let op = r.pick(OPERATORS);
+        if !sdfc_compiler::catalog::planar::takes_planar(op.name) {
+            break op;
+        }
+    };
     let n = match op.arity {
         Arity::Exactly(k) => k,
         Arity::AtLeast(k) => k + r.below(3),
@@ -130,6 +136,26 @@ pub fn operator_block(
         args(r, op),
         children.join("\n")
     )
+}
+
+/// A 2D shape `shape` (source text) made a solid: extruded or revolved with a random height or
+/// radius, sometimes after a union with a second copy moved in its plane (shared by the
+/// fuzzers).
+pub fn solid_of_2d(r: &mut Rng, shape: String) -> String {
+    let shape = if r.below(3) == 0 {
+        format!(
+            "union {{ {shape}  {shape} at ({:.3}, {:.3}, 0) }}",
+            r.range(-0.8, 0.8),
+            r.range(-0.8, 0.8)
+        )
+    } else {
+        shape
+    };
+    if r.below(2) == 0 {
+        format!("extrude(height = {:.3}) {{ {shape} }}", r.range(0.0, 2.0))
+    } else {
+        format!("revolve(radius = {:.3}) {{ {shape} }}", r.range(-0.5, 1.5))
+    }
 }
 
 /// Whether an external tool is installed; says so loudly when it is not.

@@ -142,6 +142,7 @@ pub(crate) fn plain_value(r: &mut Rng, owner: &str, p: &Param) -> String {
         Ty::Angle => format!("{}deg", r.range(-200.0, 200.0).round()),
         Ty::Count => format!("{}", 1 + r.below(4)),
         Ty::CountTo(n) => format!("{}", 1 + r.below(n.min(8) as usize)),
+        Ty::WholeIn(lo, hi) => format!("{}", lo as usize + r.below((hi - lo).min(8) as usize + 1)),
         Ty::UpTo(n) => format!("{}", r.below(n.min(4) as usize + 1)),
         Ty::ZeroOrAtLeast(lo) => f(if r.below(2) == 0 { 0.0 } else { lo.max(1.0) }),
         Ty::Range(lo, hi) => f(r.range(lo, hi.min(lo + 8.0))),
@@ -199,7 +200,12 @@ pub(crate) fn shape(r: &mut Rng, depth: usize) -> String {
                 // An estimate, not a bound (see docs/lipschitz.md): left out.
                 return shape(r, depth);
             }
-            format!("{}({})", p.name, args(r, p.name, p.params))
+            let s = format!("{}({})", p.name, args(r, p.name, p.params));
+            if sdfc_compiler::catalog::planar::is_planar_primitive(p.name) {
+                sdfc_tests::solid_of_2d(r, s)
+            } else {
+                s
+            }
         }
     } else {
         sdfc_tests::operator_block(

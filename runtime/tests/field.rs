@@ -218,18 +218,26 @@ fn implicit_case(gpu: &Gpu, row: &mut Row, source: &str, r: &mut Rng) {
 fn primitive_case(gpu: &Gpu, row: &mut Row, source: &str, r: &mut Rng) {
     let scene = compile(source);
     let root = scene.root_node();
-    let NodeKind::Primitive { ctx, .. } = &root.kind else {
+    // A 2D shape is compared extruded (its height one more argument).
+    let (prim, height) = match &root.kind {
+        NodeKind::Operator { op, ctx, children } if op.name == "extrude" => {
+            (&scene.nodes[children[0]], ctx.num(0))
+        }
+        _ => (root, 0.0),
+    };
+    let NodeKind::Primitive { ctx, .. } = &prim.kind else {
         panic!("not a primitive: {source}")
     };
-    let arguments: f64 = ctx
-        .args
-        .iter()
-        .map(|a| match a {
-            Val::Num(x) => x.abs(),
-            Val::Vec3(v) => v.abs().element_sum(),
-            Val::Word(_) => 0.0,
-        })
-        .sum();
+    let arguments: f64 = height
+        + ctx
+            .args
+            .iter()
+            .map(|a| match a {
+                Val::Num(x) => x.abs(),
+                Val::Vec3(v) => v.abs().element_sum(),
+                Val::Word(_) => 0.0,
+            })
+            .sum::<f64>();
     let size = if root.bound.radius.is_finite() && root.bound.radius > 0.0 {
         root.bound.radius
     } else {
@@ -379,7 +387,10 @@ fn gpu_field_equals_the_cpu_reference_within_f32() {
                     .map(|p| format!("{} = {}", p.name, value(&mut r, p.ty)))
                     .collect()
             };
-            let source = format!("{}({})", prim.name, args.join(", "));
+            let mut source = format!("{}({})", prim.name, args.join(", "));
+            if sdfc_compiler::catalog::planar::is_planar_primitive(prim.name) {
+                source = format!("extrude(height = 1.5) {{ {source} }}");
+            }
             primitive_case(&gpu, &mut row, &source, &mut r);
         }
         rows.push(row);

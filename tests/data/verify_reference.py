@@ -247,6 +247,10 @@ def inside(prim, prm, p):
     raise ValueError(prim)
 
 
+SAMPLED = {"sphere", "box", "rounded_box", "plane", "torus", "capsule",
+           "cylinder", "cone", "octahedron"}
+
+
 def patches_for(prim, prm, p):
     if prim == "sphere":
         return sphere_patches(*prm)
@@ -365,8 +369,14 @@ def main():
     worst_coarse = [0.0, None]     # coarse - |d|, largest
     worst_coarse_ratio = [0.0, None]
     n_near = 0
+    skipped = {}
     for k, row in enumerate(rows):
         prim = row["primitive"]
+        if prim not in SAMPLED:
+            # No surface sampler written for it (the primitives added after this script;
+            # iq_reference.py cross-checks those with a second closed form).
+            skipped[prim] = skipped.get(prim, 0) + 1
+            continue
         prm = tuple(float(row[c]) for c in "abc" if row[c] != "")
         p = tuple(float(row[c]) for c in ("px", "py", "pz"))
         d = float(row["distance"])
@@ -396,7 +406,10 @@ def main():
             worst_coarse_ratio = [(coarse - ad) / res, where]
         sys.stderr.write("\r%d/%d" % (k + 1, len(rows)))
     sys.stderr.write("\n")
-    print("rows checked: %d (%d with |d| < 100)" % (len(rows), n_near))
+    print("rows checked: %d (%d with |d| < 100)" % (len(rows) - sum(skipped.values()), n_near))
+    if skipped:
+        print("rows NOT checked (no surface sampler here): %s" % ", ".join(
+            "%s %d" % kv for kv in sorted(skipped.items())))
     print("largest |refined brute force - |d||, |d| < 100: %.3g  at %s"
           % tuple(worst["near"]))
     print("largest |refined brute force - |d||, |d| >= 100: %.3g  at %s"

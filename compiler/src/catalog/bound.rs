@@ -67,7 +67,12 @@ impl Bound {
     /// The bound moved by `offset`.
     pub fn moved(self, offset: DVec3) -> Bound {
         if !self.is_finite() {
-            return self;
+            // The box may still be finite along some axes (a 2D shape: every z).
+            return Bound {
+                lo: self.lo + offset,
+                hi: self.hi + offset,
+                ..self
+            };
         }
         Bound {
             center: self.center + offset,
@@ -81,7 +86,7 @@ impl Bound {
     /// sphere moves, the box becomes the box around its moved corners, narrowed to the sphere's.
     pub fn isometry(self, f: impl Fn(DVec3) -> DVec3) -> Bound {
         if !self.is_finite() {
-            return self;
+            return self.planar_isometry(f);
         }
         let (mut lo, mut hi) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
         for i in 0..8 {
@@ -97,10 +102,45 @@ impl Bound {
         Bound::sphere(f(self.center), self.radius).with_box(lo, hi)
     }
 
+    /// An isometry of a bound that is finite in x and y only (a 2D shape's): a turn about z
+    /// moves its rectangle; anything else, or any other infinite bound, is unbounded.
+    fn planar_isometry(self, f: impl Fn(DVec3) -> DVec3) -> Bound {
+        let planar = self.lo.x.is_finite()
+            && self.hi.x.is_finite()
+            && self.lo.y.is_finite()
+            && self.hi.y.is_finite()
+            && !self.lo.z.is_finite()
+            && !self.hi.z.is_finite();
+        let ez = f(DVec3::Z);
+        if !planar || (ez.z.abs() - 1.0).abs() > 1e-12 {
+            return Bound::INFINITE;
+        }
+        let (mut lo, mut hi) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
+        for (x, y) in [
+            (self.lo.x, self.lo.y),
+            (self.lo.x, self.hi.y),
+            (self.hi.x, self.lo.y),
+            (self.hi.x, self.hi.y),
+        ] {
+            let q = f(DVec3::new(x, y, 0.0));
+            lo = lo.min(q);
+            hi = hi.max(q);
+        }
+        Bound {
+            lo: DVec3::new(lo.x, lo.y, f64::NEG_INFINITY),
+            hi: DVec3::new(hi.x, hi.y, f64::INFINITY),
+            ..self
+        }
+    }
+
     /// The bound scaled by the positive factors `s` per axis.
     pub fn scaled(self, s: DVec3) -> Bound {
         if !self.is_finite() {
-            return self;
+            return Bound {
+                lo: self.lo * s,
+                hi: self.hi * s,
+                ..self
+            };
         }
         Bound {
             center: self.center * s,
@@ -118,7 +158,11 @@ impl Bound {
     /// The box grown by `by` per axis and the sphere by `radius`.
     pub fn grown_box(self, by: DVec3, radius: f64) -> Bound {
         if !self.is_finite() {
-            return self;
+            return Bound {
+                lo: self.lo - by,
+                hi: self.hi + by,
+                ..self
+            };
         }
         Bound {
             center: self.center,
@@ -131,7 +175,12 @@ impl Bound {
     /// What holds both (the sphere is not minimal, but tight enough).
     pub fn union(self, o: Bound) -> Bound {
         if !self.is_finite() || !o.is_finite() {
-            return Bound::INFINITE;
+            // The boxes still hold both (finite along some axes for 2D shapes).
+            return Bound {
+                lo: self.lo.min(o.lo),
+                hi: self.hi.max(o.hi),
+                ..Bound::INFINITE
+            };
         }
         let d = (o.center - self.center).length();
         let sphere = if d + o.radius <= self.radius {

@@ -6,10 +6,12 @@
 mod bound;
 mod math;
 pub mod operators;
+pub mod planar;
 pub mod polar;
 pub mod primitives;
 pub mod prune;
 pub mod repeat;
+pub mod shapes;
 mod warp;
 
 pub use bound::Bound;
@@ -78,6 +80,8 @@ pub enum Ty {
     CountTo(u32),
     /// A whole number from 0 to the limit.
     UpTo(u32),
+    /// A whole number from the first limit to the second.
+    WholeIn(u32, u32),
     /// 0, or a number ≥ the limit.
     ZeroOrAtLeast(f64),
     /// Any finite vector.
@@ -112,6 +116,7 @@ impl Ty {
             Ty::Count => "a whole number ≥ 1".into(),
             Ty::CountTo(n) => format!("a whole number from 1 to {n}"),
             Ty::UpTo(n) => format!("a whole number from 0 to {n}"),
+            Ty::WholeIn(lo, hi) => format!("a whole number from {lo} to {hi}"),
             Ty::ZeroOrAtLeast(lo) => format!("0 or a number ≥ {lo}"),
             Ty::Vec3 => "a vector `(x, y, z)`".into(),
             Ty::Size => "a size (number or vector, ≥ 0)".into(),
@@ -144,6 +149,7 @@ impl Ty {
             Ty::Count => x >= 1.0 && whole,
             Ty::CountTo(n) => x >= 1.0 && x <= n as f64 && whole,
             Ty::UpTo(n) => x >= 0.0 && x <= n as f64 && whole,
+            Ty::WholeIn(lo, hi) => x >= f64::from(lo) && x <= f64::from(hi) && whole,
             Ty::ZeroOrAtLeast(lo) => x == 0.0 || (x >= lo && x.is_finite()),
             _ => false,
         }

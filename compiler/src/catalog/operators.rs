@@ -494,4 +494,6 @@ pub static OPERATORS: &[Operator] = &[
         },
     },
     super::polar::REPEAT_POLAR,
+    super::planar::EXTRUDE,
+    super::planar::REVOLVE,
 ];

@@ -236,6 +236,16 @@ pub static PRIMITIVES: &[Primitive] = &[
         mirror: |_| [false; 3],
         eval: |c, p| mandelbulb(p, c.num(0), c.num(1) as u32),
     },
+    super::shapes::HEX_PRISM,
+    super::shapes::TRI_PRISM,
+    super::shapes::PYRAMID,
+    super::shapes::ROUND_CONE,
+    super::shapes::ROUNDED_CYLINDER,
+    super::shapes::LINK,
+    super::planar::CIRCLE,
+    super::planar::RECTANGLE,
+    super::planar::POLYGON,
+    super::planar::TRIANGLE,
 ];
 
 /// Distance to a box of half extents `b` (IQ's exact box).

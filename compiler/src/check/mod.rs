@@ -10,6 +10,7 @@ mod look;
 mod nodes;
 mod param_args;
 mod params;
+mod planar;
 mod ranges;
 mod settings;
 pub mod tracer;
@@ -175,6 +176,7 @@ fn check_with_lines(
     c.unused_params();
     c.unused_fns(sources.files.first().map_or(usize::MAX, |f| f.text.len()));
     if let Some(root) = root {
+        c.check_root_not_planar(root);
         c.check_bounded(root);
         c.check_bound(root);
         c.check_epsilon();
@@ -301,6 +303,8 @@ pub(crate) struct Checker<'a> {
     item: usize,
     /// Calls expanded so far.
     calls: usize,
+    /// Per node, whether it is a 2D shape.
+    planar: Vec<bool>,
 }
 
 impl<'a> Checker<'a> {
@@ -351,6 +355,7 @@ impl<'a> Checker<'a> {
             item_of: HashMap::new(),
             item: 0,
             calls: 0,
+            planar: Vec::new(),
         }
     }
 

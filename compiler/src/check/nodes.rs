@@ -24,6 +24,7 @@ impl Checker<'_> {
                 );
                 // Push a placeholder so the message is given once.
                 self.nodes.push(self.nodes[0].clone());
+                self.planar.push(false);
             }
             return None;
         }
@@ -48,6 +49,7 @@ impl Checker<'_> {
             NodeKind::Operator { op, ctx, .. } => (op.mirror)(ctx),
             NodeKind::Implicit { .. } => [false; 3],
         };
+        self.note_planar(&kind);
         self.nodes.push(Node {
             mirror,
             unit_gradient,
@@ -74,6 +76,13 @@ impl Checker<'_> {
         span: Span,
     ) -> Option<NodeId> {
         let op = crate::catalog::operator(name).expect("operator in the catalog");
+        let axis = (name == "rotate").then(|| match args.first() {
+            Some(crate::catalog::Val::Vec3(v)) => *v,
+            _ => glam::DVec3::ZERO,
+        });
+        if self.check_planar(name, axis, &children, span).is_err() {
+            return None;
+        }
         let ctx = Ctx {
             args,
             sym,

@@ -25,6 +25,7 @@ impl Checker<'_> {
             ty,
             Ty::Count
                 | Ty::CountTo(_)
+                | Ty::WholeIn(..)
                 | Ty::UpTo(_)
                 | Ty::Counts
                 | Ty::Word(_)

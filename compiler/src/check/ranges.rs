@@ -154,15 +154,30 @@ impl Checker<'_> {
             out.bound = out.bound.union(s.bound);
             combine(&mut out, s);
         }
-        if out.bound.is_finite() && samples.len() > 1 {
+        let some_side = (0..3).any(|i| out.bound.lo[i].is_finite() || out.bound.hi[i].is_finite());
+        if (out.bound.is_finite() || some_side) && samples.len() > 1 {
             // How far a bound moves between neighbouring samples: its centre, and each side
-            // of its box (a shape turned about its own centre moves its box, not its centre).
+            // of its box (a shape turned about its own centre moves its box, not its centre);
+            // the finite sides only (a 2D shape's box is finite in x and y).
             let step = |a: &Rules, b: &Rules| {
-                let sides = (a.bound.lo - b.bound.lo)
-                    .abs()
-                    .max((a.bound.hi - b.bound.hi).abs())
-                    .max_element();
-                (a.bound.center - b.bound.center).length().max(sides)
+                let moved = |x: f64, y: f64| {
+                    if x.is_finite() && y.is_finite() {
+                        (x - y).abs()
+                    } else {
+                        0.0
+                    }
+                };
+                let sides = (0..3)
+                    .map(|i| {
+                        moved(a.bound.lo[i], b.bound.lo[i]).max(moved(a.bound.hi[i], b.bound.hi[i]))
+                    })
+                    .fold(0.0, f64::max);
+                let centre = if a.bound.is_finite() && b.bound.is_finite() {
+                    (a.bound.center - b.bound.center).length()
+                } else {
+                    0.0
+                };
+                centre.max(sides)
             };
             let gap = samples
                 .iter()

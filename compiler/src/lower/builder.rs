@@ -271,6 +271,11 @@ impl<'m> FnBuilder<'m> {
         self.bin(BinaryOperator::Greater, a, b)
     }
 
+    /// a ≤ b
+    pub fn le(&mut self, a: Ex, b: Ex) -> Ex {
+        self.bin(BinaryOperator::LessEqual, a, b)
+    }
+
     /// a ≥ b
     pub fn ge(&mut self, a: Ex, b: Ex) -> Ex {
         self.bin(BinaryOperator::GreaterEqual, a, b)

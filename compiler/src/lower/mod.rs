@@ -18,11 +18,13 @@ pub mod march;
 mod math;
 pub mod ops;
 pub mod params;
+pub mod planar;
 pub mod prims;
 mod probes;
 mod prune;
 mod rays;
 mod shading;
+pub mod shapes;
 mod tags;
 mod texture;
 pub mod tracer;
@@ -155,7 +157,7 @@ fn has_materials(scene: &Scene, reachable: &[NodeId]) -> bool {
 /// The IR type of a parameter of type `ty`.
 fn param_type(mb: &mut ModuleBuilder, ty: Ty) -> Handle<Type> {
     match ty {
-        Ty::Count | Ty::CountTo(_) => mb.u32(),
+        Ty::Count | Ty::CountTo(_) | Ty::WholeIn(..) => mb.u32(),
         Ty::Vec3 | Ty::Size | Ty::Scale | Ty::Axis | Ty::Color | Ty::Counts => mb.vec3(),
         _ => mb.f32(),
     }

@@ -131,7 +131,7 @@ pub(super) fn arg(b: &mut FnBuilder, ty: Ty, v: Val, sym: Option<&[Field]>, p: E
     match sym {
         Some(comps) => components(b, comps, p),
         None => match ty {
-            Ty::Count | Ty::CountTo(_) => b.u(v.num() as u32),
+            Ty::Count | Ty::CountTo(_) | Ty::WholeIn(..) => b.u(v.num() as u32),
             Ty::Vec3 | Ty::Size | Ty::Scale | Ty::Axis | Ty::Color | Ty::Counts => {
                 b.vec3_lit(v.vec())
             }

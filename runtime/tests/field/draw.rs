@@ -100,6 +100,7 @@ pub fn number_value(r: &mut Rng, ty: Ty) -> f64 {
         Ty::Fraction => f32x(r.unit()),
         Ty::Count => 1.0 + r.below(6) as f64,
         Ty::CountTo(n) => 1.0 + r.below(n as usize) as f64,
+        Ty::WholeIn(lo, hi) => f64::from(lo) + r.below((hi - lo + 1) as usize) as f64,
         Ty::UpTo(n) => r.below(n as usize + 1) as f64,
         Ty::ZeroOrAtLeast(_) if r.below(2) == 0 => 0.0,
         Ty::ZeroOrAtLeast(lo) => f32x(lo.max(m)),
