@@ -40,6 +40,16 @@ pub fn catalog_table() -> String {
             cell(f.doc)
         );
     }
+    for f in crate::catalog::DERIVED_FUNCTIONS {
+        let args: Vec<&str> = ["a", "b", "c"][..f.arity].to_vec();
+        let _ = writeln!(
+            s,
+            "| function | `{}({})` | — | {} |",
+            f.name,
+            args.join(", "),
+            cell(f.doc)
+        );
+    }
     s
 }
 

@@ -297,3 +297,33 @@ fn jump(smooth: bool, slope: f64) -> Interval {
         Interval::ALL
     }
 }
+
+/// A math function written in terms of the others and the arithmetic operators (the checker
+/// expands a call into them, so their ranges, slopes and lowering are those of the parts).
+pub struct DerivedFn {
+    /// Name in the language.
+    pub name: &'static str,
+    /// Number of arguments.
+    pub arity: usize,
+    /// One line for the docs: what it is, written with the parts.
+    pub doc: &'static str,
+}
+
+/// The derived math functions.
+pub static DERIVED_FUNCTIONS: &[DerivedFn] = &[
+    DerivedFn {
+        name: "pow",
+        arity: 2,
+        doc: "a ^ b (the `^` operator: a whole exponent takes any base, another needs a > 0)",
+    },
+    DerivedFn {
+        name: "mod",
+        arity: 2,
+        doc: "a − b·floor(a / b), GLSL's mod: in [0, b) for b > 0 (a jump where a / b is whole)",
+    },
+    DerivedFn {
+        name: "smoothstep",
+        arity: 3,
+        doc: "t²·(3 − 2t) with t = clamp((c − a) / (b − a), 0, 1): from 0 at a to 1 at b, smoothly",
+    },
+];

@@ -15,7 +15,7 @@ pub mod shapes;
 mod warp;
 
 pub use bound::Bound;
-pub use math::{MATH_FUNCTIONS, MathFn, Units};
+pub use math::{DERIVED_FUNCTIONS, DerivedFn, MATH_FUNCTIONS, MathFn, Units};
 pub use operators::OPERATORS;
 pub use primitives::PRIMITIVES;
 
@@ -438,6 +438,11 @@ pub fn math_fn(name: &str) -> Option<&'static MathFn> {
     MATH_FUNCTIONS.iter().find(|p| p.name == name)
 }
 
+/// Looks up a derived math function by name.
+pub fn derived_fn(name: &str) -> Option<&'static DerivedFn> {
+    math::DERIVED_FUNCTIONS.iter().find(|p| p.name == name)
+}
+
 /// Every name a call may use: primitives, operators and math functions.
 pub fn all_names() -> impl Iterator<Item = &'static str> {
     PRIMITIVES
@@ -445,6 +450,7 @@ pub fn all_names() -> impl Iterator<Item = &'static str> {
         .map(|p| p.name)
         .chain(OPERATORS.iter().map(|o| o.name))
         .chain(MATH_FUNCTIONS.iter().map(|m| m.name))
+        .chain(math::DERIVED_FUNCTIONS.iter().map(|m| m.name))
 }
 
 macro_rules! by_name {

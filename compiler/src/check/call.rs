@@ -23,6 +23,9 @@ impl Checker<'_> {
         if name == "implicit" {
             return self.implicit(call, piped);
         }
+        if let Some(f) = catalog::derived_fn(name) {
+            return self.derived_call(f, call);
+        }
         if self.fns.contains_key(name) && (self.visible(name) || self.in_frame(name)) {
             return self.fn_call(call, piped);
         }
@@ -134,6 +137,10 @@ impl Checker<'_> {
             for a in &call.args {
                 self.value(&a.value);
             }
+            return None;
+        }
+        if self.keyword_typo_line == Some(self.line_of(call.span.start)) && call.block.is_some() {
+            // The rest of a misspelt block statement (reported at its keyword).
             return None;
         }
         let mut d = Diagnostic::error(

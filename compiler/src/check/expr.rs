@@ -172,6 +172,10 @@ impl Checker<'_> {
                 self.nodes[n].span = e.span;
                 Some(Value::Shape(n))
             }
+            ExprKind::Component(lhs, id) => {
+                let v = self.value(lhs)?;
+                self.component(v, id, e.span)
+            }
             ExprKind::At(lhs, offset) => {
                 let n = self.shape(lhs);
                 let v = self.convert_arg(offset, catalog::Ty::Vec3, "offset", "translate");
@@ -180,6 +184,46 @@ impl Checker<'_> {
                 self.operator_node("translate", (vec![v], sym), vec![n?], e.span)
                     .map(Value::Shape)
             }
+        }
+    }
+
+    /// `v.y` of a vector, `c.g` of a colour (a number; computed at run time from parameters).
+    fn component(&mut self, v: Value, id: &Ident, span: Span) -> Option<Value> {
+        let (vector, colour) = (["x", "y", "z"], ["r", "g", "b"]);
+        let in_vec = vector.iter().position(|n| *n == id.name);
+        let in_col = colour.iter().position(|n| *n == id.name);
+        let is_colour = match &v {
+            Value::Vec3(_) => false,
+            Value::Color(_) => true,
+            Value::Param(s) if s.kind == SymKind::Vec3 => false,
+            Value::Param(s) if s.kind == SymKind::Color => true,
+            other => {
+                self.diags.push(
+                    Diagnostic::error(span, format!("`.{}` takes a vector or a colour", id.name))
+                        .label(format!("this is {}", other.describe())),
+                );
+                return None;
+            }
+        };
+        let Some(i) = (if is_colour { in_col } else { in_vec }) else {
+            let (names, what) = if is_colour {
+                ("`.r`, `.g`, `.b`", "a colour")
+            } else {
+                ("`.x`, `.y`, `.z`", "a vector")
+            };
+            self.diags.push(
+                Diagnostic::error(id.span, format!("{what} has no component `.{}`", id.name))
+                    .label(format!("the components of {what} are {names}")),
+            );
+            return None;
+        };
+        match v {
+            Value::Vec3(v) | Value::Color(v) => Some(Value::Num(v[i], Dim::None)),
+            Value::Param(s) => Some(Value::Param(Sym {
+                kind: SymKind::Num(Dim::None),
+                comps: vec![s.comps[i.min(s.comps.len() - 1)].clone()],
+            })),
+            _ => None,
         }
     }
 
@@ -305,6 +349,9 @@ impl Checker<'_> {
                 did_you_mean(&id.name, super::settings::BLOCK_KEYWORDS.iter().copied())
             {
                 d = d.help(format!("did you mean the `{k}` block?"));
+                // `matrial gold { … }`: the block's name and settings, read as a call, are
+                // not another mistake.
+                self.keyword_typo_line = Some(self.line_of(id.span.start));
             } else if ["x", "y", "z"].contains(&id.name.as_str()) {
                 d = d.note("coordinates exist only inside `implicit { ... }`");
             }
@@ -340,6 +387,16 @@ impl Checker<'_> {
             return self.param_binary(op, a, b, span);
         }
         match (a, b) {
+            (Value::Num(x, _), Value::Num(y, _))
+                if op == BinOp::Pow && x < 0.0 && y.fract() != 0.0 =>
+            {
+                self.diags.push(
+                    Diagnostic::error(span, format!("{x} ^ {y} is not a real number"))
+                        .label("a negative base to a power that is not whole")
+                        .help("use a whole exponent, or the power of the magnitude: `abs(a) ^ b`"),
+                );
+                None
+            }
             (Value::Num(x, da), Value::Num(y, db)) => {
                 let dim = match (op, da, db) {
                     (_, Dim::None, Dim::None) => Dim::None,

@@ -30,11 +30,24 @@ impl Checker<'_> {
             args.push(self.value(&a.value));
         }
         let args: Vec<Value> = args.into_iter().collect::<Option<_>>()?;
-        if let Some((bad, arg)) = args.iter().zip(&call.args).find(|(a, _)| {
+        let spans: Vec<Span> = call.args.iter().map(|a| a.value.span).collect();
+        self.apply_math(f, args, &spans, call.span)
+    }
+
+    /// A math function applied to checked arguments (at `spans`; the call at `span`): folded
+    /// when all are numbers, an expression of coordinates or parameters otherwise.
+    pub(super) fn apply_math(
+        &mut self,
+        f: &'static catalog::MathFn,
+        args: Vec<Value>,
+        spans: &[Span],
+        span: Span,
+    ) -> Option<Value> {
+        if let Some((bad, at)) = args.iter().zip(spans).find(|(a, _)| {
             !matches!(a, Value::Num(..) | Value::Field(_))
                 && !matches!(a, Value::Param(s) if matches!(s.kind, SymKind::Num(_)))
         }) {
-            return self.no_arithmetic(arg.value.span, f.name, bad);
+            return self.no_arithmetic(*at, f.name, bad);
         }
         let dims: Vec<Dim> = args
             .iter()
@@ -53,7 +66,7 @@ impl Checker<'_> {
             catalog::Units::AngleOut | catalog::Units::Plain | catalog::Units::Same => {
                 if let Some(i) = dims.iter().position(|d| *d == Dim::Angle) {
                     let d = Diagnostic::error(
-                        call.args[i].value.span,
+                        spans[i],
                         format!("`{}` takes plain numbers", f.name),
                     )
                     .label("this is an angle")
@@ -73,9 +86,7 @@ impl Checker<'_> {
                 .iter()
                 .map(|a| if let Value::Num(x, _) = a { *x } else { 0.0 })
                 .collect();
-            return self
-                .finite((f.eval)(&xs), call.span)
-                .map(|r| Value::Num(r, out));
+            return self.finite((f.eval)(&xs), span).map(|r| Value::Num(r, out));
         }
         let field = Field::Call(f, args.into_iter().map(super::expr::as_field).collect());
         if !field.has_coords() {

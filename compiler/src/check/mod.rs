@@ -3,6 +3,7 @@
 
 mod args;
 mod call;
+mod derived;
 mod expr;
 mod functions;
 mod implicit;
@@ -305,6 +306,8 @@ pub(crate) struct Checker<'a> {
     calls: usize,
     /// Per node, whether it is a 2D shape.
     planar: Vec<bool>,
+    /// The line of a name that looked like a misspelt block keyword (`matrial`).
+    keyword_typo_line: Option<usize>,
 }
 
 impl<'a> Checker<'a> {
@@ -356,6 +359,7 @@ impl<'a> Checker<'a> {
             item: 0,
             calls: 0,
             planar: Vec::new(),
+            keyword_typo_line: None,
         }
     }
 

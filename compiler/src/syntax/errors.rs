@@ -132,6 +132,7 @@ pub(super) fn rule_name(rule: Rule) -> &'static str {
         Rule::color => "a colour",
         Rule::group | Rule::call | Rule::neg | Rule::expr | Rule::arg => "an expression",
         Rule::add | Rule::sub | Rule::mul | Rule::div | Rule::pow => "an operator",
+        Rule::component | Rule::component_name => "a component (`.x`, `.y`, `.z`)",
         Rule::pipe | Rule::tag | Rule::annotation | Rule::at | Rule::at_kw => {
             "`|>`, `:`, `@`, `at`"
         }

@@ -41,6 +41,23 @@ pub(super) fn meant(source: &str, span: Span) -> Option<Diagnostic> {
             .help(format!("write `{number}{word}`")),
         );
     }
+    // `1.2.3`: a second decimal point (read as a component after the number `1.2`).
+    if before.ends_with('.') && after.starts_with(|c: char| c.is_ascii_digit()) {
+        let number: String = before[..before.len() - 1]
+            .chars()
+            .rev()
+            .take_while(|c| c.is_ascii_digit() || *c == '.')
+            .collect();
+        if number.contains('.') {
+            let start = span.start - 1 - number.len();
+            let end = span.start + after.chars().take_while(char::is_ascii_digit).count();
+            return Some(
+                Diagnostic::error(Span::new(start, end), "a number has one decimal point")
+                    .label("two decimal points")
+                    .help("write one number, or separate numbers with `,`"),
+            );
+        }
+    }
     if after.starts_with('°') {
         return Some(
             Diagnostic::error(

@@ -196,6 +196,8 @@ pub enum ExprKind {
     Annotation(Box<Expr>, Ident, Vec<Arg>),
     /// `shape at (x, y, z)`
     At(Box<Expr>, Box<Expr>),
+    /// `v.y`: a component of a vector (x, y, z) or a colour (r, g, b).
+    Component(Box<Expr>, Ident),
 }
 
 /// `name(args) { children }`.
@@ -229,7 +231,8 @@ static PRATT: LazyLock<PrattParser<Rule>> = LazyLock::new(|| {
         .op(Op::postfix(Rule::pipe)
             | Op::postfix(Rule::tag)
             | Op::postfix(Rule::annotation)
-            | Op::postfix(Rule::at))
+            | Op::postfix(Rule::at)
+            | Op::postfix(Rule::component))
 });
 
 /// Parses a whole file. Syntax errors come back as one diagnostic with the expected tokens.
@@ -274,6 +277,9 @@ pub(super) fn expr(p: Pair<Rule>) -> Expr {
                     ExprKind::Pipe(lhs, call_or_name(target))
                 }
                 Rule::tag => ExprKind::Tag(lhs, ident(op.into_inner().next().expect("tag"))),
+                Rule::component => {
+                    ExprKind::Component(lhs, ident(op.into_inner().next().expect("component")))
+                }
                 Rule::annotation => {
                     let mut it = op.into_inner();
                     let name = ident(it.next().expect("annotation name"));

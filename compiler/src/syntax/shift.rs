@@ -120,7 +120,7 @@ fn expr(e: &mut Expr, by: usize) {
             expr(a, by);
             call(c, by);
         }
-        ExprKind::Tag(a, i) => {
+        ExprKind::Tag(a, i) | ExprKind::Component(a, i) => {
             expr(a, by);
             ident(i, by);
         }
