@@ -15,6 +15,9 @@ pub(super) fn syntax_error(source: &str, e: pest::error::Error<Rule>) -> Diagnos
     if let Some(d) = bracket_error(source, span.start) {
         return d;
     }
+    if let Some(d) = ended_early(source, span.start) {
+        return d;
+    }
     if let Some(d) = inside_statement(source, span.start) {
         return d;
     }
@@ -45,6 +48,27 @@ pub(super) fn syntax_error(source: &str, e: pest::error::Error<Rule>) -> Diagnos
         d = d.help("a vector has three components: `(x, y, z)`");
     }
     d
+}
+
+/// A statement that ends with an operator (`let a = 1 +`), so that the parser stopped at the
+/// next statement's keyword: the error belongs after the operator, not on the next line.
+fn ended_early(source: &str, at: usize) -> Option<Diagnostic> {
+    if !super::recover::statement_at(source, at) {
+        return None;
+    }
+    let before = source[..at].trim_end();
+    let last = before.chars().next_back()?;
+    let op = match last {
+        '+' | '-' | '*' | '/' | '^' | '=' | ',' | '(' | ':' | '@' => last.to_string(),
+        '>' if before.ends_with("|>") => "|>".to_string(),
+        _ => return None,
+    };
+    let end = before.len();
+    Some(
+        Diagnostic::error(Span::new(end, end), "syntax error")
+            .label(format!("expected an expression after `{op}`"))
+            .note("the next line begins a new statement"),
+    )
 }
 
 /// For a syntax error at a statement's keyword (`fn`, `import`, `let`, `param`): the error

@@ -2,7 +2,7 @@
 //! standard library), once each, splicing their definitions in place of the `import`, with
 //! cycles reported along their chain. The spans of every file share one space ([`Sources`]).
 
-use super::{File, Item, parse, shift};
+use super::{File, Item, parse_all, shift};
 use crate::diag::{Diagnostic, Span};
 use crate::source::Sources;
 use std::collections::HashSet;
@@ -80,13 +80,13 @@ pub fn load(name: &str, text: &str, loader: &dyn Loader) -> Loaded {
         included: HashSet::new(),
         loader,
     };
-    let file = match parse(text) {
+    let file = match parse_all(text) {
         Ok(file) => file,
-        Err(d) => {
+        Err(diagnostics) => {
             return Loaded {
                 file: None,
                 sources: l.sources,
-                diagnostics: vec![d],
+                diagnostics,
             };
         }
     };
@@ -234,11 +234,13 @@ impl Load<'_> {
             },
         };
         let base = self.sources.push(&shown, &text);
-        let mut file = match parse(&text) {
+        let mut file = match parse_all(&text) {
             Ok(f) => f,
-            Err(mut d) => {
-                shift::diagnostic(&mut d, base);
-                self.diagnostics.push(d.also(span, "imported here"));
+            Err(errors) => {
+                for mut d in errors {
+                    shift::diagnostic(&mut d, base);
+                    self.diagnostics.push(d.also(span, "imported here"));
+                }
                 return Vec::new();
             }
         };

@@ -10,6 +10,7 @@ mod errors;
 mod hints;
 mod imports;
 mod items;
+mod recover;
 mod scan;
 mod shift;
 use errors::syntax_error;
@@ -235,16 +236,33 @@ static PRATT: LazyLock<PrattParser<Rule>> = LazyLock::new(|| {
             | Op::postfix(Rule::component))
 });
 
-/// Parses a whole file. Syntax errors come back as one diagnostic with the expected tokens.
+/// Parses a whole file; the first syntax error, if any (see [`parse_all`]).
 pub fn parse(source: &str) -> Result<File, Diagnostic> {
+    parse_all(source).map_err(|mut errors| errors.remove(0))
+}
+
+/// Parses a whole file, reporting several syntax errors when there are: brackets left open
+/// where a new statement begins, and the errors of the statements after a failed one
+/// (`recover.rs`), at most [`recover::MAX_SYNTAX_ERRORS`].
+pub fn parse_all(source: &str) -> Result<File, Vec<Diagnostic>> {
     if source.len() > MAX_SOURCE_BYTES {
-        return Err(Diagnostic::error(Span::new(0, 0), "the file is too large")
-            .note(format!("the limit is {MAX_SOURCE_BYTES} bytes")));
+        return Err(vec![
+            Diagnostic::error(Span::new(0, 0), "the file is too large")
+                .note(format!("the limit is {MAX_SOURCE_BYTES} bytes")),
+        ]);
     }
-    check_control(source)?;
-    check_comments(source)?;
-    check_nesting(source)?;
-    let mut pairs = SdfParser::parse(Rule::file, source).map_err(|e| syntax_error(source, e))?;
+    check_control(source).map_err(|d| vec![d])?;
+    check_comments(source).map_err(|d| vec![d])?;
+    check_nesting(source).map_err(|d| vec![d])?;
+    let open = recover::open_at_statements(source);
+    if !open.is_empty() {
+        return Err(open);
+    }
+    let mut pairs = SdfParser::parse(Rule::file, source).map_err(|e| {
+        let first = syntax_error(source, e);
+        let later = recover::later_errors(source, &first);
+        std::iter::once(first).chain(later).collect::<Vec<_>>()
+    })?;
     let file = pairs.next().expect("the `file` rule matched");
     let items = file
         .into_inner()

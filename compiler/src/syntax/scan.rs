@@ -19,7 +19,7 @@ fn comment_at(rest: &[u8]) -> Option<Option<usize>> {
 }
 
 /// Positions and bytes of the code outside comments (an unclosed comment runs to the end).
-fn code_bytes(source: &str) -> impl Iterator<Item = (usize, u8)> + '_ {
+pub(super) fn code_bytes(source: &str) -> impl Iterator<Item = (usize, u8)> + '_ {
     let bytes = source.as_bytes();
     let mut i = 0;
     std::iter::from_fn(move || {

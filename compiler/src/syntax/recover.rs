@@ -1,0 +1,132 @@
+//! Reporting several syntax errors at once: brackets left open when a new statement begins,
+//! and, after a syntax error, parsing again with the failed statement blanked out (its text
+//! replaced by spaces, line breaks kept, so positions stay the file's).
+
+use super::scan::code_bytes;
+use super::{Rule, SdfParser, errors::syntax_error};
+use crate::diag::{Diagnostic, Span};
+use pest::Parser as _;
+
+/// Most syntax errors one file reports.
+pub const MAX_SYNTAX_ERRORS: usize = 20;
+
+/// The words that begin a statement; one at the start of a line inside brackets means the
+/// brackets before it were never closed.
+const STATEMENT_WORDS: &[&str] = &[
+    "let",
+    "param",
+    "fn",
+    "import",
+    "camera",
+    "light",
+    "trace",
+    "material",
+    "bound",
+    "occlusion",
+    "fog",
+    "background",
+];
+
+/// Whether a statement keyword begins the text at `at` (at the start of its line).
+pub(super) fn statement_at(source: &str, at: usize) -> bool {
+    if !source.is_char_boundary(at) {
+        return false;
+    }
+    let line_start = at == 0 || source.as_bytes()[at - 1] == b'\n';
+    let rest = &source[at..];
+    line_start
+        && STATEMENT_WORDS.iter().any(|w| {
+            rest.strip_prefix(w)
+                .is_some_and(|r| !r.starts_with(|c: char| c.is_ascii_alphanumeric() || c == '_'))
+        })
+}
+
+/// Brackets still open where a statement keyword begins a line: each reported at its opening,
+/// with the place it should have closed by (the outermost open one; the scan goes on as if it
+/// had closed there).
+pub(super) fn open_at_statements(source: &str) -> Vec<Diagnostic> {
+    let mut out = Vec::new();
+    let mut open: Vec<(usize, u8)> = Vec::new();
+    for (i, b) in code_bytes(source) {
+        if !open.is_empty() && statement_at(source, i) {
+            let (j, o) = open[0];
+            let closer = if o == b'(' { ')' } else { '}' };
+            out.push(
+                Diagnostic::error(Span::new(j, j + 1), format!("unclosed `{}`", o as char))
+                    .label(format!("this `{}` is never closed", o as char))
+                    .also(
+                        Span::new(i, i),
+                        format!("expected `{closer}` before this statement"),
+                    ),
+            );
+            open.clear();
+        }
+        match b {
+            b'(' | b'{' => open.push((i, b)),
+            b')' | b'}' => {
+                open.pop();
+            }
+            _ => {}
+        }
+    }
+    out
+}
+
+/// After the syntax error `first`, the errors of the statements after it: the failed
+/// statement is blanked and the file parsed again, until it parses or no new error is found.
+pub(super) fn later_errors(source: &str, first: &Diagnostic) -> Vec<Diagnostic> {
+    let mut text = source.to_string();
+    let mut out = Vec::new();
+    let mut at = first.span.start;
+    while out.len() + 1 < MAX_SYNTAX_ERRORS {
+        let (from, to) = statement_around(&text, at);
+        if to <= from {
+            break;
+        }
+        blank(&mut text, from, to);
+        let Err(e) = SdfParser::parse(Rule::file, &text) else {
+            break;
+        };
+        let d = syntax_error(&text, e);
+        if d.span.start < to {
+            // Nothing new after the blanked statement.
+            break;
+        }
+        at = d.span.start;
+        out.push(d);
+    }
+    out
+}
+
+/// The statement holding `at`: from the last line start at or before it that begins a
+/// statement (a letter at the start of the line) to the next one after it.
+fn statement_around(text: &str, at: usize) -> (usize, usize) {
+    let starts_statement = |i: usize| {
+        (i == 0 || text.as_bytes()[i - 1] == b'\n')
+            && text[i..].starts_with(|c: char| c.is_ascii_alphabetic() || c == '#')
+    };
+    let at = at.min(text.len());
+    let from = (0..=at)
+        .rev()
+        .find(|&i| text.is_char_boundary(i) && starts_statement(i))
+        .unwrap_or(0);
+    let to = (at + 1..text.len())
+        .find(|&i| text.is_char_boundary(i) && starts_statement(i))
+        .unwrap_or(text.len());
+    (from, to)
+}
+
+/// Replaces `text[from..to]` with spaces, line breaks kept.
+fn blank(text: &mut String, from: usize, to: usize) {
+    let blanked: String = text[from..to]
+        .chars()
+        .map(|c| {
+            if c == '\n' {
+                "\n".to_string()
+            } else {
+                " ".repeat(c.len_utf8())
+            }
+        })
+        .collect();
+    text.replace_range(from..to, &blanked);
+}
