@@ -1,5 +1,6 @@
 //! Every example compiles without errors or warnings, the examples together use every catalog
-//! entry, the README's reference table is current, and every example's field respects its λ.
+//! entry, the language reference's tables are current and name every keyword and standard-library
+//! file, the README's tutorial scenes compile, and every example's field respects its λ.
 
 use glam::DVec3;
 use sdfc_compiler::catalog::{OPERATORS, PRIMITIVES};
@@ -42,19 +43,51 @@ fn examples_cover_the_catalog() {
     assert!(missing.is_empty(), "no example uses: {missing:?}");
 }
 
+/// The language reference's table of primitives, operators and functions is the catalog's.
 #[test]
-fn readme_reference_table_is_current() {
-    let readme = std::fs::read_to_string(sdfc_tests::root().join("README.md")).unwrap();
+fn language_reference_table_is_current() {
+    let doc = std::fs::read_to_string(sdfc_tests::root().join("docs/language.md")).unwrap();
     let start = "<!-- catalog:start -->\n";
     let end = "<!-- catalog:end -->";
-    let a = readme
+    let a = doc
         .find(start)
-        .expect("README has the catalog start marker")
+        .expect("docs/language.md has the catalog start marker")
         + start.len();
-    let b = readme.find(end).expect("README has the catalog end marker");
+    let b = doc
+        .find(end)
+        .expect("docs/language.md has the catalog end marker");
     assert!(
-        readme[a..b] == docs::catalog_table(),
-        "README's reference table is stale: replace it with the output of `sdfc check --list`"
+        doc[a..b] == docs::catalog_table(),
+        "docs/language.md's reference table is stale: replace it with the output of `sdfc check --list`"
+    );
+}
+
+/// The language reference names (in backticks) every block keyword, the statements' keywords,
+/// the built-in names and every file of the standard library.
+#[test]
+fn language_reference_names_every_keyword_and_std_file() {
+    let doc = std::fs::read_to_string(sdfc_tests::root().join("docs/language.md")).unwrap();
+    let blocks = [
+        "camera",
+        "light",
+        "trace",
+        "material",
+        "bound",
+        "occlusion",
+        "fog",
+        "background",
+    ];
+    let others = ["let", "param", "fn", "import", "time", "pi", "tau"];
+    let std_files = sdfc_compiler::syntax::STD.iter().map(|(path, _)| *path);
+    let missing: Vec<&str> = blocks
+        .into_iter()
+        .chain(others)
+        .chain(std_files)
+        .filter(|name| !doc.contains(&format!("`{name}`")))
+        .collect();
+    assert!(
+        missing.is_empty(),
+        "docs/language.md does not mention: {missing:?}"
     );
 }
 
@@ -82,17 +115,14 @@ fn readme_tutorial_scenes_compile() {
     }
 }
 
-/// The README's table of texture patterns is the one the texture module documents.
+/// The language reference's table of texture patterns is the one the texture module documents.
 #[test]
-fn readme_pattern_table_is_current() {
-    let readme = std::fs::read_to_string(sdfc_tests::root().join("README.md")).unwrap();
-    let table: String = docs::pattern_table()
-        .lines()
-        .map(|l| format!("  {l}\n"))
-        .collect();
+fn language_pattern_table_is_current() {
+    let doc = std::fs::read_to_string(sdfc_tests::root().join("docs/language.md")).unwrap();
+    let table = docs::pattern_table();
     assert!(
-        readme.contains(&table),
-        "README's pattern table is stale; it should read:\n{table}"
+        doc.contains(&table),
+        "docs/language.md's pattern table is stale; it should read:\n{table}"
     );
 }
 

@@ -5,8 +5,8 @@ use crate::check::signature;
 use crate::scene::{Epsilon, Scene};
 use std::fmt::Write;
 
-/// The Markdown reference table of primitives, operators and math functions (in the README,
-/// where a test checks it is current).
+/// The Markdown reference table of primitives, operators and math functions (in
+/// docs/language.md, where a test checks it is current).
 pub fn catalog_table() -> String {
     let mut s = String::new();
     s.push_str("| kind | signature | exact | what it is |\n| --- | --- | --- | --- |\n");
@@ -53,8 +53,8 @@ pub fn catalog_table() -> String {
     s
 }
 
-/// The Markdown table of procedural texture patterns (in the README, where a test checks it
-/// is current).
+/// The Markdown table of procedural texture patterns (in docs/language.md, where a test
+/// checks it is current).
 pub fn pattern_table() -> String {
     let mut s = String::from("| pattern | what it is |\n| --- | --- |\n");
     for (name, _, doc) in crate::texture::PATTERNS {

@@ -274,3 +274,34 @@ fn diagnostics_as_json_and_in_colour() {
     );
     let _ = std::fs::remove_dir_all(dir);
 }
+
+/// A diagnostic inside an imported file names that file and its line, in the report and in
+/// JSON, with the call in the importing file beside it.
+#[test]
+fn diagnostics_in_imported_files() {
+    let dir = scratch("json-import");
+    std::fs::create_dir_all(dir.join("lib")).unwrap();
+    std::fs::write(
+        dir.join("lib/parts.sdf"),
+        "// parts\nfn shelf(w) = box((w, 0.1, 0.4)) at (0, heigth, 0)\n",
+    )
+    .unwrap();
+    let file = dir.join("main.sdf");
+    std::fs::write(&file, "import \"lib/parts.sdf\"\nshelf(2)\n").unwrap();
+    let main = file.to_str().unwrap();
+    let lib = dir.join("lib/parts.sdf").display().to_string();
+    let o = sdfc(&["check", main, "--message-format", "json"]);
+    assert_eq!(o.status.code(), Some(1));
+    let text = String::from_utf8_lossy(&o.stderr);
+    let d: serde_json::Value = serde_json::from_str(text.lines().next().unwrap()).unwrap();
+    assert_eq!(d["file"], lib.as_str(), "{d}");
+    assert_eq!(
+        (d["span"]["line"].as_u64(), d["span"]["column"].as_u64()),
+        (Some(2), Some(41))
+    );
+    assert_eq!(d["secondary"][0]["file"], main, "{d}");
+    assert_eq!(d["secondary"][0]["span"]["line"].as_u64(), Some(2));
+    let human = String::from_utf8_lossy(&sdfc(&["check", main]).stderr).to_string();
+    assert!(human.contains(&format!("┌─ {lib}:2:41")), "{human}");
+    assert!(human.contains(&format!("┌─ {main}:2:1")), "{human}");
+}
