@@ -402,3 +402,73 @@ fn extruded_and_revolved_shapes_are_exact() {
     }
     assert_eq!(compared, 20_000);
 }
+
+/// Every primitive's bound holds its solid: at random arguments (degenerate ones included), no
+/// point outside its box or sphere has a field ≤ 0. (The sampled region is the box grown by
+/// its size; 2D shapes are extruded, the sampling then covering their box in x and y.)
+#[test]
+fn every_primitive_bound_holds_its_solid() {
+    use sdfc_compiler::catalog::{PRIMITIVES, Ty};
+    let mut rng = sdfc_tests::Rng::new(23);
+    let mut checked = 0;
+    for prim in PRIMITIVES {
+        if prim.name == "mandelbulb" {
+            continue; // an estimate of a fractal: its bound is its escape radius, tested apart
+        }
+        for _ in 0..12 {
+            let args: Vec<String> = prim
+                .params
+                .iter()
+                .map(|p| {
+                    let len = |r: &mut sdfc_tests::Rng| *r.pick(&[0.0, 0.05, 0.3, 0.7, 1.0, 1.6]);
+                    match p.ty {
+                        Ty::Length => format!("{}", len(&mut rng)),
+                        Ty::Positive => format!("{}", len(&mut rng) + 0.1),
+                        Ty::Number => format!("{}", rng.range(-1.0, 1.0)),
+                        Ty::Size => {
+                            format!("({}, {}, {})", len(&mut rng), len(&mut rng), len(&mut rng))
+                        }
+                        Ty::WholeIn(lo, _) => format!("{}", lo as usize + rng.below(6)),
+                        Ty::CountTo(_) | Ty::Count => format!("{}", 1 + rng.below(6)),
+                        Ty::Axis => "(0.3, 1, -0.2)".to_string(),
+                        _ => p.default.map_or("1".to_string(), |_| String::new()),
+                    }
+                })
+                .collect();
+            let named: Vec<String> = prim
+                .params
+                .iter()
+                .zip(&args)
+                .filter(|(_, a)| !a.is_empty())
+                .map(|(p, a)| format!("{} = {a}", p.name))
+                .collect();
+            let mut source = format!("{}({})", prim.name, named.join(", "));
+            let planar = sdfc_compiler::catalog::planar::is_planar_primitive(prim.name);
+            if planar {
+                source = format!("extrude(2) {{ {source} }}");
+            }
+            let Some(scene) = sdfc_compiler::check::compile(&source).scene else {
+                continue;
+            };
+            let b = scene.nodes[scene.root].bound;
+            if !(b.lo.is_finite() && b.hi.is_finite()) {
+                continue; // the plane
+            }
+            let grow = (b.hi - b.lo).max(DVec3::splat(0.5));
+            for _ in 0..3000 {
+                let t = DVec3::new(rng.unit(), rng.unit(), rng.unit());
+                let p = b.lo - grow + (b.hi - b.lo + 2.0 * grow) * t;
+                let inside_box = (p.cmpge(b.lo - 1e-9) & p.cmple(b.hi + 1e-9)).all();
+                let inside_sphere = (p - b.center).length() <= b.radius + 1e-9;
+                if eval::distance(&scene, p) <= 0.0 {
+                    assert!(
+                        inside_box && inside_sphere,
+                        "{source}: {p} is inside the solid, outside its bound {b:?}"
+                    );
+                }
+                checked += 1;
+            }
+        }
+    }
+    assert!(checked > 300_000, "{checked}");
+}

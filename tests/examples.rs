@@ -197,3 +197,22 @@ fn steepest(f: impl Fn(DVec3) -> f64, center: DVec3, extent: f64, samples: usize
     }
     best
 }
+
+/// Every `sdf` code block of docs/language.md checks without errors or warnings (the reference
+/// says so of its examples).
+#[test]
+fn language_reference_examples_check() {
+    let doc = std::fs::read_to_string(sdfc_tests::root().join("docs/language.md")).unwrap();
+    let mut blocks = 0;
+    for (i, part) in doc.split("```sdf\n").enumerate().skip(1) {
+        let code = part.split("```").next().unwrap();
+        let checked = check::compile(code);
+        assert!(
+            checked.diagnostics.is_empty() && checked.scene.is_some(),
+            "block {i} of docs/language.md:\n{code}\n{}",
+            sdfc_compiler::diag::render(&checked.diagnostics, "docs/language.md", code)
+        );
+        blocks += 1;
+    }
+    assert!(blocks >= 10, "only {blocks} examples in docs/language.md");
+}

@@ -142,14 +142,27 @@ pub fn operator_block(
 /// radius, sometimes after a union with a second copy moved in its plane (shared by the
 /// fuzzers).
 pub fn solid_of_2d(r: &mut Rng, shape: String) -> String {
-    let shape = if r.below(3) == 0 {
-        format!(
-            "union {{ {shape}  {shape} at ({:.3}, {:.3}, 0) }}",
-            r.range(-0.8, 0.8),
-            r.range(-0.8, 0.8)
-        )
-    } else {
-        shape
+    let moved = format!(
+        "{shape} at ({:.3}, {:.3}, 0)",
+        r.range(-0.8, 0.8),
+        r.range(-0.8, 0.8)
+    );
+    // 2D operators too: a union, a smooth blend, a turn in the plane, a mirror across a
+    // plane through the z axis, a rounding.
+    let shape = match r.below(7) {
+        0 => format!("union {{ {shape}  {moved} }}"),
+        1 => format!(
+            "smooth_union({:.3}) {{ {shape}  {moved} }}",
+            r.range(0.0, 0.5)
+        ),
+        2 => format!("{moved} |> rotate(z, {}deg)", r.below(360)),
+        3 => format!(
+            "mirror(({:.3}, {:.3}, 0)) {{ {moved} }}",
+            r.range(-1.0, 1.0),
+            r.range(0.1, 1.0)
+        ),
+        4 => format!("{shape} |> round({:.3})", r.range(0.0, 0.3)),
+        _ => shape,
     };
     if r.below(2) == 0 {
         format!("extrude(height = {:.3}) {{ {shape} }}", r.range(0.0, 2.0))

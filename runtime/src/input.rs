@@ -105,6 +105,7 @@ pub fn imported_files(path: &Path) -> Vec<std::path::PathBuf> {
         .skip(1)
         .filter(|f| !sdfc_compiler::syntax::STD.iter().any(|(n, _)| *n == f.name))
         .map(|f| std::path::PathBuf::from(&f.name))
+        .chain(loaded.missing)
         .collect()
 }
 

@@ -73,7 +73,8 @@ impl SceneWatcher {
             .collect();
         for f in &files {
             let dir = parent(f);
-            if !self.dirs.contains(&dir) {
+            // (A directory that does not exist yet is looked for again after the next save.)
+            if !self.dirs.contains(&dir) && dir.is_dir() {
                 match self
                     .watcher
                     .watch(&dir, notify::RecursiveMode::NonRecursive)

@@ -324,7 +324,16 @@ fn print_table(rows: &[Row]) {
 fn math_row(gpu: &sdfc::gpu::Gpu, f: &sdfc_compiler::catalog::MathFn, r: &mut Rng) -> Row {
     let mut row = Row::new(f.name);
     for args in argument_lists(f.arity) {
-        let args: Vec<String> = args.iter().map(|a| in_domain(f.name, a)).collect();
+        let mut args: Vec<String> = args.iter().map(|a| in_domain(f.name, a)).collect();
+        // A divisor that keeps its sign; edges that differ everywhere.
+        match f.name {
+            "mod" => args[1] = format!("(abs({}) + 0.5)", args[1]),
+            "smoothstep" => {
+                args[0] = format!("(-abs({}) - 0.25)", args[0]);
+                args[1] = format!("(abs({}) + 0.25)", args[1]);
+            }
+            _ => {}
+        }
         let source = format!(
             "implicit {{ {}({}) }} @lipschitz(1)",
             f.name,
@@ -336,7 +345,15 @@ fn math_row(gpu: &sdfc::gpu::Gpu, f: &sdfc_compiler::catalog::MathFn, r: &mut Rn
 }
 
 /// Math functions whose cases are drawn after all the others (see below).
-const LATER: &[&str] = &["clamp", "mix", "sign", "floor", "fract"];
+const LATER: &[&str] = &[
+    "clamp",
+    "mix",
+    "sign",
+    "floor",
+    "fract",
+    "mod",
+    "smoothstep",
+];
 
 #[test]
 fn gpu_field_equals_the_cpu_reference_within_f32() {

@@ -286,6 +286,67 @@ pub static MATH_FUNCTIONS: &[MathFn] = &[
         },
         partials: |a| vec![jump(a[0].lo.floor() == a[0].hi.floor(), 1.0)],
     },
+    MathFn {
+        name: "mod",
+        // The divisor must keep its sign (b = 0 divides by zero).
+        defined: |a| a[1].lo > 0.0 || a[1].hi < 0.0,
+        units: Units::Same,
+        // Lowered as a − b·floor(a / b) (`lower::lower_field`).
+        lower: naga::MathFunction::Floor,
+        arity: 2,
+        doc: "a − b·floor(a / b), GLSL's mod: in [0, b) for b > 0 (a jump where a / b is whole)",
+        eval: |a| a[0] - a[1] * (a[0] / a[1]).floor(),
+        range: |a| {
+            let q = a[0].div(a[1]);
+            let k = Interval::new(q.lo.floor(), q.hi.floor());
+            if k.lo == k.hi {
+                a[0].sub(a[1].mul(k))
+            } else if a[1].lo > 0.0 {
+                Interval::new(0.0, a[1].hi)
+            } else {
+                Interval::new(a[1].lo, 0.0)
+            }
+        },
+        partials: |a| {
+            let q = a[0].div(a[1]);
+            let (lo, hi) = (q.lo.floor(), q.hi.floor());
+            if lo == hi && lo.is_finite() {
+                vec![Interval::point(1.0), Interval::point(-lo)]
+            } else {
+                vec![Interval::ALL, Interval::ALL]
+            }
+        },
+    },
+    MathFn {
+        name: "smoothstep",
+        // The edges must differ everywhere (b − a = 0 divides by zero).
+        defined: |a| {
+            let w = a[1].sub(a[0]);
+            w.lo > 0.0 || w.hi < 0.0
+        },
+        units: Units::Plain,
+        // Lowered as t²·(3 − 2t), t = clamp((c − a) / (b − a), 0, 1) (`lower::lower_field`).
+        lower: naga::MathFunction::SmoothStep,
+        arity: 3,
+        doc: "t²·(3 − 2t) with t = clamp((c − a) / (b − a), 0, 1): from 0 at a to 1 at b, smoothly (slope ≤ 1.5/|b − a|)",
+        eval: |a| {
+            let t = ((a[2] - a[0]) / (a[1] - a[0])).clamp(0.0, 1.0);
+            t * t * (3.0 - 2.0 * t)
+        },
+        range: |_| Interval::new(0.0, 1.0),
+        partials: |a| {
+            // ds/dt = 6t(1 − t) ∈ [0, 1.5] (0 where t is clamped); dt/dc = 1/w,
+            // dt/da = (c − b)/w², dt/db = (a − c)/w², w = b − a.
+            let w = a[1].sub(a[0]);
+            let ds = Interval::new(0.0, 1.5);
+            let w2 = w.powi(2);
+            vec![
+                ds.mul(a[2].sub(a[1]).div(w2)),
+                ds.mul(a[0].sub(a[2]).div(w2)),
+                ds.div(w),
+            ]
+        },
+    },
 ];
 
 /// A derivative of `slope` where the function is continuous over the interval (`smooth`), or
@@ -298,8 +359,8 @@ fn jump(smooth: bool, slope: f64) -> Interval {
     }
 }
 
-/// A math function written in terms of the others and the arithmetic operators (the checker
-/// expands a call into them, so their ranges, slopes and lowering are those of the parts).
+/// A math function written in terms of the operators (the checker expands a call into them, so
+/// its range, slope and lowering are theirs).
 pub struct DerivedFn {
     /// Name in the language.
     pub name: &'static str,
@@ -310,20 +371,8 @@ pub struct DerivedFn {
 }
 
 /// The derived math functions.
-pub static DERIVED_FUNCTIONS: &[DerivedFn] = &[
-    DerivedFn {
-        name: "pow",
-        arity: 2,
-        doc: "a ^ b (the `^` operator: a whole exponent takes any base, another needs a > 0)",
-    },
-    DerivedFn {
-        name: "mod",
-        arity: 2,
-        doc: "a − b·floor(a / b), GLSL's mod: in [0, b) for b > 0 (a jump where a / b is whole)",
-    },
-    DerivedFn {
-        name: "smoothstep",
-        arity: 3,
-        doc: "t²·(3 − 2t) with t = clamp((c − a) / (b − a), 0, 1): from 0 at a to 1 at b, smoothly",
-    },
-];
+pub static DERIVED_FUNCTIONS: &[DerivedFn] = &[DerivedFn {
+    name: "pow",
+    arity: 2,
+    doc: "a ^ b (the `^` operator: a whole exponent takes any base, another needs a > 0)",
+}];

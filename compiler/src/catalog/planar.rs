@@ -194,7 +194,7 @@ pub const REVOLVE: Operator = Operator {
     lower: ir::revolve,
     doc: "Makes a solid of a 2D shape by turning it about the y axis: x of the shape is the \
           distance from the axis less `radius` (the shape at (length(x, z) − radius, y); λ is \
-          the shape's; exact where the shape does not reach past the axis).",
+          the shape's; exact outside where the shape does not reach past the axis).",
     params: &[opt("radius", Ty::Number, num(0.0))],
     arity: Arity::Exactly(1),
     lipschitz: |c| c.child_lambda[0],

@@ -178,7 +178,9 @@ pub const ROUND_CONE: Primitive = Primitive {
     bound: |c| {
         let (r1, r2, h) = (c.num(0), c.num(1), c.num(2));
         let r = r1.max(r2);
-        let (lo, hi) = (-h / 2.0 - r1, h / 2.0 + r2);
+        // Each ball's extent (one may hold the other and reach past its centre).
+        let lo = (-h / 2.0 - r1).min(h / 2.0 - r2);
+        let hi = (h / 2.0 + r2).max(-h / 2.0 + r1);
         boxed(
             DVec3::new(0.0, (lo + hi) / 2.0, 0.0),
             DVec3::new(r, (hi - lo) / 2.0, r),

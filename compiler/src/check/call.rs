@@ -113,6 +113,10 @@ impl Checker<'_> {
             );
             return None;
         }
+        if !self.frames.is_empty() && self.fns.contains_key(name) {
+            // A function defined below the one whose body calls it.
+            return self.defined_after_fn(&call.name);
+        }
         if let Some(def) = self.declared.get(name).copied() {
             // A function (or other definition) written further down.
             let what = if self.fns.contains_key(name) || self.failed.contains(name) {
@@ -228,8 +232,14 @@ impl Checker<'_> {
     }
 
     pub(super) fn material_ref(&mut self, id: &Ident) -> Option<u32> {
-        if !self.visible(&id.name) {
-            self.defined_after_fn(id);
+        if !self.material_visible(&id.name) {
+            let at = self
+                .material_spans
+                .iter()
+                .zip(&self.material_names)
+                .find(|(_, n)| **n == id.name)
+                .map(|(s, _)| *s);
+            self.defined_after_fn_at(id, at);
             return None;
         }
         if let Some(i) = self.materials.iter().position(|m| m.name == id.name) {

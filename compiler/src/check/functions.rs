@@ -235,8 +235,10 @@ impl<'a> Checker<'a> {
         }
         let mut seen_named = false;
         let mut extra_reported = false;
-        // A misspelt name is likely the missing argument: not reported twice.
+        // A misspelt name is likely the missing argument: not reported twice; neither is a
+        // parameter given an argument that failed (its error is reported).
         let mut unknown_named = false;
+        let mut given = vec![false; n];
         for arg in &call.args {
             let value = self.value(&arg.value);
             let index = match &arg.name {
@@ -307,6 +309,7 @@ impl<'a> Checker<'a> {
                 ok = false;
                 continue;
             }
+            given[index] = true;
             let Some(value) = value else {
                 ok = false;
                 continue;
@@ -329,8 +332,8 @@ impl<'a> Checker<'a> {
             }
             slots[index] = Some((value, arg.value.span));
         }
-        for (p, slot) in def.params.iter().zip(&slots) {
-            if slot.is_none() && p.default.is_none() && !unknown_named {
+        for ((p, slot), given) in def.params.iter().zip(&slots).zip(&given) {
+            if slot.is_none() && !given && p.default.is_none() && !unknown_named && ok {
                 self.diags.push(
                     Diagnostic::error(
                         call.span,
@@ -366,6 +369,15 @@ impl<'a> Checker<'a> {
         }
     }
 
+    /// Whether material `name` may be used here: inside a body, only one declared before the
+    /// function.
+    pub(super) fn material_visible(&self, name: &str) -> bool {
+        match self.frames.last() {
+            None => true,
+            Some(f) => self.material_item.get(name).is_none_or(|&i| i < f.horizon),
+        }
+    }
+
     /// Whether a call of `name` is being checked (a call of it again recurses).
     pub(super) fn in_frame(&self, name: &str) -> bool {
         self.frames.iter().any(|f| f.name == name)
@@ -373,6 +385,16 @@ impl<'a> Checker<'a> {
 
     /// The error for a body's use of a name defined after its function.
     pub(super) fn defined_after_fn(&mut self, id: &crate::syntax::Ident) -> Option<Value> {
+        let at = self.declared.get(&id.name).copied();
+        self.defined_after_fn_at(id, at)
+    }
+
+    /// As [`Self::defined_after_fn`], with the definition at `at`.
+    pub(super) fn defined_after_fn_at(
+        &mut self,
+        id: &crate::syntax::Ident,
+        at: Option<Span>,
+    ) -> Option<Value> {
         let frame = self
             .frames
             .last()
@@ -387,8 +409,8 @@ impl<'a> Checker<'a> {
         if let Some(def) = def {
             d = d.also(def, "the function");
         }
-        if let Some(at) = self.declared.get(&id.name) {
-            d = d.also(*at, "defined here");
+        if let Some(at) = at {
+            d = d.also(at, "defined here");
         }
         self.diags.push(
             d.help("a body sees its arguments and what is defined above the `fn`; move the definition up or pass it as an argument"),

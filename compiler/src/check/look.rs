@@ -253,7 +253,9 @@ impl Checker<'_> {
                     .note("the surface's own shading gets 1 − reflect − transparent of the light; lower one of them"),
             );
         }
-        self.item_of.entry(name.name.clone()).or_insert(self.item);
+        self.material_item
+            .entry(name.name.clone())
+            .or_insert(self.item);
         self.materials.push(Material {
             name: name.name.clone(),
             color: a[0].vec(),

@@ -58,7 +58,8 @@ pub struct Checked {
     pub sources: Sources,
 }
 
-/// Parses and checks source text.
+/// Parses and checks source text (its imports may name the standard library only: a file's
+/// imports are relative to it, see [`compile_file`]).
 pub fn compile(source: &str) -> Checked {
     compile_with(source, &HashMap::new())
 }
@@ -68,7 +69,7 @@ pub fn compile(source: &str) -> Checked {
 /// them, for the CPU reference. A value outside a parameter's range is an error; names the
 /// scene does not declare are ignored (see [`unknown_params`]).
 pub fn compile_with(source: &str, values: &HashMap<String, Vec<f64>>) -> Checked {
-    compile_file("<input>", source, values, &syntax::FsLoader)
+    compile_file("<input>", source, values, &syntax::NoFiles)
 }
 
 /// Parses and checks the file `name` (its imports read by `loader`, relative to `name`'s
@@ -272,6 +273,8 @@ pub(crate) struct Checker<'a> {
     declared: HashMap<String, Span>,
     /// Definition spans of the file's material names.
     material_spans: Vec<Span>,
+    /// Those names, in the same order.
+    material_names: Vec<String>,
     materials: Vec<Material>,
     /// The `let` being checked and where its name is, to catch self-reference.
     defining: Option<(&'a str, Span)>,
@@ -300,6 +303,8 @@ pub(crate) struct Checker<'a> {
     /// The statement index of each `let`, parameter, function and material: a body sees only
     /// those before its function.
     item_of: HashMap<String, usize>,
+    /// The statement index of each material (a name space of its own).
+    material_item: HashMap<String, usize>,
     /// The statement being checked.
     item: usize,
     /// Calls expanded so far.
@@ -314,6 +319,7 @@ impl<'a> Checker<'a> {
     fn new(file: &'a syntax::File) -> Checker<'a> {
         let mut declared = HashMap::new();
         let mut material_spans = Vec::new();
+        let mut material_names = Vec::new();
         for item in &file.items {
             match item {
                 Item::Let { name, .. } | Item::Param { name, .. } => {
@@ -331,6 +337,7 @@ impl<'a> Checker<'a> {
                 } if keyword.name == "material" => {
                     declared.entry(kind.name.clone()).or_insert(kind.span);
                     material_spans.push(kind.span);
+                    material_names.push(kind.name.clone());
                 }
                 _ => {}
             }
@@ -341,6 +348,7 @@ impl<'a> Checker<'a> {
             lets: HashMap::new(),
             declared,
             material_spans,
+            material_names,
             materials: Vec::new(),
             defining: None,
             failed: Default::default(),
@@ -356,6 +364,7 @@ impl<'a> Checker<'a> {
             fns: HashMap::new(),
             frames: Vec::new(),
             item_of: HashMap::new(),
+            material_item: HashMap::new(),
             item: 0,
             calls: 0,
             planar: Vec::new(),

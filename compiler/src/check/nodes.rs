@@ -76,9 +76,14 @@ impl Checker<'_> {
         span: Span,
     ) -> Option<NodeId> {
         let op = crate::catalog::operator(name).expect("operator in the catalog");
-        let axis = (name == "rotate").then(|| match args.first() {
-            Some(crate::catalog::Val::Vec3(v)) => *v,
-            _ => glam::DVec3::ZERO,
+        // The first argument of the operators that move a 2D shape out of its plane (a turn's
+        // or mirror's axis, a repeat's spacing), and whether the host may change it.
+        let axis = matches!(name, "rotate" | "mirror" | "repeat").then(|| {
+            let v = match args.first() {
+                Some(crate::catalog::Val::Vec3(v)) => *v,
+                _ => glam::DVec3::ZERO,
+            };
+            (v, sym.first().is_some_and(Option::is_some))
         });
         if self.check_planar(name, axis, &children, span).is_err() {
             return None;

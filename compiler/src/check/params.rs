@@ -103,7 +103,10 @@ impl Checker<'_> {
             Some(d) => {
                 self.param_index
                     .insert(name.name.clone(), self.params.len());
-                self.item_of.insert(name.name.clone(), self.item);
+                if name.name != TIME {
+                    // `param time` gives the built-in a range: every body may read it.
+                    self.item_of.insert(name.name.clone(), self.item);
+                }
                 self.params.push(d);
                 self.param_used.push(false);
             }

@@ -31,7 +31,7 @@ impl Checker<'_> {
     pub(super) fn check_planar(
         &mut self,
         name: &str,
-        axis: Option<glam::DVec3>,
+        axis: Option<(glam::DVec3, bool)>,
         children: &[NodeId],
         span: Span,
     ) -> Result<(), ()> {
@@ -81,14 +81,44 @@ impl Checker<'_> {
             );
             return Err(());
         }
-        if let Some(a) = axis
-            && (a.z.abs() - 1.0).abs() > 1e-12
-        {
+        // A 2D shape must stay the same at every z (extrude's λ = 1 rests on it): turns only
+        // about z, mirrors only across planes that contain z or are across it, repeats only in
+        // its plane — and none of these set at run time.
+        let Some((a, run_time)) = axis else {
+            return Ok(());
+        };
+        let (ok, what, help) = match name {
+            "rotate" => (
+                (a.z.abs() - 1.0).abs() <= 1e-12,
+                "a 2D shape turns only in its plane",
+                "turn it about `z`, or turn the solid after `extrude` or `revolve`",
+            ),
+            "mirror" => (
+                a.z == 0.0 || (a.z.abs() - 1.0).abs() <= 1e-12,
+                "a 2D shape mirrors only within its plane",
+                "mirror it across a plane through the z axis (a normal `(x, y, 0)`), or mirror the solid",
+            ),
+            _ => (
+                a.z == 0.0,
+                "a 2D shape repeats only in its plane",
+                "give the spacing 0 along z: `repeat((sx, sy, 0)) { … }`",
+            ),
+        };
+        if !ok {
             self.diags.push(
-                Diagnostic::error(span, "a 2D shape turns only in its plane")
-                    .label("not about the z axis")
+                Diagnostic::error(span, what)
+                    .label("out of the xy plane")
                     .also(c, "a 2D shape, in the xy plane")
-                    .help("turn it about `z`, or turn the solid after `extrude` or `revolve`"),
+                    .help(help),
+            );
+            return Err(());
+        }
+        if run_time {
+            self.diags.push(
+                Diagnostic::error(span, format!("the first argument of `{name}` of a 2D shape cannot be a parameter"))
+                    .label("set at run time")
+                    .also(c, "a 2D shape")
+                    .note("a 2D shape must stay in its plane for every value, which a parameter's range does not promise; a turn's angle may be a parameter"),
             );
             return Err(());
         }

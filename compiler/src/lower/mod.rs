@@ -351,6 +351,31 @@ pub(super) fn lower_field(b: &mut FnBuilder, f: &Field, p: Ex) -> Ex {
                 let v = b.compose_vec3([args[0], args[1], args[2]]);
                 return b.length(v);
             }
+            match func.name {
+                // a − b·floor(a / b)
+                "mod" => {
+                    let q = b.div(args[0], args[1]);
+                    let k = b.math(MathFunction::Floor, &[q]);
+                    let m = b.mul(args[1], k);
+                    return b.sub(args[0], m);
+                }
+                // t²·(3 − 2t), t = clamp((c − a) / (b − a), 0, 1), written out (the
+                // built-in's result for b < a is not the same in every shading language).
+                "smoothstep" => {
+                    let n = b.sub(args[2], args[0]);
+                    let w = b.sub(args[1], args[0]);
+                    let t = b.div(n, w);
+                    let (zero, one) = (b.f(0.0), b.f(1.0));
+                    let t = b.clamp(t, zero, one);
+                    let tt = b.mul(t, t);
+                    let two = b.f(2.0);
+                    let three = b.f(3.0);
+                    let t2 = b.mul(two, t);
+                    let r = b.sub(three, t2);
+                    return b.mul(tt, r);
+                }
+                _ => {}
+            }
             b.math(func.lower, &args)
         }
     }

@@ -56,14 +56,18 @@ fn ended_early(source: &str, at: usize) -> Option<Diagnostic> {
     if !super::recover::statement_at(source, at) {
         return None;
     }
-    let before = source[..at].trim_end();
-    let last = before.chars().next_back()?;
+    // The last character of code before it (comments skipped).
+    let (end, last) = super::scan::code_bytes(&source[..at])
+        .filter(|(_, b)| !b.is_ascii_whitespace())
+        .last()?;
+    let before = &source[..=end];
+    let last = last as char;
     let op = match last {
         '+' | '-' | '*' | '/' | '^' | '=' | ',' | '(' | ':' | '@' => last.to_string(),
         '>' if before.ends_with("|>") => "|>".to_string(),
         _ => return None,
     };
-    let end = before.len();
+    let end = end + 1;
     Some(
         Diagnostic::error(Span::new(end, end), "syntax error")
             .label(format!("expected an expression after `{op}`"))

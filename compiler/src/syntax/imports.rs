@@ -33,10 +33,16 @@ impl Loader for FsLoader {
     fn read(&self, path: &Path) -> Result<String, String> {
         use std::io::Read;
         let limit = super::MAX_SOURCE_BYTES;
-        let file = std::fs::File::open(path).map_err(|e| e.to_string())?;
-        if file.metadata().is_ok_and(|m| m.is_dir()) {
+        // Only regular files: a directory, a FIFO or a device (`/dev/stdin`) is refused before
+        // it is opened (opening a FIFO blocks).
+        let meta = std::fs::metadata(path).map_err(|e| e.to_string())?;
+        if meta.is_dir() {
             return Err("it is a directory".into());
         }
+        if !meta.is_file() {
+            return Err("it is not a regular file".into());
+        }
+        let file = std::fs::File::open(path).map_err(|e| e.to_string())?;
         let mut bytes = Vec::new();
         file.take(limit as u64 + 1)
             .read_to_end(&mut bytes)
@@ -46,6 +52,16 @@ impl Loader for FsLoader {
         }
         let text = String::from_utf8(bytes).map_err(|_| "it is not UTF-8 text".to_string())?;
         Ok(text.strip_prefix('\u{feff}').unwrap_or(&text).to_string())
+    }
+}
+
+/// No files at all (the standard library only): what `check::compile` uses, which has no file
+/// to be relative to.
+pub struct NoFiles;
+
+impl Loader for NoFiles {
+    fn read(&self, _: &Path) -> Result<String, String> {
+        Err("this source has no file to import relative to (check it as a file)".into())
     }
 }
 
@@ -70,6 +86,8 @@ pub struct Loaded {
     pub sources: Sources,
     /// Errors of reading and parsing (spans in the shared space).
     pub diagnostics: Vec<Diagnostic>,
+    /// Files imported that could not be read (a watcher waits for them to appear).
+    pub missing: Vec<PathBuf>,
 }
 
 /// Parses the main file (`name`, `text`) and every file it imports.
@@ -77,6 +95,7 @@ pub fn load(name: &str, text: &str, loader: &dyn Loader) -> Loaded {
     let mut l = Load {
         sources: Sources::single(name, text),
         diagnostics: Vec::new(),
+        missing: Vec::new(),
         included: HashSet::new(),
         loader,
     };
@@ -87,6 +106,7 @@ pub fn load(name: &str, text: &str, loader: &dyn Loader) -> Loaded {
                 file: None,
                 sources: l.sources,
                 diagnostics,
+                missing: l.missing,
             };
         }
     };
@@ -103,12 +123,14 @@ pub fn load(name: &str, text: &str, loader: &dyn Loader) -> Loaded {
         file: ok.then_some(File { items }),
         sources: l.sources,
         diagnostics: l.diagnostics,
+        missing: l.missing,
     }
 }
 
 struct Load<'l> {
     sources: Sources,
     diagnostics: Vec<Diagnostic>,
+    missing: Vec<PathBuf>,
     /// Files read already (an import of one again adds nothing).
     included: HashSet<PathBuf>,
     loader: &'l dyn Loader,
@@ -162,10 +184,14 @@ impl Load<'_> {
     ) -> Vec<Item> {
         let std_text = STD.iter().find(|(n, _)| *n == path).map(|(_, t)| *t);
         let (resolved, shown) = match std_text {
-            Some(_) => (PathBuf::from(path), path.to_string()),
+            // Keyed apart from a file on disk of the same name.
+            Some(_) => (PathBuf::from("<std>").join(path), path.to_string()),
             None => {
                 let p = normalize(&dir.join(path));
-                let shown = p.display().to_string();
+                let shown = match p.display().to_string() {
+                    s if s.is_empty() => ".".to_string(),
+                    s => s,
+                };
                 (p, shown)
             }
         };
@@ -224,6 +250,7 @@ impl Load<'_> {
             None => match self.loader.read(&resolved) {
                 Ok(t) => t,
                 Err(why) => {
+                    self.missing.push(resolved.clone());
                     self.diagnostics.push(
                         Diagnostic::error(path_span, format!("cannot import `{path}`"))
                             .label(why)

@@ -7,6 +7,9 @@ use super::{Rule, SdfParser, errors::syntax_error};
 use crate::diag::{Diagnostic, Span};
 use pest::Parser as _;
 
+/// Largest file whose syntax errors after the first are looked for.
+pub const RECOVERY_BYTES: usize = 256 << 10;
+
 /// Most syntax errors one file reports.
 pub const MAX_SYNTAX_ERRORS: usize = 20;
 
@@ -64,7 +67,12 @@ pub(super) fn open_at_statements(source: &str) -> Vec<Diagnostic> {
         match b {
             b'(' | b'{' => open.push((i, b)),
             b')' | b'}' => {
-                open.pop();
+                let want = if b == b')' { b'(' } else { b'{' };
+                match open.pop() {
+                    Some((_, o)) if o == want => {}
+                    // A closer of the wrong kind or of nothing: `bracket_error` says which.
+                    _ => return Vec::new(),
+                }
             }
             _ => {}
         }
@@ -75,6 +83,10 @@ pub(super) fn open_at_statements(source: &str) -> Vec<Diagnostic> {
 /// After the syntax error `first`, the errors of the statements after it: the failed
 /// statement is blanked and the file parsed again, until it parses or no new error is found.
 pub(super) fn later_errors(source: &str, first: &Diagnostic) -> Vec<Diagnostic> {
+    if source.len() > RECOVERY_BYTES {
+        // Each error costs a parse of the whole file: past this size, the first error only.
+        return Vec::new();
+    }
     let mut text = source.to_string();
     let mut out = Vec::new();
     let mut at = first.span.start;
@@ -99,7 +111,8 @@ pub(super) fn later_errors(source: &str, first: &Diagnostic) -> Vec<Diagnostic> 
 }
 
 /// The statement holding `at`: from the last line start at or before it that begins a
-/// statement (a letter at the start of the line) to the next one after it.
+/// statement (a letter at the start of the line) to the next one after it where its brackets
+/// are closed again (or a statement keyword begins a line).
 fn statement_around(text: &str, at: usize) -> (usize, usize) {
     let starts_statement = |i: usize| {
         (i == 0 || text.as_bytes()[i - 1] == b'\n')
@@ -110,9 +123,23 @@ fn statement_around(text: &str, at: usize) -> (usize, usize) {
         .rev()
         .find(|&i| text.is_char_boundary(i) && starts_statement(i))
         .unwrap_or(0);
-    let to = (at + 1..text.len())
-        .find(|&i| text.is_char_boundary(i) && starts_statement(i))
-        .unwrap_or(text.len());
+    let mut depth = 0i64;
+    let mut to = text.len();
+    for (i, b) in code_bytes(text).filter(|&(i, _)| i >= from) {
+        if i > at
+            && text.is_char_boundary(i)
+            && starts_statement(i)
+            && (depth <= 0 || statement_at(text, i))
+        {
+            to = i;
+            break;
+        }
+        match b {
+            b'(' | b'{' => depth += 1,
+            b')' | b'}' => depth -= 1,
+            _ => {}
+        }
+    }
     (from, to)
 }
 

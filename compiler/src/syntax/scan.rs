@@ -18,13 +18,35 @@ fn comment_at(rest: &[u8]) -> Option<Option<usize>> {
     }
 }
 
-/// Positions and bytes of the code outside comments (an unclosed comment runs to the end).
+/// The length of the quoted string (`import "…"`) `rest` starts with, if it does: to its
+/// closing quote, or to the end of its line when it has none.
+fn string_at(rest: &[u8]) -> Option<usize> {
+    if rest.first() != Some(&b'"') {
+        return None;
+    }
+    let end = rest[1..]
+        .iter()
+        .position(|&b| b == b'"' || b == b'\n')
+        .map_or(rest.len(), |p| p + 1);
+    Some(if rest.get(end) == Some(&b'"') {
+        end + 1
+    } else {
+        end
+    })
+}
+
+/// Positions and bytes of the code outside comments and quoted strings (an unclosed comment
+/// runs to the end).
 pub(super) fn code_bytes(source: &str) -> impl Iterator<Item = (usize, u8)> + '_ {
     let bytes = source.as_bytes();
     let mut i = 0;
     std::iter::from_fn(move || {
         while i < bytes.len() {
             let rest = &bytes[i..];
+            if let Some(len) = string_at(rest) {
+                i += len;
+                continue;
+            }
             match comment_at(rest) {
                 Some(len) => i += len.unwrap_or(rest.len()),
                 None => {
@@ -69,6 +91,10 @@ pub(super) fn check_comments(source: &str) -> Result<(), Diagnostic> {
     let bytes = source.as_bytes();
     let mut i = 0;
     while i < bytes.len() {
+        if let Some(len) = string_at(&bytes[i..]) {
+            i += len;
+            continue;
+        }
         match comment_at(&bytes[i..]) {
             Some(Some(len)) => i += len,
             Some(None) => {

@@ -193,6 +193,28 @@ pub fn estimate(f: &Field, p: DVec3) -> Est {
                     1.0 + a[0].e
                 }
                 "floor" => 0.0,
+                // a − b·k, k = floor(a / b): a jump of |b| where a / b may cross a whole number
+                // within its error; else through a and b (times k), the quotient's 2.5 ulp
+                // moving k only as above, and the product and difference rounded.
+                "mod" => {
+                    let q = x[0] / x[1];
+                    let eq = (a[0].e + q.abs() * a[1].e) / x[1].abs() + ulps(2.5, q);
+                    let k = q.floor();
+                    if (q - eq).floor() != (q + eq).floor() {
+                        x[1].abs() + a[1].e + a[0].e + rounded(v) + U * x[0].abs()
+                    } else {
+                        a[0].e + k.abs() * a[1].e + 2.0 * U * (x[0].abs() + (k * x[1]).abs())
+                    }
+                }
+                // Through t (slope 1.5 in t), t through its arguments (the division's 2.5 ulp),
+                // then the polynomial's few roundings.
+                "smoothstep" => {
+                    let w = x[1] - x[0];
+                    let et = (a[2].e + a[0].e) / w.abs()
+                        + ((x[2] - x[0]) / (w * w)).abs() * (a[1].e + a[0].e)
+                        + 3.0 * U * ((x[2] - x[0]) / w).abs();
+                    1.5 * et + 4.0 * U
+                }
                 "fract" => a[0].e + rounded(v) + U * x[0].abs(),
                 other => panic!("no f32 error model for `{other}`: add one to tests/field.rs"),
             };
