@@ -35,6 +35,8 @@ pub(super) struct Frame {
     /// Statements before this index are visible.
     pub horizon: usize,
     pub name: String,
+    /// The call.
+    pub call_span: Span,
 }
 
 impl<'a> Checker<'a> {
@@ -150,6 +152,7 @@ impl<'a> Checker<'a> {
             args: HashMap::new(),
             horizon: item,
             name: name.to_string(),
+            call_span: call.span,
         });
         let mut ok = true;
         for (p, g) in def.params.iter().zip(given) {
@@ -366,6 +369,15 @@ impl<'a> Checker<'a> {
         match self.frames.last() {
             None => true,
             Some(f) => self.item_of.get(name).is_none_or(|&i| i < f.horizon),
+        }
+    }
+
+    /// `d`, about node `n`, with the call that built `n` beside it when a function's body did
+    /// (for errors found after the statements, when no call is being checked).
+    pub(super) fn with_call_site(&self, d: Diagnostic, n: NodeId) -> Diagnostic {
+        match self.call_site.get(n).copied().flatten() {
+            Some(call) if !call.contains(d.span) => d.also(call, "built by this call"),
+            _ => d,
         }
     }
 

@@ -311,6 +311,8 @@ pub(crate) struct Checker<'a> {
     calls: usize,
     /// Per node, whether it is a 2D shape.
     planar: Vec<bool>,
+    /// Per node, the outermost call of a function whose body built it.
+    call_site: Vec<Option<Span>>,
     /// The line of a name that looked like a misspelt block keyword (`matrial`).
     keyword_typo_line: Option<usize>,
 }
@@ -368,6 +370,7 @@ impl<'a> Checker<'a> {
             item: 0,
             calls: 0,
             planar: Vec::new(),
+            call_site: Vec::new(),
             keyword_typo_line: None,
         }
     }

@@ -25,6 +25,7 @@ impl Checker<'_> {
                 // Push a placeholder so the message is given once.
                 self.nodes.push(self.nodes[0].clone());
                 self.planar.push(false);
+                self.call_site.push(None);
             }
             return None;
         }
@@ -50,6 +51,8 @@ impl Checker<'_> {
             NodeKind::Implicit { .. } => [false; 3],
         };
         self.note_planar(&kind);
+        self.call_site
+            .push(self.frames.first().map(|f| f.call_span));
         self.nodes.push(Node {
             mirror,
             unit_gradient,
@@ -248,6 +251,7 @@ impl Checker<'_> {
                         "`{what}` can only be bounded when its shape is bounded"
                     ));
                 }
+                let d = self.with_call_site(d, n);
                 self.diags.push(d);
             }
             stack.extend(self.nodes[n].children().iter().copied());

@@ -128,11 +128,11 @@ impl Checker<'_> {
     /// A 2D shape as a shape of the scene: an error.
     pub(super) fn check_root_not_planar(&mut self, root: NodeId) {
         if self.is_planar(root) {
-            self.diags.push(
-                Diagnostic::error(self.nodes[root].span, "a 2D shape is not a solid")
-                    .label("a 2D shape, the same at every z")
-                    .help("make a solid of it: `extrude(1) { … }` along z or `revolve(0.5) { … }` about y"),
-            );
+            let d = Diagnostic::error(self.nodes[root].span, "a 2D shape is not a solid")
+                .label("a 2D shape, the same at every z")
+                .help("make a solid of it: `extrude(1) { … }` along z or `revolve(0.5) { … }` about y");
+            let d = self.with_call_site(d, root);
+            self.diags.push(d);
         }
     }
 }
