@@ -5,6 +5,7 @@ mod args;
 mod call;
 mod derived;
 mod expr;
+mod fn_args;
 mod functions;
 mod implicit;
 mod look;
