@@ -30,24 +30,17 @@ pub fn catalog_table() -> String {
         };
         let _ = writeln!(s, "| operator | `{head} {{ … }}` | — | {} |", cell(o.doc));
     }
-    for f in MATH_FUNCTIONS {
-        let args: Vec<&str> = ["a", "b", "c"][..f.arity].to_vec();
+    let functions = MATH_FUNCTIONS.iter().map(|f| (f.name, f.arity, f.doc));
+    let derived = crate::catalog::DERIVED_FUNCTIONS
+        .iter()
+        .map(|f| (f.name, f.arity, f.doc));
+    for (name, arity, doc) in functions.chain(derived) {
+        let args: Vec<&str> = ["a", "b", "c"][..arity].to_vec();
         let _ = writeln!(
             s,
-            "| function | `{}({})` | — | {} |",
-            f.name,
+            "| function | `{name}({})` | — | {} |",
             args.join(", "),
-            cell(f.doc)
-        );
-    }
-    for f in crate::catalog::DERIVED_FUNCTIONS {
-        let args: Vec<&str> = ["a", "b", "c"][..f.arity].to_vec();
-        let _ = writeln!(
-            s,
-            "| function | `{}({})` | — | {} |",
-            f.name,
-            args.join(", "),
-            cell(f.doc)
+            cell(doc)
         );
     }
     s

@@ -13,25 +13,7 @@ use crate::syntax::{BinOp, Call};
 impl Checker<'_> {
     /// A call of a derived function.
     pub(super) fn derived_call(&mut self, f: &'static DerivedFn, call: &Call) -> Option<Value> {
-        if call.block.is_some()
-            || call.args.iter().any(|a| a.name.is_some())
-            || call.args.len() != f.arity
-        {
-            let s = if f.arity == 1 { "" } else { "s" };
-            self.diags.push(
-                Diagnostic::error(
-                    call.span,
-                    format!("`{}` takes {} argument{s}", f.name, f.arity),
-                )
-                .label(format!("`{}`: {}", f.name, f.doc)),
-            );
-            return None;
-        }
-        let mut args = Vec::new();
-        for a in &call.args {
-            args.push(self.value(&a.value));
-        }
-        let args: Vec<Value> = args.into_iter().collect::<Option<_>>()?;
+        let args = self.function_args((f.name, f.arity, f.doc), call)?;
         if let Some((bad, arg)) = args.iter().zip(&call.args).find(|(a, _)| {
             !matches!(a, Value::Num(..) | Value::Field(_))
                 && !matches!(a, Value::Param(s) if matches!(s.kind, SymKind::Num(_)))

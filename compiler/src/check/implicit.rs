@@ -11,17 +11,26 @@ use crate::syntax::{Arg, Call, Ident};
 
 impl Checker<'_> {
     pub(super) fn math_call(&mut self, f: &'static catalog::MathFn, call: &Call) -> Option<Value> {
+        let args = self.function_args((f.name, f.arity, f.doc), call)?;
+        let spans: Vec<Span> = call.args.iter().map(|a| a.value.span).collect();
+        self.apply_math(f, args, &spans, call.span)
+    }
+
+    /// The checked arguments of a call of a math function (`name`, its arity and doc line):
+    /// exactly so many, positional, no block; `None` when reported.
+    pub(super) fn function_args(
+        &mut self,
+        (name, arity, doc): (&str, usize, &str),
+        call: &Call,
+    ) -> Option<Vec<Value>> {
         if call.block.is_some()
             || call.args.iter().any(|a| a.name.is_some())
-            || call.args.len() != f.arity
+            || call.args.len() != arity
         {
-            let s = if f.arity == 1 { "" } else { "s" };
+            let s = if arity == 1 { "" } else { "s" };
             self.diags.push(
-                Diagnostic::error(
-                    call.span,
-                    format!("`{}` takes {} argument{s}", f.name, f.arity),
-                )
-                .label(format!("`{}`: {}", f.name, f.doc)),
+                Diagnostic::error(call.span, format!("`{name}` takes {arity} argument{s}"))
+                    .label(format!("`{name}`: {doc}")),
             );
             return None;
         }
@@ -29,9 +38,7 @@ impl Checker<'_> {
         for a in &call.args {
             args.push(self.value(&a.value));
         }
-        let args: Vec<Value> = args.into_iter().collect::<Option<_>>()?;
-        let spans: Vec<Span> = call.args.iter().map(|a| a.value.span).collect();
-        self.apply_math(f, args, &spans, call.span)
+        args.into_iter().collect()
     }
 
     /// A math function applied to checked arguments (at `spans`; the call at `span`): folded
