@@ -89,6 +89,16 @@ fn language_reference_names_every_keyword_and_std_file() {
         missing.is_empty(),
         "docs/language.md does not mention: {missing:?}"
     );
+    // Each standard-library function with its signature as the library writes it.
+    for (path, text) in sdfc_compiler::syntax::STD {
+        for line in text.lines().filter_map(|l| l.strip_prefix("fn ")) {
+            let head = &line[..=line.find(") =").expect("fn NAME(…) = BODY")];
+            assert!(
+                doc.contains(&format!("`{head}`")),
+                "docs/language.md does not show `{head}` of {path}"
+            );
+        }
+    }
 }
 
 /// Every scene in the README's tutorial (its ```sdf blocks) compiles without a diagnostic.
