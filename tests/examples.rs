@@ -67,21 +67,15 @@ fn language_reference_table_is_current() {
 #[test]
 fn language_reference_names_every_keyword_and_std_file() {
     let doc = std::fs::read_to_string(sdfc_tests::root().join("docs/language.md")).unwrap();
-    let blocks = [
-        "camera",
-        "light",
-        "trace",
-        "material",
-        "bound",
-        "occlusion",
-        "fog",
-        "background",
-    ];
-    let others = ["let", "param", "fn", "import", "time", "pi", "tau"];
+    let keywords = sdfc_compiler::syntax::BLOCK_KEYWORDS
+        .iter()
+        .chain(sdfc_compiler::syntax::DEFINITION_KEYWORDS)
+        .chain(sdfc_compiler::syntax::VALUE_KEYWORDS)
+        .copied();
+    let built_in = ["time", "pi", "tau"];
     let std_files = sdfc_compiler::syntax::STD.iter().map(|(path, _)| *path);
-    let missing: Vec<&str> = blocks
-        .into_iter()
-        .chain(others)
+    let missing: Vec<&str> = keywords
+        .chain(built_in)
         .chain(std_files)
         .filter(|name| !doc.contains(&format!("`{name}`")))
         .collect();

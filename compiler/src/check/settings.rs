@@ -48,16 +48,7 @@ pub const BOUND_KINDS: &[(&str, &[Param])] = &[
     ),
 ];
 
-/// The keywords of settings blocks (`block_kw` in grammar/sdf.pest).
-pub(super) const BLOCK_KEYWORDS: &[&str] = &[
-    "camera",
-    "light",
-    "trace",
-    "material",
-    "bound",
-    "occlusion",
-    "fog",
-];
+pub(super) use crate::syntax::BLOCK_KEYWORDS;
 
 /// The background without a `background` statement (sRGB).
 const DEFAULT_BACKGROUND: DVec3 = DVec3::new(0.08, 0.09, 0.12);

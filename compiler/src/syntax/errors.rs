@@ -2,7 +2,7 @@
 //! where, in the user's words, with the hints for mistakes seen often.
 
 use super::scan::bracket_error;
-use super::{Rule, SdfParser, hints};
+use super::{DEFINITION_KEYWORDS, Rule, SdfParser, hints};
 use crate::diag::{Diagnostic, Span};
 use pest::Parser as _;
 
@@ -80,10 +80,7 @@ fn ended_early(source: &str, at: usize) -> Option<Diagnostic> {
 /// at its start).
 fn inside_statement(source: &str, at: usize) -> Option<Diagnostic> {
     let rest = &source[at..];
-    let keyword = ["fn", "import", "let", "param"].iter().any(|k| {
-        rest.strip_prefix(k)
-            .is_some_and(|r| !r.starts_with(|c: char| c.is_ascii_alphanumeric() || c == '_'))
-    });
+    let keyword = super::recover::keyword_at(rest, DEFINITION_KEYWORDS.iter());
     // Only a keyword that begins its line begins a statement (`let let = 1` is a name missing).
     let line_start = source[..at]
         .rsplit('\n')

@@ -22,6 +22,23 @@ use scan::{check_comments, check_control, check_nesting};
 #[grammar = "../../grammar/sdf.pest"]
 struct SdfParser;
 
+/// The keywords of settings blocks (`block_kw` in grammar/sdf.pest).
+pub const BLOCK_KEYWORDS: &[&str] = &[
+    "camera",
+    "light",
+    "trace",
+    "material",
+    "bound",
+    "occlusion",
+    "fog",
+];
+
+/// The keywords of definitions (`let_stmt`, `param_kw`, `fn_kw`, `import_kw` in the grammar).
+pub const DEFINITION_KEYWORDS: &[&str] = &["let", "param", "fn", "import"];
+
+/// The keywords of value statements (`value_kw` in the grammar).
+pub const VALUE_KEYWORDS: &[&str] = &["background"];
+
 /// Deepest bracket nesting accepted; deeper input is refused before parsing (no stack overflow).
 pub const MAX_NESTING: usize = 200;
 /// Longest source accepted, in bytes.
@@ -399,4 +416,41 @@ fn arg_list(p: Pair<Rule>) -> Vec<Arg> {
             }
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{BLOCK_KEYWORDS, DEFINITION_KEYWORDS, VALUE_KEYWORDS};
+
+    /// The keyword lists are the grammar's: every block keyword in `block_kw`, every statement
+    /// keyword in its rule, and nothing else in `block_kw`.
+    #[test]
+    fn keyword_lists_match_the_grammar() {
+        let grammar = include_str!("../../../grammar/sdf.pest");
+        let rule = |name: &str| {
+            grammar
+                .lines()
+                .find(|l| l.starts_with(name) && l[name.len()..].trim_start().starts_with('='))
+                .unwrap_or_else(|| panic!("rule {name}"))
+                .to_string()
+        };
+        let block_kw = rule("block_kw");
+        let quoted = block_kw.matches('"').count() / 2;
+        assert_eq!(quoted, BLOCK_KEYWORDS.len(), "{block_kw}");
+        for k in BLOCK_KEYWORDS {
+            assert!(
+                block_kw.contains(&format!("\"{k}\"")),
+                "{k} not in {block_kw}"
+            );
+        }
+        for (k, r) in DEFINITION_KEYWORDS.iter().chain(VALUE_KEYWORDS).zip([
+            "let_stmt",
+            "param_kw",
+            "fn_kw",
+            "import_kw",
+            "value_kw",
+        ]) {
+            assert!(rule(r).contains(&format!("\"{k}\"")), "{k} not in {r}");
+        }
+    }
 }
