@@ -175,11 +175,8 @@ pub fn render_sources(diagnostics: &[Diagnostic], sources: &Sources, color: bool
     }
     // A span as (file, range in that file), clamped to the file as the report needs.
     let place = |s: Span| {
-        let id = sources.file_of(s.start);
-        let base = sources.files.get(id).map_or(0, |f| f.base);
-        let len = sources.files.get(id).map_or(0, |f| f.text.len());
-        let end = s.end.saturating_sub(base).min(len);
-        (id, s.start.saturating_sub(base).min(end)..end)
+        let (id, s) = sources.locate(s);
+        (id, s.start..s.end)
     };
     let config = term::Config::default();
     let mut out = String::new();

@@ -12,6 +12,8 @@ pub struct SourceFile {
     pub base: usize,
 }
 
+use crate::diag::Span;
+
 /// The files of a scene; the first is the main file, at offset 0.
 #[derive(Clone, Debug, PartialEq, Default)]
 pub struct Sources {
@@ -45,6 +47,17 @@ impl Sources {
             .saturating_sub(1)
     }
 
+    /// The file a span points into (its index) and the span within that file, clamped to it.
+    pub fn locate(&self, span: Span) -> (usize, Span) {
+        let id = self.file_of(span.start);
+        let (base, len) = self
+            .files
+            .get(id)
+            .map_or((0, 0), |f| (f.base, f.text.len()));
+        let end = span.end.saturating_sub(base).min(len);
+        (id, Span::new(span.start.saturating_sub(base).min(end), end))
+    }
+
     /// The main file's name.
     pub fn main_name(&self) -> &str {
         self.files.first().map_or("<input>", |f| f.name.as_str())
@@ -76,5 +89,6 @@ mod tests {
         assert_eq!(s.file_of(4), 1);
         assert_eq!(s.file_of(100), 1);
         assert_eq!(s.line_starts(), vec![0, 4]);
+        assert_eq!(s.locate(Span::new(5, 9)), (1, Span::new(1, 2)));
     }
 }

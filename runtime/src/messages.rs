@@ -57,15 +57,9 @@ pub fn report(diagnostics: &[Diagnostic], sources: &Sources) -> String {
 
 /// The file a span points into: its name, its text, and the span within it.
 fn locate(sources: &Sources, span: Span) -> (&str, &str, Span) {
-    match sources.files.get(sources.file_of(span.start)) {
-        Some(f) => (
-            f.name.as_str(),
-            f.text.as_str(),
-            Span::new(
-                span.start.saturating_sub(f.base),
-                span.end.saturating_sub(f.base),
-            ),
-        ),
+    let (id, span) = sources.locate(span);
+    match sources.files.get(id) {
+        Some(f) => (f.name.as_str(), f.text.as_str(), span),
         None => ("<input>", "", span),
     }
 }
