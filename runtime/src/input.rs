@@ -195,29 +195,13 @@ pub fn read_source(path: &Path) -> Result<(String, String), String> {
             std::fs::File::open(path).map_err(|e| format!("error: cannot read `{name}`: {e}"))?;
         (name, Box::new(file))
     };
-    let mut bytes = Vec::new();
-    reader
-        .take(limit as u64 + 1)
-        .read_to_end(&mut bytes)
-        .map_err(|e| format!("error: cannot read `{name}`: {e}"))?;
-    if bytes.len() > limit {
-        return Err(format!(
-            "error: `{name}` is larger than the source limit of {limit} bytes (4 MiB)"
-        ));
-    }
-    let text = String::from_utf8(bytes).map_err(|e| {
-        let at = e.utf8_error().valid_up_to();
-        let before = String::from_utf8_lossy(&e.as_bytes()[..at]);
-        let line = before.matches('\n').count() + 1;
-        let column = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
-        format!(
-            "error: cannot read `{name}`: it is not UTF-8 text (an invalid byte at {line}:{column}, offset {at})"
-        )
-    })?;
-    let text = match text.strip_prefix('\u{feff}') {
-        Some(rest) => rest.to_string(),
-        None => text,
-    };
+    let bytes = sdfc_compiler::syntax::read_limited(reader)
+        .map_err(|e| format!("error: cannot read `{name}`: {e}"))?
+        .ok_or_else(|| {
+            format!("error: `{name}` is larger than the source limit of {limit} bytes (4 MiB)")
+        })?;
+    let text = sdfc_compiler::syntax::decode(bytes)
+        .map_err(|why| format!("error: cannot read `{name}`: {why}"))?;
     Ok((name, text))
 }
 

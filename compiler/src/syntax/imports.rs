@@ -31,7 +31,6 @@ pub struct FsLoader;
 
 impl Loader for FsLoader {
     fn read(&self, path: &Path) -> Result<String, String> {
-        use std::io::Read;
         let limit = super::MAX_SOURCE_BYTES;
         // Only regular files: a directory, a FIFO or a device (`/dev/stdin`) is refused before
         // it is opened (opening a FIFO blocks).
@@ -43,16 +42,37 @@ impl Loader for FsLoader {
             return Err("it is not a regular file".into());
         }
         let file = std::fs::File::open(path).map_err(|e| e.to_string())?;
-        let mut bytes = Vec::new();
-        file.take(limit as u64 + 1)
-            .read_to_end(&mut bytes)
-            .map_err(|e| e.to_string())?;
-        if bytes.len() > limit {
-            return Err(format!("it is larger than the limit of {limit} bytes"));
+        match read_limited(file).map_err(|e| e.to_string())? {
+            Some(bytes) => decode(bytes),
+            None => Err(format!("it is larger than the limit of {limit} bytes")),
         }
-        let text = String::from_utf8(bytes).map_err(|_| "it is not UTF-8 text".to_string())?;
-        Ok(text.strip_prefix('\u{feff}').unwrap_or(&text).to_string())
     }
+}
+
+/// Reads a source: at most [`super::MAX_SOURCE_BYTES`] and one byte more (`/dev/zero` is
+/// refused, not read until memory runs out); `None` when it is larger than the limit.
+pub fn read_limited(reader: impl std::io::Read) -> std::io::Result<Option<Vec<u8>>> {
+    use std::io::Read;
+    let limit = super::MAX_SOURCE_BYTES;
+    let mut bytes = Vec::new();
+    reader.take(limit as u64 + 1).read_to_end(&mut bytes)?;
+    Ok((bytes.len() <= limit).then_some(bytes))
+}
+
+/// A source's bytes as text: UTF-8, or why not with the place of the first invalid byte; a
+/// UTF-8 byte-order mark, which Windows editors write, dropped.
+pub fn decode(bytes: Vec<u8>) -> Result<String, String> {
+    let text = String::from_utf8(bytes).map_err(|e| {
+        let at = e.utf8_error().valid_up_to();
+        let before = String::from_utf8_lossy(&e.as_bytes()[..at]);
+        let line = before.matches('\n').count() + 1;
+        let column = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+        format!("it is not UTF-8 text (an invalid byte at {line}:{column}, offset {at})")
+    })?;
+    Ok(match text.strip_prefix('\u{feff}') {
+        Some(rest) => rest.to_string(),
+        None => text,
+    })
 }
 
 /// No files at all (the standard library only): what `check::compile` uses, which has no file
