@@ -56,17 +56,7 @@ fn every_rule_is_a_true_bound_where_sampled() {
                 t[0]
             );
         }
-        let shown: Vec<&String> = tally.violations.iter().take(5).collect();
-        assert!(
-            tally.violations.is_empty(),
-            "{} violations, first ones:\n{}",
-            tally.violations.len(),
-            shown
-                .iter()
-                .map(|s| s.as_str())
-                .collect::<Vec<_>>()
-                .join("\n\n")
-        );
+        tally.assert_no_violations(5);
         assert!(tally.points >= 100_000, "only {} points", tally.points);
         // (The generator's sanity: most random scenes check. Some implicit bodies and twists of
         // unbounded shapes are refused by design; 79% were valid when repeat_polar joined.)

@@ -71,17 +71,7 @@ fn bounds_hold_over_parameter_ranges() {
             "{valid} of {scenes} parametric scenes valid, {with_params} with parameters, checked at {settings} settings; {} points sampled",
             tally.points
         );
-        let shown: Vec<&String> = tally.violations.iter().take(3).collect();
-        assert!(
-            tally.violations.is_empty(),
-            "{} violations, first ones:\n{}",
-            tally.violations.len(),
-            shown
-                .iter()
-                .map(|s| s.as_str())
-                .collect::<Vec<_>>()
-                .join("\n\n")
-        );
+        tally.assert_no_violations(3);
         assert!(
             with_params * 10 >= scenes * 4,
             "too few scenes with parameters: {with_params} of {scenes}"

@@ -261,6 +261,24 @@ pub(crate) struct Tally {
     pub violations: Vec<String>,
 }
 
+impl Tally {
+    /// Fails with the first `shown` violations, if there are any.
+    pub(crate) fn assert_no_violations(&self, shown: usize) {
+        let first: Vec<&str> = self
+            .violations
+            .iter()
+            .take(shown)
+            .map(String::as_str)
+            .collect();
+        assert!(
+            self.violations.is_empty(),
+            "{} violations, first ones:\n{}",
+            self.violations.len(),
+            first.join("\n\n")
+        );
+    }
+}
+
 /// Whether a node's field is, outside its surface, its exact distance times λ (built from
 /// exact primitives by operators that keep that): copies of such a shape are ordered like their
 /// distances, which is what keeps a `repeat` window continuous where it moves on.

@@ -269,6 +269,36 @@ fn without_a_display_view_says_so() {
     );
 }
 
+/// Starts `sdfc WHAT SCENE -o OUT --watch ARGS` with its standard error in `log`, and waits
+/// for its first output ("watching").
+fn start_watch(what: &str, scene: &Path, out: &Path, args: &[&str], log: &Path) -> Child {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_sdfc"))
+        .args([
+            what,
+            scene.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+            "--watch",
+        ])
+        .args(args)
+        .stdout(Stdio::null())
+        .stderr(std::fs::File::create(log).unwrap())
+        .spawn()
+        .unwrap();
+    wait_until(
+        "the first output",
+        &mut child,
+        log,
+        Duration::from_secs(60),
+        || {
+            std::fs::read_to_string(log)
+                .unwrap_or_default()
+                .contains("watching")
+        },
+    );
+    child
+}
+
 /// `render --watch` and `emit --watch` write again on every save, one line each; a broken save
 /// prints its diagnostics and leaves the output and the watch as they were.
 #[test]
@@ -286,27 +316,8 @@ fn watch_rebuilds_on_every_save() {
     ] {
         std::fs::write(&scene, BASE).unwrap();
         let log = dir.join(format!("{what}.log"));
-        let mut child = Command::new(env!("CARGO_BIN_EXE_sdfc"))
-            .args([
-                what,
-                scene.to_str().unwrap(),
-                "-o",
-                out.to_str().unwrap(),
-                "--watch",
-            ])
-            .args(&args)
-            .stdout(Stdio::null())
-            .stderr(std::fs::File::create(&log).unwrap())
-            .spawn()
-            .unwrap();
+        let mut child = start_watch(what, &scene, &out, &args, &log);
         let said = || std::fs::read_to_string(&log).unwrap_or_default();
-        wait_until(
-            "the first output",
-            &mut child,
-            &log,
-            Duration::from_secs(60),
-            || said().contains("watching"),
-        );
         let first = std::fs::read(&out).unwrap();
         std::fs::write(&scene, BASE.replace("sphere(0.8)", "torus(0.7, 0.25)")).unwrap();
         wait_until(
@@ -403,26 +414,8 @@ fn watch_follows_imported_files() {
     std::fs::write(&scene, "import \"lib/parts.sdf\"\npart()\n").unwrap();
     let out = dir.join("out.wgsl");
     let log = dir.join("emit.log");
-    let mut child = Command::new(env!("CARGO_BIN_EXE_sdfc"))
-        .args([
-            "emit",
-            scene.to_str().unwrap(),
-            "-o",
-            out.to_str().unwrap(),
-            "--watch",
-        ])
-        .stdout(Stdio::null())
-        .stderr(std::fs::File::create(&log).unwrap())
-        .spawn()
-        .unwrap();
+    let mut child = start_watch("emit", &scene, &out, &[], &log);
     let said = || std::fs::read_to_string(&log).unwrap_or_default();
-    wait_until(
-        "the first output",
-        &mut child,
-        &log,
-        Duration::from_secs(60),
-        || said().contains("watching"),
-    );
     let wrote = |n: usize| move || said().matches("wrote ").count() >= n;
     std::fs::write(&lib, "fn part() = torus(0.7, 0.25)\n").unwrap();
     wait_until(
