@@ -162,6 +162,14 @@ fn bound(c: &Ctx) -> Bound {
 pub fn lower(b: &mut FnBuilder, c: &Ctx, p: Ex, child: ChildLower) -> Ex {
     let (alpha, plan) = plan(c);
     let [x, y, z] = b.xyz(p);
+    // The point turned by −φ, given sin φ and cos φ (as `unturn`).
+    let unturned = |b: &mut FnBuilder, s: Ex, co: Ex| {
+        let (xc, zs) = (b.mul(x, co), b.mul(z, s));
+        let (xs, zc) = (b.mul(x, s), b.mul(z, co));
+        let u = b.add(xc, zs);
+        let w = b.sub(zc, xs);
+        b.compose_vec3([u, y, w])
+    };
     let turned = |b: &mut FnBuilder, k: Ex, child: &mut ChildLower| {
         let a = b.f(alpha);
         let phi = b.mul(k, a);
@@ -169,11 +177,7 @@ pub fn lower(b: &mut FnBuilder, c: &Ctx, p: Ex, child: ChildLower) -> Ex {
             b.math(MathFunction::Sin, &[phi]),
             b.math(MathFunction::Cos, &[phi]),
         );
-        let (xc, zs) = (b.mul(x, co), b.mul(z, s));
-        let (xs, zc) = (b.mul(x, s), b.mul(z, co));
-        let u = b.add(xc, zs);
-        let w = b.sub(zc, xs);
-        let q = b.compose_vec3([u, y, w]);
+        let q = unturned(b, s, co);
         child(b, 0, q)
     };
     let mut child = child;
@@ -184,11 +188,7 @@ pub fn lower(b: &mut FnBuilder, c: &Ctx, p: Ex, child: ChildLower) -> Ex {
                 // Constant turns: sin and cos folded here.
                 let (s, co) = (f64::from(k) * alpha).sin_cos();
                 let (s, co) = (b.f(s), b.f(co));
-                let (xc, zs) = (b.mul(x, co), b.mul(z, s));
-                let (xs, zc) = (b.mul(x, s), b.mul(z, co));
-                let u = b.add(xc, zs);
-                let w = b.sub(zc, xs);
-                let q = b.compose_vec3([u, y, w]);
+                let q = unturned(b, s, co);
                 ds.push(child(b, 0, q));
             }
         }

@@ -36,14 +36,14 @@ impl Checker<'_> {
         span: Span,
     ) -> Result<(), ()> {
         let flat: Vec<bool> = children.iter().map(|&c| self.is_planar(c)).collect();
-        let shapes_2d = PRIMITIVES_2D
-            .iter()
-            .map(|n| format!("`{n}`"))
-            .collect::<Vec<_>>()
-            .join(", ");
         if takes_planar(name) {
             if let Some(i) = flat.iter().position(|f| !f) {
                 let c = self.nodes[children[i]].span;
+                let shapes_2d = PRIMITIVES_2D
+                    .iter()
+                    .map(|n| format!("`{n}`"))
+                    .collect::<Vec<_>>()
+                    .join(", ");
                 self.diags.push(
                     Diagnostic::error(c, format!("`{name}` makes a solid of a 2D shape"))
                         .label("this is already a solid")
