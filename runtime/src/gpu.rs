@@ -6,6 +6,8 @@ use sdfc_compiler::view::View;
 use std::borrow::Cow;
 use std::sync::{Arc, Mutex};
 
+mod open;
+
 /// Which graphics API to use.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum BackendChoice {
@@ -38,100 +40,7 @@ pub struct Gpu {
     params: Mutex<Vec<u8>>,
 }
 
-const NO_ADAPTER: &str = "no GPU adapter was found (tried Vulkan and GL).\n\
-     help: on a machine without a GPU, install Mesa's software drivers: \
-     `apt-get install mesa-vulkan-drivers` (Vulkan through lavapipe) or \
-     `apt-get install libegl1 libegl-mesa0 libgl1-mesa-dri` (GL through llvmpipe)";
-
 impl Gpu {
-    /// Opens a device on the first backend that has an adapter.
-    pub fn new(choice: BackendChoice) -> Result<Gpu, String> {
-        for backends in order(choice) {
-            let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
-            desc.backends = backends;
-            let instance = wgpu::Instance::new(desc);
-            if let Some(adapter) = adapter(&instance, None) {
-                return Gpu::open(&adapter);
-            }
-        }
-        Err(match choice {
-            BackendChoice::Auto => NO_ADAPTER.to_string(),
-            BackendChoice::Vulkan => "no Vulkan adapter was found.\nhelp: `apt-get install mesa-vulkan-drivers` gives lavapipe".into(),
-            BackendChoice::Gl => "no GL adapter was found.\nhelp: `apt-get install libegl1 libegl-mesa0 libgl1-mesa-dri` gives llvmpipe over EGL".into(),
-        })
-    }
-
-    /// Opens a device that can present to `window` (`sdfc view`), on the first backend with
-    /// an adapter for it; the surface comes with it, not yet configured.
-    pub fn for_window<W>(
-        choice: BackendChoice,
-        window: Arc<W>,
-    ) -> Result<(Gpu, wgpu::Surface<'static>), String>
-    where
-        W: wgpu::WindowHandle + wgpu::rwh::HasDisplayHandle + std::fmt::Debug + 'static,
-    {
-        for backends in order(choice) {
-            let mut desc =
-                wgpu::InstanceDescriptor::new_with_display_handle(Box::new(window.clone()));
-            desc.backends = backends;
-            let instance = wgpu::Instance::new(desc);
-            let Ok(surface) = instance.create_surface(window.clone()) else {
-                continue;
-            };
-            // (A device that refuses to open is another reason to try the next backend.)
-            if let Some(adapter) = adapter(&instance, Some(&surface))
-                && let Ok(gpu) = Gpu::open(&adapter)
-            {
-                return Ok((gpu, surface));
-            }
-        }
-        Err("no GPU adapter can draw to this window (tried Vulkan and GL).\nhelp: `apt-get install mesa-vulkan-drivers` gives lavapipe".into())
-    }
-
-    /// A device on `adapter`, with the error and loss handlers every command relies on.
-    fn open(adapter: &wgpu::Adapter) -> Result<Gpu, String> {
-        let limits = adapter.limits();
-        // Timestamps where the adapter has them: `bench` times frames on the GPU with them.
-        let features =
-            adapter.features() & (wgpu::Features::TIMESTAMP_QUERY | wgpu::Features::SUBGROUP);
-        let desc = wgpu::DeviceDescriptor {
-            label: Some("sdfc"),
-            required_limits: limits.clone(),
-            required_features: features,
-            ..Default::default()
-        };
-        let (device, queue) = pollster::block_on(adapter.request_device(&desc))
-            .map_err(|e| format!("the GPU adapter refused a device: {e}"))?;
-        // wgpu's default for an error outside a scope is a panic; keep the first instead.
-        let trouble = Arc::new(Mutex::new(Trouble::default()));
-        let keep = trouble.clone();
-        device.on_uncaptured_error(Arc::new(move |e: wgpu::Error| {
-            lock(&keep)
-                .error
-                .get_or_insert(format!("the GPU reported an error: {e}"));
-        }));
-        let keep = trouble.clone();
-        device.set_device_lost_callback(move |reason, message| {
-            let why = match message.is_empty() {
-                true => format!("{reason:?}"),
-                false => format!("{reason:?}: {message}"),
-            };
-            lock(&keep)
-                .lost
-                .get_or_insert(format!("the GPU device was lost ({why})"));
-        });
-        Ok(Gpu {
-            device,
-            queue,
-            info: adapter.get_info(),
-            limits,
-            features,
-            trouble,
-            params: Mutex::new(Vec::new()),
-            adapter: adapter.clone(),
-        })
-    }
-
     /// Configures a window's surface for this device.
     pub fn configure(&self, surface: &wgpu::Surface, config: &wgpu::SurfaceConfiguration) {
         surface.configure(&self.device, config);
@@ -481,26 +390,6 @@ struct Trouble {
     lost: Option<String>,
     /// An uncaptured error: reported by the next wait, then forgotten.
     error: Option<String>,
-}
-
-/// The backends to try, in order.
-fn order(choice: BackendChoice) -> Vec<wgpu::Backends> {
-    match choice {
-        BackendChoice::Auto => vec![wgpu::Backends::VULKAN, wgpu::Backends::GL],
-        BackendChoice::Vulkan => vec![wgpu::Backends::VULKAN],
-        BackendChoice::Gl => vec![wgpu::Backends::GL],
-    }
-}
-
-/// The instance's adapter (one that can present to `surface` if given).
-fn adapter(instance: &wgpu::Instance, surface: Option<&wgpu::Surface>) -> Option<wgpu::Adapter> {
-    let options = wgpu::RequestAdapterOptions {
-        power_preference: wgpu::PowerPreference::HighPerformance,
-        force_fallback_adapter: false,
-        compatible_surface: surface,
-        ..Default::default()
-    };
-    pollster::block_on(instance.request_adapter(&options)).ok()
 }
 
 fn lock<T>(m: &Mutex<T>) -> std::sync::MutexGuard<'_, T> {
