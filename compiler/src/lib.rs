@@ -1,5 +1,8 @@
 //! sdfc's compiler: the scene language's syntax, checker, catalog, Lipschitz bounds and CPU
-//! reference evaluator (and, in later stages, lowering to naga IR).
+//! reference evaluator, lowering to naga IR and emitting code.
+
+// pest_derive without its `std` feature (see the workspace's Cargo.toml) names `::alloc`.
+extern crate alloc;
 
 pub mod blend;
 pub mod catalog;

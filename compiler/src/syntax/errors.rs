@@ -114,7 +114,6 @@ fn inside_statement(source: &str, at: usize) -> Option<Diagnostic> {
         .into_iter()
         .map(|t| t.to_string())
         .filter(|t| !t.trim().is_empty() && !t.contains("..") && t != "BUILTIN_RULE")
-        .filter(|t| t != "//" && t != "/*")
         .map(|t| format!("`{t}`"))
         .collect();
     expected.sort();
@@ -181,7 +180,7 @@ pub(super) fn rule_name(rule: Rule) -> &'static str {
         | Rule::scene_expr
         | Rule::file => "a statement",
         Rule::keyword => "a keyword",
-        Rule::WHITESPACE | Rule::COMMENT => "a space",
+        Rule::WHITESPACE => "a space",
         Rule::statement => "a statement",
         Rule::term | Rule::infix | Rule::prefix | Rule::postfix | Rule::primary => "an expression",
         Rule::ident_char => "a letter or digit",

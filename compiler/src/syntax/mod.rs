@@ -420,7 +420,39 @@ fn arg_list(p: Pair<Rule>) -> Vec<Arg> {
 
 #[cfg(test)]
 mod tests {
-    use super::{BLOCK_KEYWORDS, DEFINITION_KEYWORDS, VALUE_KEYWORDS};
+    use super::{BLOCK_KEYWORDS, DEFINITION_KEYWORDS, Rule, SdfParser, VALUE_KEYWORDS};
+    use pest::Parser;
+
+    /// No keyword is a name, and every word that only begins or ends like one, or is one with a
+    /// letter more or less, is (the grammar's `keyword` is written as a tree of first letters).
+    #[test]
+    fn keywords_are_not_names_and_near_misses_are() {
+        let is_name = |w: &str| {
+            SdfParser::parse(Rule::ident, w).is_ok_and(|mut p| p.next().unwrap().as_str() == w)
+        };
+        let all = BLOCK_KEYWORDS
+            .iter()
+            .chain(DEFINITION_KEYWORDS)
+            .chain(VALUE_KEYWORDS)
+            .chain(&["in", "at"]);
+        let mut count = 0;
+        for k in all {
+            count += 1;
+            assert!(!is_name(k), "{k} parsed as a name");
+            let near = [
+                format!("{k}x"),
+                format!("{k}_"),
+                format!("{k}2"),
+                format!("x{k}"),
+                k[..k.len() - 1].to_string(),
+                k.to_uppercase(),
+            ];
+            for w in near.iter().filter(|w| !w.is_empty()) {
+                assert!(is_name(w), "{w} (near {k}) is not a name");
+            }
+        }
+        assert_eq!(count, 14);
+    }
 
     /// The keyword lists are the grammar's: every block keyword in `block_kw`, every statement
     /// keyword in its rule, and nothing else in `block_kw`.
