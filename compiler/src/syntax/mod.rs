@@ -424,7 +424,7 @@ mod tests {
     use pest::Parser;
 
     /// No keyword is a name, and every word that only begins or ends like one, or is one with a
-    /// letter more or less, is (the grammar's `keyword` is written as a tree of first letters).
+    /// letter more or less, is.
     #[test]
     fn keywords_are_not_names_and_near_misses_are() {
         let is_name = |w: &str| {
