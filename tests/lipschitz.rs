@@ -12,6 +12,7 @@
 
 mod lipschitz_sampler;
 
+use glam::DVec3;
 use lipschitz_sampler::{POINTS, Sampling, Tally, args, sample_node, scene_source, shape, vec3};
 use sdfc_compiler::catalog::PRIMITIVES;
 use sdfc_compiler::eval;
@@ -147,5 +148,120 @@ fn bounding_volumes_leave_the_field_unchanged() {
         }
         println!("{trees} unions with a tree; {points} points, the same field at each");
         assert!(trees >= 100, "only {trees} unions with a tree");
+    });
+}
+
+/// A random shape built to exercise the symmetry rules (`Primitive::mirror`/`swap` and the
+/// operators' rules over them): shapes with and without square cross-sections, turned by whole
+/// and fractional eighth turns about each axis, moved and scaled by vectors with and without
+/// equal components, combined.
+fn symmetric_source(r: &mut Rng, depth: usize) -> String {
+    let len = |r: &mut Rng| format!("{:.3}", r.range(0.2, 1.2));
+    let pair = |r: &mut Rng| {
+        let (a, b) = (len(r), len(r));
+        match r.below(4) {
+            0 => format!("({a}, {a}, {b})"),
+            1 => format!("({a}, {b}, {a})"),
+            2 => format!("({b}, {a}, {a})"),
+            _ => format!("({a}, {b}, {})", len(r)),
+        }
+    };
+    let s = if depth == 0 || r.below(3) == 0 {
+        match r.below(9) {
+            0 => format!("box({})", pair(r)),
+            1 => format!("rounded_box({}, 0.05)", pair(r)),
+            2 => format!("ellipsoid({})", pair(r)),
+            3 => format!("sphere({})", len(r)),
+            4 => format!("cylinder({}, {})", len(r), len(r)),
+            5 => format!("cone({}, {})", len(r), len(r)),
+            6 => format!("torus({}, 0.1)", len(r)),
+            7 => format!("octahedron({})", len(r)),
+            _ => format!("capsule({}, 0.2)", len(r)),
+        }
+    } else {
+        let a = symmetric_source(r, depth - 1);
+        match r.below(4) {
+            0 => format!("union {{ {a} {} }}", symmetric_source(r, depth - 1)),
+            1 => format!(
+                "smooth_union(0.1) {{ {a} {} }}",
+                symmetric_source(r, depth - 1)
+            ),
+            2 => format!("round(0.05) {{ {a} }}"),
+            _ => a,
+        }
+    };
+    let axis = *r.pick(&["x", "y", "z"]);
+    match r.below(6) {
+        0 | 1 => format!("{s} |> rotate({axis}, {}deg)", 45 * r.below(9)),
+        2 => format!("{s} |> rotate({axis}, {}deg)", r.below(360)),
+        3 => format!("{s} at {}", pair(r)),
+        4 => format!("{s} |> scale({})", pair(r)),
+        _ => s,
+    }
+}
+
+/// Every symmetry a node claims holds where sampled: f(p) = f(p reflected across a coordinate
+/// plane) for each claimed `mirror` axis, and f(p) = f(p with the other two coordinates
+/// exchanged) for each claimed `swap` axis. `repeat` and `repeat_polar` evaluate fewer copies
+/// on the strength of these claims, so a false one is a wrong field there.
+#[test]
+fn every_claimed_symmetry_holds_where_sampled() {
+    sdfc_tests::with_stack(|| {
+        let seed = sdfc_tests::fuzz_seed(0x5e_3e77);
+        let mut r = Rng::new(seed);
+        let (mut claims, mut eighths) = ([0usize; 2], 0);
+        for k in 0..1_200 {
+            let source = if k % 3 == 0 {
+                scene_source(r.bits())
+            } else {
+                symmetric_source(&mut r, 1 + k % 3)
+            };
+            let Some(scene) = sdfc_compiler::check::compile(&source).scene else {
+                continue;
+            };
+            for id in scene.reachable() {
+                let n = &scene.nodes[id];
+                if let NodeKind::Operator { op, ctx, children } = &n.kind
+                    && op.name == "rotate"
+                    && (ctx.num(1) / std::f64::consts::FRAC_PI_4).fract().abs() < 1e-9
+                    && (ctx.num(1) / std::f64::consts::FRAC_PI_2).fract().abs() > 1e-9
+                    && n.mirror != scene.nodes[children[0]].mirror
+                {
+                    eighths += 1;
+                }
+                for _ in 0..16 {
+                    let p = DVec3::new(r.range(-2.5, 2.5), r.range(-2.5, 2.5), r.range(-2.5, 2.5));
+                    let f = eval::node(&scene, id, p).d;
+                    let same = |q: DVec3| {
+                        let g = eval::node(&scene, id, q).d;
+                        (f - g).abs() <= 1e-9 * (1.0 + f.abs()) || (f.is_nan() && g.is_nan())
+                    };
+                    for i in 0..3 {
+                        let (j, l) = ((i + 1) % 3, (i + 2) % 3);
+                        if n.mirror[i] {
+                            let mut q = p;
+                            q[i] = -q[i];
+                            claims[0] += 1;
+                            assert!(same(q), "node {id} mirror {i} at {p}\n{source}");
+                        }
+                        if n.swap[i] {
+                            let mut q = p;
+                            q[j] = p[l];
+                            q[l] = p[j];
+                            claims[1] += 1;
+                            assert!(same(q), "node {id} swap {i} at {p}\n{source}");
+                        }
+                    }
+                }
+            }
+        }
+        println!(
+            "{} mirror and {} swap claims held; {eighths} eighth turns kept a mirror",
+            claims[0], claims[1]
+        );
+        assert!(
+            claims[1] >= 10_000 && eighths >= 50,
+            "{claims:?}, {eighths}"
+        );
     });
 }

@@ -127,5 +127,47 @@ fn repeat_of_a_parametric_shape_is_the_union_of_its_copies() {
     assert_eq!(compared, 10_000);
 }
 
+/// A turn whose range holds only whole eighth turns at its evenly spaced samples (0°..720° in
+/// 17 samples is every 45°, 0°..1440° every 90°) is not symmetric across the cell at other
+/// values: `repeat` must not take the own cell's copy alone. At 30° and 45° the repeated square
+/// bar is the union of its copies written out.
+#[test]
+fn repeat_of_a_ranged_turn_is_the_union_of_its_copies() {
+    let mut rng = Rng::new(9);
+    for top in ["720deg", "1440deg"] {
+        let source = format!(
+            "param a = 0deg in 0deg..{top}\nrepeat(spacing = (3, 0, 0), count = (7, 1, 1)) {{ box((1.2, 1.2, 0.3)) |> rotate(z, a) }}"
+        );
+        let scene = sdfc_compiler::check::compile(&source)
+            .scene
+            .expect("checks");
+        for deg in [30.0_f64, 45.0] {
+            let values = HashMap::from([("a".to_string(), vec![deg.to_radians()])]);
+            let here = scene.with_values(&values);
+            let copies: Vec<String> = (-3..=3)
+                .map(|k| {
+                    format!(
+                        "box((1.2, 1.2, 0.3)) |> rotate(z, {deg}deg) at ({}, 0, 0)",
+                        3 * k
+                    )
+                })
+                .collect();
+            let union = sdfc_tests::scene("union", &format!("union {{ {} }}", copies.join("\n")));
+            for _ in 0..2000 {
+                let p = DVec3::new(
+                    rng.range(-9.0, 9.0),
+                    rng.range(-1.5, 1.5),
+                    rng.range(-1.0, 1.0),
+                );
+                let (a, b) = (eval::distance(&here, p), eval::distance(&union, p));
+                assert!(
+                    (a - b).abs() < 1e-9,
+                    "{top}, {deg}° at {p}: repeat {a}, the copies {b}"
+                );
+            }
+        }
+    }
+}
+
 /// Parametric scenes per CI run.
 const PARAMETRIC: usize = 400;

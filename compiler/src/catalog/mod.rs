@@ -12,12 +12,14 @@ pub mod primitives;
 pub mod prune;
 pub mod repeat;
 pub mod shapes;
+mod symmetry;
 mod warp;
 
 pub use bound::Bound;
 pub use math::{DERIVED_FUNCTIONS, DerivedFn, MATH_FUNCTIONS, MathFn, Units};
 pub use operators::OPERATORS;
 pub use primitives::PRIMITIVES;
+pub(crate) use symmetry::{NO_SWAP, equal_pairs};
 
 use glam::DVec3;
 
@@ -207,6 +209,8 @@ pub struct Ctx {
     pub child_bound: Vec<Bound>,
     /// Each child's reflection symmetry per axis (see [`Primitive::mirror`]).
     pub child_mirror: Vec<[bool; 3]>,
+    /// Each child's exchange symmetry per axis (see [`Primitive::swap`]).
+    pub child_swap: Vec<[bool; 3]>,
     /// Whether each child's field, divided by its λ, is the distance to its surface outside it
     /// (see [`Operator::keeps_exact`]).
     pub child_exact: Vec<bool>,
@@ -381,6 +385,11 @@ pub struct Primitive {
     /// Per axis, whether the field is symmetric under reflection of that coordinate
     /// (f(…, −x, …) = f(…, x, …)); `repeat` then needs no neighbouring cells.
     pub mirror: fn(&Ctx) -> [bool; 3],
+    /// Per axis k, whether the field is symmetric under exchanging the other two coordinates
+    /// (for k = z: f(y, x, z) = f(x, y, z)). With the reflections of those two it makes the
+    /// field invariant under eighth turns about k, which `rotate` uses (a square prism turned
+    /// 45° is still symmetric about its cell, so `repeat` evaluates one copy of it).
+    pub swap: fn(&Ctx) -> [bool; 3],
     /// The field in f64.
     pub eval: fn(&Ctx, DVec3) -> f64,
     /// The same field as the body of `sd_<name>(p, params...)` in naga IR.
@@ -405,6 +414,9 @@ pub struct Operator {
     /// Per axis, whether the result is symmetric under reflection of that coordinate, given
     /// its arguments and its children's symmetries (`Ctx::child_mirror`).
     pub mirror: fn(&Ctx) -> [bool; 3],
+    /// Per axis, whether the result is symmetric under exchanging the other two coordinates
+    /// (see [`Primitive::swap`]), given its arguments and its children's (`Ctx::child_swap`).
+    pub swap: fn(&Ctx) -> [bool; 3],
     /// The field in f64, given a way to evaluate the children.
     pub eval: fn(&Ctx, DVec3, ChildEval) -> f64,
     /// Whether the result's gradient has length λ almost everywhere when every child's has

@@ -6,9 +6,14 @@
 //! IQ's polynomial smooth minimum is a convex combination of its operands' gradients). Operators
 //! that only move the domain keep the child's λ, or raise it by their Jacobian's norm.
 
+use super::symmetry::{
+    CHILD, EVERY, NONE, SWAP_CHILD, SWAP_EVERY, and, rotated_mirror, rotated_swap,
+};
 pub use super::warp::twist_stretch;
 use super::warp::{bend_point, twist_point, warp, warp_lambda};
-use super::{Arity, Bound, ChildEval, Ctx, MatRule, Operator, Ty, Val, opt, req};
+use super::{
+    Arity, Bound, ChildEval, Ctx, MatRule, NO_SWAP, Operator, Ty, Val, equal_pairs, opt, req,
+};
 use crate::lower::ops as ir;
 use glam::DVec3;
 
@@ -18,12 +23,6 @@ const fn num(x: f64) -> Val {
 
 const SAME: fn(&Ctx) -> f64 = |c| c.child_lambda[0];
 const ONE: fn(&Ctx) -> f64 = |_| 1.0;
-/// The child's symmetry (operators that act the same on x and −x).
-const CHILD: fn(&Ctx) -> [bool; 3] = |c| c.child_mirror[0];
-/// Symmetric where every child is.
-const EVERY: fn(&Ctx) -> [bool; 3] = |c| [0, 1, 2].map(|i| c.child_mirror.iter().all(|m| m[i]));
-/// Not known to be symmetric.
-const NONE: fn(&Ctx) -> [bool; 3] = |_| [false; 3];
 /// Keeps a unit gradient (min, max, moves and folds of unit-gradient fields).
 const KEEPS: fn(&Ctx) -> bool = |_| true;
 /// Makes gradients shorter than λ somewhere (blends, warps, weighted sums).
@@ -70,27 +69,6 @@ fn all(c: &Ctx) -> Bound {
         .unwrap_or(Bound::INFINITE)
 }
 
-/// A rotation about a coordinate axis keeps the symmetry along that axis (the two commute); a
-/// quarter or half turn about it also keeps the other two where the child has both (the
-/// reflected result is the child turned by −θ, the same as by θ once the child is invariant under
-/// the half turn 2θ = π, or any multiple of it). Otherwise: not known.
-fn rotated_mirror(c: &Ctx) -> [bool; 3] {
-    let (axis, angle, child) = (c.vec(0), c.num(1), c.child_mirror[0]);
-    let quarters = angle / std::f64::consts::FRAC_PI_2;
-    let whole = (quarters - quarters.round()).abs() < 1e-9;
-    if whole && quarters.round().rem_euclid(4.0) == 0.0 {
-        return child;
-    }
-    let Some(k) = (0..3).find(|&k| axis[k].abs() == 1.0) else {
-        return [false; 3];
-    };
-    let (i, j) = ((k + 1) % 3, (k + 2) % 3);
-    let others = whole && child[i] && child[j];
-    let mut m = [others; 3];
-    m[k] = child[k];
-    m
-}
-
 /// Rodrigues' rotation of `v` by `angle` about the unit `axis`.
 pub fn rotate(v: DVec3, axis: DVec3, angle: f64) -> DVec3 {
     let (s, co) = angle.sin_cos();
@@ -121,6 +99,7 @@ pub static OPERATORS: &[Operator] = &[
         arity: Arity::AtLeast(1),
         lipschitz: ONE,
         bound: all,
+        swap: SWAP_EVERY,
         mirror: EVERY,
         eval: |c, p, child| match &c.prune {
             Some(tree) => tree.min(p, &mut |i| norm(c, child, i, p)),
@@ -139,6 +118,7 @@ pub static OPERATORS: &[Operator] = &[
         arity: Arity::AtLeast(1),
         lipschitz: ONE,
         bound: smallest,
+        swap: SWAP_EVERY,
         mirror: EVERY,
         eval: |c, p, child| fold(c, p, child, f64::max),
     },
@@ -155,6 +135,7 @@ pub static OPERATORS: &[Operator] = &[
         arity: Arity::AtLeast(2),
         lipschitz: ONE,
         bound: |c| c.child_bound[0],
+        swap: SWAP_EVERY,
         mirror: EVERY,
         eval: |c, p, child| fold(c, p, child, |a, b| a.max(-b)),
     },
@@ -170,6 +151,7 @@ pub static OPERATORS: &[Operator] = &[
         arity: Arity::Exactly(1),
         lipschitz: SAME,
         bound: |_| Bound::INFINITE,
+        swap: SWAP_CHILD,
         mirror: CHILD,
         eval: |_, p, child| -child(0, p),
     },
@@ -186,6 +168,7 @@ pub static OPERATORS: &[Operator] = &[
         arity: Arity::AtLeast(1),
         lipschitz: ONE,
         bound: |c| c.grown_if_exact(all(c), c.num(0) / 4.0),
+        swap: SWAP_EVERY,
         mirror: EVERY,
         eval: |c, p, child| fold(c, p, child, |a, b| smin(a, b, c.num(0))),
     },
@@ -201,6 +184,7 @@ pub static OPERATORS: &[Operator] = &[
         arity: Arity::AtLeast(1),
         lipschitz: ONE,
         bound: smallest,
+        swap: SWAP_EVERY,
         mirror: EVERY,
         eval: |c, p, child| fold(c, p, child, |a, b| smax(a, b, c.num(0))),
     },
@@ -216,6 +200,7 @@ pub static OPERATORS: &[Operator] = &[
         arity: Arity::AtLeast(2),
         lipschitz: ONE,
         bound: |c| c.child_bound[0],
+        swap: SWAP_EVERY,
         mirror: EVERY,
         eval: |c, p, child| fold(c, p, child, |a, b| smax(a, -b, c.num(0))),
     },
@@ -232,6 +217,7 @@ pub static OPERATORS: &[Operator] = &[
         arity: Arity::Exactly(2),
         lipschitz: |c| (1.0 - c.num(0)) * c.child_lambda[0] + c.num(0) * c.child_lambda[1],
         bound: all,
+        swap: SWAP_EVERY,
         mirror: EVERY,
         eval: |c, p, child| {
             let w = c.num(0);
@@ -255,6 +241,7 @@ pub static OPERATORS: &[Operator] = &[
         arity: Arity::AtLeast(1),
         lipschitz: ONE,
         bound: |c| c.grown_if_exact(all(c), c.num(0)),
+        swap: SWAP_EVERY,
         mirror: EVERY,
         eval: |c, p, child| {
             let (radius, threshold) = (c.num(0), c.num(1));
@@ -282,6 +269,7 @@ pub static OPERATORS: &[Operator] = &[
         arity: Arity::Exactly(1),
         lipschitz: SAME,
         bound: |c| c.child_bound[0].moved(c.vec(0)),
+        swap: |c| and(c.child_swap[0], equal_pairs(c.vec(0))),
         mirror: |c| [0, 1, 2].map(|i| c.child_mirror[0][i] && c.vec(0)[i] == 0.0),
         eval: |c, p, child| child(0, p - c.vec(0)),
     },
@@ -297,6 +285,7 @@ pub static OPERATORS: &[Operator] = &[
         arity: Arity::Exactly(1),
         lipschitz: SAME,
         bound: |c| c.child_bound[0].isometry(|v| rotate(v, c.vec(0), c.num(1))),
+        swap: rotated_swap,
         mirror: rotated_mirror,
         eval: |c, p, child| child(0, rotate(p, c.vec(0), -c.num(1))),
     },
@@ -314,6 +303,7 @@ pub static OPERATORS: &[Operator] = &[
         arity: Arity::Exactly(1),
         lipschitz: SAME,
         bound: |c| c.child_bound[0].scaled(c.vec(0)),
+        swap: |c| and(c.child_swap[0], equal_pairs(c.vec(0))),
         mirror: CHILD,
         eval: |c, p, child| {
             let s = c.vec(0);
@@ -353,6 +343,7 @@ pub static OPERATORS: &[Operator] = &[
             let half = s * (n - DVec3::ONE).max(DVec3::ZERO) / 2.0;
             c.child_bound[0].grown_box(half, half.length())
         },
+        swap: NO_SWAP,
         mirror: CHILD,
         eval: |c, p, child| super::repeat::field(c, p, child),
     },
@@ -373,6 +364,7 @@ pub static OPERATORS: &[Operator] = &[
             let n = c.vec(0);
             b.union(b.isometry(|v| v - 2.0 * v.dot(n) * n))
         },
+        swap: NO_SWAP,
         mirror: |c| {
             let n = c.vec(0);
             [0, 1, 2].map(|i| {
@@ -408,6 +400,7 @@ pub static OPERATORS: &[Operator] = &[
             Bound::sphere(DVec3::new(0.0, b.center.y, 0.0), rho.hypot(b.radius))
                 .with_box(DVec3::new(-rho, b.lo.y, -rho), DVec3::new(rho, b.hi.y, rho))
         },
+        swap: NO_SWAP,
         mirror: NONE,
         eval: |c, p, child| {
             let rho_max = c.child_bound[0].cylinder_radius(DVec3::Y);
@@ -435,6 +428,7 @@ pub static OPERATORS: &[Operator] = &[
             Bound::sphere(DVec3::new(0.0, 0.0, b.center.z), rho.hypot(b.radius))
                 .with_box(DVec3::new(-rho, -rho, b.lo.z), DVec3::new(rho, rho, b.hi.z))
         },
+        swap: NO_SWAP,
         mirror: NONE,
         eval: |c, p, child| {
             let rho_max = c.child_bound[0].cylinder_radius(DVec3::Z);
@@ -456,6 +450,7 @@ pub static OPERATORS: &[Operator] = &[
         arity: Arity::Exactly(1),
         lipschitz: ONE,
         bound: |c| c.grown_if_exact(c.child_bound[0], c.num(0)),
+        swap: SWAP_CHILD,
         mirror: CHILD,
         eval: |c, p, child| norm(c, child, 0, p) - c.num(0),
     },
@@ -471,6 +466,7 @@ pub static OPERATORS: &[Operator] = &[
         arity: Arity::Exactly(1),
         lipschitz: ONE,
         bound: |c| c.grown_if_exact(c.child_bound[0], c.num(0)),
+        swap: SWAP_CHILD,
         mirror: CHILD,
         eval: |c, p, child| norm(c, child, 0, p).abs() - c.num(0),
     },
@@ -487,6 +483,7 @@ pub static OPERATORS: &[Operator] = &[
         arity: Arity::Exactly(1),
         lipschitz: SAME,
         bound: |c| c.child_bound[0].grown_box(c.vec(0) / 2.0, c.vec(0).length() / 2.0),
+        swap: NO_SWAP,
         mirror: CHILD,
         eval: |c, p, child| {
             let h = c.vec(0) / 2.0;

@@ -5,7 +5,7 @@
 //! extrusion and revolution), with λ = 1 and the child's λ.
 
 use super::shapes::sign0;
-use super::{Arity, Bound, MatRule, Operator, Primitive, Ty, Val, opt, shapes};
+use super::{Arity, Bound, MatRule, NO_SWAP, Operator, Primitive, Ty, Val, opt, shapes};
 use crate::lower::planar as ir;
 use glam::{DVec2, DVec3};
 use std::f64::consts::PI;
@@ -93,6 +93,7 @@ pub const CIRCLE: Primitive = Primitive {
     unit_gradient: |_| true,
     lipschitz: |_| 1.0,
     bound: |c| planar(DVec2::splat(-c.num(0)), DVec2::splat(c.num(0))),
+    swap: NO_SWAP,
     mirror: |_| [true; 3],
     eval: |c, p| DVec2::new(p.x, p.y).length() - c.num(0),
 };
@@ -113,6 +114,7 @@ pub const RECTANGLE: Primitive = Primitive {
         let h = DVec2::new(c.num(0), c.num(1)) / 2.0;
         planar(-h, h)
     },
+    swap: NO_SWAP,
     mirror: |_| [true; 3],
     eval: |c, p| sd_rectangle(DVec2::new(p.x, p.y), DVec2::new(c.num(0), c.num(1)) / 2.0),
 };
@@ -130,6 +132,7 @@ pub const POLYGON: Primitive = Primitive {
     unit_gradient: |_| true,
     lipschitz: |_| 1.0,
     bound: |c| planar(DVec2::splat(-c.num(1)), DVec2::splat(c.num(1))),
+    swap: NO_SWAP,
     mirror: |c| [true, c.num(0) % 2.0 == 0.0, true],
     eval: |c, p| sd_polygon(DVec2::new(p.x, p.y), c.num(0), c.num(1)),
 };
@@ -151,6 +154,7 @@ pub const TRIANGLE: Primitive = Primitive {
             DVec2::new(s / 2.0, s / k),
         )
     },
+    swap: NO_SWAP,
     mirror: |_| [true, false, true],
     eval: |c, p| shapes::sd_triangle(p.x, p.y, c.num(0)),
 };
@@ -180,6 +184,7 @@ pub const EXTRUDE: Operator = Operator {
         }
         Bound::centered_box((hi - lo) / 2.0).moved((lo + hi) / 2.0)
     },
+    swap: NO_SWAP,
     mirror: |c| [c.child_mirror[0][0], c.child_mirror[0][1], true],
     eval: |c, p, child| shapes::extrude(child(0, p) / c.child_lambda[0], p.z, c.num(0) / 2.0),
 };
@@ -210,6 +215,7 @@ pub const REVOLVE: Operator = Operator {
         }
         Bound::centered_box((hi - lo) / 2.0).moved((lo + hi) / 2.0)
     },
+    swap: NO_SWAP,
     mirror: |c| [true, c.child_mirror[0][1], true],
     eval: |c, p, child| {
         let q = DVec3::new(DVec2::new(p.x, p.z).length() - c.num(0), p.y, 0.0);

@@ -15,7 +15,7 @@
 //! hg_sdf's folding, with its condition). A shape around the axis has no angular extent: all
 //! copies are evaluated. Turns keep distances, so λ is the shape's.
 
-use super::{Arity, Bound, ChildEval, Ctx, MatRule, Operator, Ty, req};
+use super::{Arity, Bound, ChildEval, Ctx, MatRule, NO_SWAP, Operator, Ty, req};
 use crate::lower::builder::{Ex, FnBuilder};
 use crate::lower::ops::ChildLower;
 use glam::{DVec2, DVec3};
@@ -246,6 +246,7 @@ pub const REPEAT_POLAR: Operator = Operator {
     arity: Arity::Exactly(1),
     lipschitz: |c| c.child_lambda[0],
     bound,
+    swap: NO_SWAP,
     mirror: |c| [false, c.child_mirror[0][1], false],
     eval: field,
 };

@@ -4,12 +4,14 @@
 //! not copied); the dodecahedron is the generalised distance function of Akleman et al. as used in
 //! the Keinert seed (Fig. 11); the Mandelbulb is the distance estimator of Bálint's test scene.
 
-use super::{Bound, Ctx, Primitive, Ty, Val, opt};
+use super::{Bound, Ctx, NO_SWAP, Primitive, Ty, Val, equal_pairs, opt};
 use crate::lower::prims as ir;
 use glam::{DVec2, DVec3};
 
 const ONE: fn(&Ctx) -> f64 = |_| 1.0;
 const ALL_AXES: fn(&Ctx) -> [bool; 3] = |_| [true; 3];
+/// Round about y: x and z may be exchanged.
+const ABOUT_Y: fn(&Ctx) -> [bool; 3] = |_| [false, true, false];
 
 const fn num(x: f64) -> Val {
     Val::Num(x)
@@ -30,6 +32,7 @@ pub static PRIMITIVES: &[Primitive] = &[
         unit_gradient: |_| true,
         lipschitz: ONE,
         bound: |c| Bound::origin(c.num(0)),
+        swap: ALL_AXES,
         mirror: ALL_AXES,
         eval: |c, p| p.length() - c.num(0),
     },
@@ -42,6 +45,7 @@ pub static PRIMITIVES: &[Primitive] = &[
         unit_gradient: |_| true,
         lipschitz: ONE,
         bound: |c| Bound::centered_box(c.vec(0) / 2.0),
+        swap: |c| equal_pairs(c.vec(0)),
         mirror: ALL_AXES,
         eval: |c, p| sd_box(p, c.vec(0) / 2.0),
     },
@@ -58,6 +62,7 @@ pub static PRIMITIVES: &[Primitive] = &[
         unit_gradient: |_| true,
         lipschitz: ONE,
         bound: |c| Bound::centered_box(c.vec(0) / 2.0),
+        swap: |c| equal_pairs(c.vec(0)),
         mirror: ALL_AXES,
         eval: |c, p| {
             let half = c.vec(0) / 2.0;
@@ -77,6 +82,7 @@ pub static PRIMITIVES: &[Primitive] = &[
         unit_gradient: |_| true,
         lipschitz: ONE,
         bound: |_| Bound::INFINITE,
+        swap: |c| equal_pairs(c.vec(0)),
         mirror: |c| c.vec(0).to_array().map(|n| n == 0.0),
         eval: |c, p| p.dot(c.vec(0)) - c.num(1),
     },
@@ -96,6 +102,7 @@ pub static PRIMITIVES: &[Primitive] = &[
             let (r, t) = (c.num(0) + c.num(1), c.num(1));
             Bound::origin(r).with_box(-DVec3::new(r, t, r), DVec3::new(r, t, r))
         },
+        swap: ABOUT_Y,
         mirror: ALL_AXES,
         eval: |c, p| DVec2::new(DVec2::new(p.x, p.z).length() - c.num(0), p.y).length() - c.num(1),
     },
@@ -114,6 +121,7 @@ pub static PRIMITIVES: &[Primitive] = &[
             let (r, h) = (c.num(1), c.num(0) / 2.0 + c.num(1));
             Bound::origin(h).with_box(-DVec3::new(r, h, r), DVec3::new(r, h, r))
         },
+        swap: ABOUT_Y,
         mirror: ALL_AXES,
         eval: |c, p| {
             let h = c.num(0) / 2.0;
@@ -135,6 +143,7 @@ pub static PRIMITIVES: &[Primitive] = &[
             let half = DVec3::new(c.num(0), c.num(1) / 2.0, c.num(0));
             Bound::origin(DVec2::new(c.num(0), c.num(1) / 2.0).length()).with_box(-half, half)
         },
+        swap: ABOUT_Y,
         mirror: ALL_AXES,
         eval: |c, p| {
             let d = DVec2::new(DVec2::new(p.x, p.z).length(), p.y).abs()
@@ -159,6 +168,7 @@ pub static PRIMITIVES: &[Primitive] = &[
             let half = DVec3::new(r, c.num(1) / 2.0, r);
             Bound::origin(DVec2::new(r, c.num(1) / 2.0).length()).with_box(-half, half)
         },
+        swap: ABOUT_Y,
         mirror: |_| [true, false, true],
         eval: |c, p| sd_capped_cone(p, c.num(1) / 2.0, c.num(0), c.num(2)),
     },
@@ -171,6 +181,7 @@ pub static PRIMITIVES: &[Primitive] = &[
         unit_gradient: |_| false,
         lipschitz: ONE,
         bound: |c| Bound::origin(c.vec(0).max_element()).with_box(-c.vec(0), c.vec(0)),
+        swap: |c| equal_pairs(c.vec(0)),
         mirror: ALL_AXES,
         // |p / r| - 1 has gradient at most 1 / min(r); scaling by min(r) makes it 1-Lipschitz.
         eval: |c, p| {
@@ -187,6 +198,7 @@ pub static PRIMITIVES: &[Primitive] = &[
         unit_gradient: |_| true,
         lipschitz: ONE,
         bound: |c| Bound::origin(c.num(0)),
+        swap: ALL_AXES,
         mirror: ALL_AXES,
         eval: |c, p| sd_octahedron(p, c.num(0)),
     },
@@ -213,6 +225,7 @@ pub static PRIMITIVES: &[Primitive] = &[
         },
         // The inradius-r dodecahedron has circumradius r·√3·tan(π/5)·φ ≈ 1.2584 r.
         bound: |c| Bound::origin(c.num(0) * 1.2585),
+        swap: NO_SWAP,
         mirror: ALL_AXES,
         eval: |c, p| gdf_dodecahedron(p, c.num(0), c.num(1)),
     },
@@ -233,6 +246,7 @@ pub static PRIMITIVES: &[Primitive] = &[
         unit_gradient: |_| true,
         lipschitz: ONE,
         bound: |c| Bound::origin(mandelbulb_radius(c.num(0))),
+        swap: NO_SWAP,
         mirror: |_| [false; 3],
         eval: |c, p| mandelbulb(p, c.num(0), c.num(1) as u32),
     },

@@ -3,7 +3,7 @@
 //! pyramid, rounded cylinder. Each is an exact distance (λ = 1); `tests/data/iq_reference.py`
 //! computes each a second, independent way.
 
-use super::{Bound, Ctx, Primitive, Ty, Val, opt};
+use super::{Bound, Ctx, NO_SWAP, Primitive, Ty, Val, opt};
 use crate::lower::shapes as ir;
 use glam::{DVec2, DVec3};
 
@@ -157,6 +157,7 @@ pub const HEX_PRISM: Primitive = Primitive {
             DVec3::new(r / HEX_FOLD.0.abs(), c.num(1) / 2.0, r),
         )
     },
+    swap: NO_SWAP,
     mirror: |_| [true; 3],
     eval: |c, p| sd_hex_prism(p, c.num(0), c.num(1)),
 };
@@ -186,6 +187,7 @@ pub const ROUND_CONE: Primitive = Primitive {
             DVec3::new(r, (hi - lo) / 2.0, r),
         )
     },
+    swap: NO_SWAP,
     mirror: VERTICAL,
     eval: |c, p| sd_round_cone(p, c.num(0), c.num(1), c.num(2)),
 };
@@ -208,6 +210,7 @@ pub const LINK: Primitive = Primitive {
         let (l, r, t) = (c.num(0), c.num(1), c.num(2));
         boxed(DVec3::ZERO, DVec3::new(r + t, l / 2.0 + r + t, t))
     },
+    swap: NO_SWAP,
     mirror: |_| [true; 3],
     eval: |c, p| sd_link(p, c.num(0), c.num(1), c.num(2)),
 };
@@ -234,6 +237,7 @@ pub const TRI_PRISM: Primitive = Primitive {
             DVec3::new(s / 2.0, (hi - lo) / 2.0, d / 2.0),
         )
     },
+    swap: NO_SWAP,
     mirror: |_| [true, false, true],
     eval: |c, p| extrude(sd_triangle(p.x, p.y, c.num(0)), p.z, c.num(1) / 2.0),
 };
@@ -257,6 +261,7 @@ pub const PYRAMID: Primitive = Primitive {
             DVec3::new(c.num(0) / 2.0, c.num(1) / 2.0, c.num(0) / 2.0),
         )
     },
+    swap: NO_SWAP,
     mirror: VERTICAL,
     eval: |c, p| sd_pyramid(p, c.num(0), c.num(1)),
 };
@@ -276,6 +281,7 @@ pub const ROUNDED_CYLINDER: Primitive = Primitive {
     unit_gradient: |_| true,
     lipschitz: |_| 1.0,
     bound: |c| boxed(DVec3::ZERO, DVec3::new(c.num(0), c.num(1) / 2.0, c.num(0))),
+    swap: NO_SWAP,
     mirror: |_| [true; 3],
     eval: |c, p| sd_rounded_cylinder(p, c.num(0), c.num(1), c.num(2)),
 };

@@ -57,6 +57,7 @@ impl Checker<'_> {
                 child_lambda: Vec::new(),
                 child_bound: Vec::new(),
                 child_mirror: Vec::new(),
+                child_swap: Vec::new(),
                 child_exact: Vec::new(),
                 prune: None,
             };

@@ -50,11 +50,17 @@ impl Checker<'_> {
             NodeKind::Operator { op, ctx, .. } => (op.mirror)(ctx),
             NodeKind::Implicit { .. } => [false; 3],
         };
+        let swap = match &kind {
+            NodeKind::Primitive { prim, ctx } => (prim.swap)(ctx),
+            NodeKind::Operator { op, ctx, .. } => (op.swap)(ctx),
+            NodeKind::Implicit { .. } => [false; 3],
+        };
         self.note_planar(&kind);
         self.call_site
             .push(self.frames.first().map(|f| f.call_span));
         self.nodes.push(Node {
             mirror,
+            swap,
             unit_gradient,
             exact,
             // (An operator's is set by `operator_node`.)
@@ -97,6 +103,7 @@ impl Checker<'_> {
             child_lambda: children.iter().map(|&c| self.nodes[c].lambda).collect(),
             child_bound: children.iter().map(|&c| self.nodes[c].bound).collect(),
             child_mirror: children.iter().map(|&c| self.nodes[c].mirror).collect(),
+            child_swap: children.iter().map(|&c| self.nodes[c].swap).collect(),
             child_exact: children.iter().map(|&c| self.nodes[c].exact).collect(),
             prune: None,
         };
@@ -162,6 +169,7 @@ impl Checker<'_> {
         let n = &mut self.nodes[id];
         for i in 0..3 {
             n.mirror[i] &= rules.mirror[i];
+            n.swap[i] &= rules.swap[i];
         }
         n.unit_gradient &= rules.unit;
         n.exact &= rules.exact;

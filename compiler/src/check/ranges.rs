@@ -12,6 +12,7 @@ pub(super) struct Rules {
     pub lambda: f64,
     pub bound: Bound,
     pub mirror: [bool; 3],
+    pub swap: [bool; 3],
     pub unit: bool,
     pub exact: bool,
 }
@@ -23,6 +24,7 @@ impl Rules {
             lambda: (p.lipschitz)(c),
             bound: (p.bound)(c),
             mirror: (p.mirror)(c),
+            swap: (p.swap)(c),
             unit: (p.unit_gradient)(c),
             exact: p.exact,
         }
@@ -34,6 +36,7 @@ impl Rules {
             lambda: (o.lipschitz)(c),
             bound: (o.bound)(c),
             mirror: (o.mirror)(c),
+            swap: (o.swap)(c),
             unit: (o.unit_gradient)(c),
             exact: (o.keeps_exact)(c),
         }
@@ -102,6 +105,24 @@ fn sample_points(dims: &[ParamRef]) -> Vec<Vec<f64>> {
     }
 }
 
+/// Points of the box of ranges `dims` off the grid of [`sample_points`], at fractions of the
+/// golden ratio: symmetries that hold only at special values (a turn by a whole number of
+/// eighth turns, equal components) hold at every grid point of a range like 0°..720°, not at
+/// these. Only the symmetries and exactness are taken there.
+fn generic_points(dims: &[ParamRef]) -> Vec<Vec<f64>> {
+    const PHI: f64 = 0.618_033_988_749_894_9;
+    (1..=4)
+        .map(|k| {
+            (0..dims.len())
+                .map(|i| {
+                    let t = ((k * (i + 1)) as f64 * PHI).fract();
+                    dims[i].lo + (dims[i].hi - dims[i].lo) * t
+                })
+                .collect()
+        })
+        .collect()
+}
+
 /// Values that test whether a rule depends on a parameter without a range.
 fn perturbed(x: f64) -> [f64; 6] {
     [x + 1.0, x - 1.0, 2.0 * x + 1.0, -x, 0.5 * x, 10.0 * x + 3.0]
@@ -139,20 +160,26 @@ impl Checker<'_> {
             return None;
         }
         let mut out = here;
-        let mut samples: Vec<Rules> = Vec::new();
-        for pt in sample_points(&ranged) {
+        let at_point = |pt: &[f64]| {
             let value = |r: &ParamRef| {
                 ranged
                     .iter()
                     .position(|d| d.index == r.index && d.comp == r.comp)
                     .map_or(r.value, |k| pt[k])
             };
-            samples.push(rules(&ctx.at_values(&value)));
-        }
+            rules(&ctx.at_values(&value))
+        };
+        let samples: Vec<Rules> = sample_points(&ranged)
+            .iter()
+            .map(|pt| at_point(pt))
+            .collect();
         for s in &samples {
             out.lambda = out.lambda.max(s.lambda);
             out.bound = out.bound.union(s.bound);
             combine(&mut out, s);
+        }
+        for pt in generic_points(&ranged) {
+            combine(&mut out, &at_point(&pt));
         }
         let some_side = (0..3).any(|i| out.bound.lo[i].is_finite() || out.bound.hi[i].is_finite());
         if (out.bound.is_finite() || some_side) && samples.len() > 1 {
@@ -231,6 +258,7 @@ impl Checker<'_> {
 fn combine(out: &mut Rules, s: &Rules) {
     for i in 0..3 {
         out.mirror[i] &= s.mirror[i];
+        out.swap[i] &= s.swap[i];
     }
     out.unit &= s.unit;
     out.exact &= s.exact;

@@ -168,6 +168,8 @@ pub struct Node {
     pub bound: Bound,
     /// Per axis, whether its field is symmetric under reflection of that coordinate.
     pub mirror: [bool; 3],
+    /// Per axis k, whether its field is symmetric under exchanging the other two coordinates.
+    pub swap: [bool; 3],
     /// Whether |∇f| = λ almost everywhere (exact primitives under operators that keep it, no
     /// annotation): then f/λ < ε means the surface is within ε, to first order.
     pub unit_gradient: bool,
