@@ -265,3 +265,106 @@ fn every_claimed_symmetry_holds_where_sampled() {
         );
     });
 }
+
+/// Copies of one shape written out on a lattice in a union (`check::lattice`) become one
+/// `repeat` of it: the same field (to rounding of the offsets) and the same materials as the
+/// copies written so that they cannot be grouped (each moved once more by zero), for random
+/// shapes on random lattices, some with a copy missing. A copy moved off the lattice or with a
+/// material of its own keeps the group apart.
+#[test]
+fn lattices_of_copies_leave_the_field_unchanged() {
+    sdfc_tests::with_stack(|| {
+        let mut r = Rng::new(sdfc_tests::fuzz_seed(0x1a77_1ce5));
+        let (mut grouped, mut kept, mut points) = (0, 0, 0);
+        // The parts of the scene's union.
+        let parts = |scene: &sdfc_compiler::scene::Scene| scene.nodes[scene.root].children().len();
+        for case in 0..300 {
+            let body = if case % 3 != 0 {
+                symmetric_source(&mut r, 1)
+            } else {
+                shape(&mut r, 1)
+            };
+            let body = match r.below(3) {
+                0 => format!("({body}) : a"),
+                1 => format!("union {{ ({body}) : a  sphere(0.2) : b }}"),
+                _ => body,
+            };
+            let n = [2 + r.below(3), 1 + r.below(2), 1 + r.below(3)];
+            let s = DVec3::new(r.range(1.0, 4.0), r.range(1.0, 4.0), r.range(1.0, 4.0));
+            let first = DVec3::new(r.range(-3.0, 3.0), r.range(-1.0, 1.0), r.range(-3.0, 3.0));
+            let mut at: Vec<DVec3> = Vec::new();
+            for k in 0..n[0] * n[1] * n[2] {
+                let k = DVec3::new(
+                    (k % n[0]) as f64,
+                    ((k / n[0]) % n[1]) as f64,
+                    (k / (n[0] * n[1])) as f64,
+                );
+                at.push(first + k * s);
+            }
+            let spoil = if case % 2 == 0 { 1 + r.below(3) } else { 0 };
+            let mut tag = vec![""; at.len()];
+            match spoil {
+                1 => {
+                    at.remove(r.below(at.len()));
+                }
+                2 => {
+                    let k = r.below(at.len());
+                    at[k].x += 0.01;
+                }
+                3 => tag[r.below(at.len())] = " : b",
+                _ => {}
+            }
+            let copies = |zero: &str| {
+                at.iter()
+                    .zip(&tag)
+                    .map(|(p, t)| format!("  ({body}) at ({}, {}, {}){zero}{t}", p.x, p.y, p.z))
+                    .collect::<Vec<_>>()
+                    .join("\n")
+            };
+            let head = "material a { color #f00 }\nmaterial b { color #0f0 }\n";
+            let source = format!(
+                "{head}union {{\n{}\n  box(0.3) at (0, 9, 0)\n}}\n",
+                copies("")
+            );
+            let apart = format!(
+                "{head}union {{\n{}\n  box(0.3) at (0, 9, 0)\n}}\n",
+                copies(" at (0, 0, 0)")
+            );
+            let (Some(scene), Some(plain)) = (
+                sdfc_compiler::check::compile(&source).scene,
+                sdfc_compiler::check::compile(&apart).scene,
+            ) else {
+                continue;
+            };
+            assert_eq!(parts(&plain), at.len() + 1, "{apart}");
+            let tries = if parts(&scene) < parts(&plain) {
+                // (Without an end copy the rest may still fill a lattice: the field tells.)
+                assert!(
+                    spoil <= 1,
+                    "a copy off the lattice or tagged was grouped\n{source}"
+                );
+                grouped += 1;
+                200
+            } else {
+                kept += 1;
+                10
+            };
+            for _ in 0..tries {
+                let p = DVec3::new(r.range(-6.0, 12.0), r.range(-2.0, 5.0), r.range(-6.0, 12.0));
+                let (a, b) = (eval::sample(&scene, p), eval::sample(&plain, p));
+                assert!(
+                    (a.d - b.d).abs() <= 1e-9 * (1.0 + a.d.abs()) && a.mat == b.mat,
+                    "at {p}: grouped {a:?}, written out {b:?}\n{source}"
+                );
+                points += 1;
+            }
+        }
+        println!(
+            "{grouped} unions grouped, {kept} kept as written; {points} points, the same field"
+        );
+        assert!(
+            grouped >= 30 && kept >= 100,
+            "{grouped} grouped, {kept} kept"
+        );
+    });
+}

@@ -8,6 +8,7 @@ mod expr;
 mod fn_args;
 mod functions;
 mod implicit;
+mod lattice;
 mod look;
 mod nodes;
 mod param_args;

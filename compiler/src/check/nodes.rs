@@ -97,6 +97,11 @@ impl Checker<'_> {
         if self.check_planar(name, axis, &children, span).is_err() {
             return None;
         }
+        let children = if name == "union" {
+            self.lattices(children)
+        } else {
+            children
+        };
         let ctx = Ctx {
             args,
             sym,
