@@ -5,7 +5,7 @@
 #   f64 ground truth, trace-only and full-frame times;
 # - sdfc's trace-only shader next to hand-written references (runtime/benches/reference/),
 #   alternating frames in one process;
-# - bounding volumes in map() on a flat 39-part village, on the GPU (--bvh) and the CPU;
+# - a flat 39-part village: every part, a box tree (--bvh), copies grouped into repeats; the CPU;
 # - the cost of a trivial frame against a bare dispatch and a hand-written one-step tracer;
 # - compile time: criterion in the library, and `sdfc emit` as a whole process.
 # Usage: bash scripts/bench.sh [WIDTHxHEIGHT] [REPEAT]
@@ -25,25 +25,37 @@ for scene in mandelbulb composition village; do
 done
 # Hand-written references: basic tracing with each example's own budget, ε and distance.
 for spec in composition:160:composition mandelbulb:256:mandelbulb village:200:village \
-  village:200:village_cells; do
+  village:200:village_cells village:200:village_instanced; do
   IFS=: read -r scene steps ref <<< "$spec"
   $sdfc bench "examples/$scene.sdf" --tracers basic --steps "$steps" --size "$size" \
     --repeat 21 --reference "runtime/benches/reference/$ref.wgsl" --json > "$out/reference-$ref.json"
   echo "measured $scene against $ref.wgsl" >&2
 done
-# Bounding volumes: the flat village, without and with them in map().
+# Large unions: the flat village written apart (every part evaluated), with the box tree
+# (--bvh), as written (its copies grouped into repeats by the compiler), and the village's own
+# repeats; then the grouped one's trace beside the apart one's, alternating frames.
 for bvh in "" --bvh; do
-  $sdfc bench examples/bench/village_flat.sdf --tracers basic,enhanced --steps 200 \
+  $sdfc bench examples/bench/village_flat_apart.sdf --tracers basic,enhanced --steps 200 \
     --size "$size" --repeat 9 $bvh --json > "$out/bvh${bvh:+-on}.json"
 done
+$sdfc bench examples/bench/village_flat.sdf --tracers basic,enhanced --steps 200 --size "$size" \
+  --repeat 9 --json > "$out/bvh-grouped.json"
 $sdfc bench examples/village.sdf --tracers basic,enhanced --steps 200 --size "$size" \
   --repeat 9 --json > "$out/bvh-village.json"
-echo "measured bounding volumes" >&2
-# A trivial frame at 512²: against a dispatch that traces nothing and a one-step tracer.
-for ref in bare trivial; do
-  $sdfc bench examples/bench/trivial.sdf --tracers basic --steps 1 --size 512x512 --repeat 21 \
-    --reference "runtime/benches/reference/$ref.wgsl" --json > "$out/trivial-$ref.json"
+tmp=$(mktemp -d)
+$sdfc emit examples/bench/village_flat_apart.sdf --entry trace --tracer basic -q -o "$tmp/apart.wgsl"
+$sdfc bench examples/bench/village_flat.sdf --tracers basic --steps 200 --size "$size" \
+  --repeat 21 --reference "$tmp/apart.wgsl" --json > "$out/bvh-side.json"
+rm -r "$tmp"
+echo "measured large unions" >&2
+# A trivial frame: against a dispatch that traces nothing at four sizes (the fixed cost per
+# frame is where time against pixels meets zero pixels), and a one-step tracer at 512².
+for n in 128 256 512 1024; do
+  $sdfc bench examples/bench/trivial.sdf --tracers basic --steps 1 --size "${n}x${n}" --repeat 21 \
+    --reference runtime/benches/reference/bare.wgsl --json > "$out/trivial-bare-$n.json"
 done
+$sdfc bench examples/bench/trivial.sdf --tracers basic --steps 1 --size 512x512 --repeat 21 \
+  --reference runtime/benches/reference/trivial.wgsl --json > "$out/trivial-trivial.json"
 echo "measured the trivial frame" >&2
 # Compile time (criterion): parse → check → lower → validate → WGSL for generated scenes; and
 # the CPU field with and without bounding-volume trees.

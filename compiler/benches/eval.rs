@@ -1,4 +1,4 @@
-//! CPU evaluator benchmark (criterion): the field of `examples/bench/village_flat.sdf` (39 parts
+//! CPU evaluator benchmark (criterion): the field of `examples/bench/village_flat_apart.sdf` (39 parts
 //! in one union) and of the composition at 4 096 points along camera rays, with the unions'
 //! bounding-volume trees (`catalog::prune`) and without. `cargo bench -p sdfc-compiler --bench
 //! eval`.
@@ -24,7 +24,7 @@ fn points(scene: &sdfc_compiler::scene::Scene) -> Vec<DVec3> {
 fn bench(c: &mut Criterion) {
     let mut g = c.benchmark_group("CPU field");
     g.sample_size(10);
-    for name in ["bench/village_flat", "composition"] {
+    for name in ["bench/village_flat_apart", "composition"] {
         let path = format!("{}/../examples/{name}.sdf", env!("CARGO_MANIFEST_DIR"));
         let source = std::fs::read_to_string(path).expect("example");
         let scene = sdfc_compiler::check::compile(&source)
