@@ -59,6 +59,7 @@ $sdfc bench examples/bench/trivial.sdf --tracers basic --steps 1 --size 512x512 
 echo "measured the trivial frame" >&2
 # Compile time (criterion): parse → check → lower → validate → WGSL for generated scenes; and
 # the CPU field with and without bounding-volume trees.
+rm -rf "target/criterion/CPU field"  # (a renamed scene's old estimates would be read too)
 cargo bench -q -p sdfc-compiler > /dev/null
 # `sdfc emit` of the 10 001-node scene of compiler/benches/compile.rs as a whole process.
 python3 scripts/emit_time.py "$sdfc" > "$out/emit-process.json"

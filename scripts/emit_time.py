@@ -25,7 +25,7 @@ with tempfile.TemporaryDirectory() as d:
     nodes = int(next(l.split(":")[1] for l in nodes.splitlines() if "nodes:" in l))
     times = {}
     for target in ["wgsl", "spirv"]:
-        cmd = [sdfc, "emit", scene, "--target", target, "-o", os.path.join(d, "out")]
+        cmd = [sdfc, "emit", scene, "--target", target, "-q", "-o", os.path.join(d, "out")]
         subprocess.run(cmd, check=True)
         runs = []
         for _ in range(15):
