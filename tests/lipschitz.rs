@@ -269,8 +269,8 @@ fn every_claimed_symmetry_holds_where_sampled() {
 /// Copies of one shape written out on a lattice in a union (`check::lattice`) become one
 /// `repeat` of it: the same field (to rounding of the offsets) and the same materials as the
 /// copies written so that they cannot be grouped (each moved once more by zero), for random
-/// shapes on random lattices, some with a copy missing. A copy moved off the lattice or with a
-/// material of its own keeps the group apart.
+/// shapes on random lattices, some with a copy missing. A copy moved off the lattice, with a
+/// material of its own or with an annotation of its own keeps the group apart.
 #[test]
 fn lattices_of_copies_leave_the_field_unchanged() {
     sdfc_tests::with_stack(|| {
@@ -301,7 +301,7 @@ fn lattices_of_copies_leave_the_field_unchanged() {
                 );
                 at.push(first + k * s);
             }
-            let spoil = if case % 2 == 0 { 1 + r.below(3) } else { 0 };
+            let spoil = if case % 2 == 0 { 1 + r.below(4) } else { 0 };
             let mut tag = vec![""; at.len()];
             match spoil {
                 1 => {
@@ -312,6 +312,7 @@ fn lattices_of_copies_leave_the_field_unchanged() {
                     at[k].x += 0.01;
                 }
                 3 => tag[r.below(at.len())] = " : b",
+                4 => tag[r.below(at.len())] = " @lipschitz(3)",
                 _ => {}
             }
             let copies = |zero: &str| {
@@ -341,7 +342,7 @@ fn lattices_of_copies_leave_the_field_unchanged() {
                 // (Without an end copy the rest may still fill a lattice: the field tells.)
                 assert!(
                     spoil <= 1,
-                    "a copy off the lattice or tagged was grouped\n{source}"
+                    "a copy off the lattice, tagged or annotated was grouped\n{source}"
                 );
                 grouped += 1;
                 200

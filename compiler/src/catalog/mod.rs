@@ -386,9 +386,10 @@ pub struct Primitive {
     /// (f(…, −x, …) = f(…, x, …)); `repeat` then needs no neighbouring cells.
     pub mirror: fn(&Ctx) -> [bool; 3],
     /// Per axis k, whether the field is symmetric under exchanging the other two coordinates
-    /// (for k = z: f(y, x, z) = f(x, y, z)). With the reflections of those two it makes the
-    /// field invariant under eighth turns about k, which `rotate` uses (a square prism turned
-    /// 45° is still symmetric about its cell, so `repeat` evaluates one copy of it).
+    /// (for k = z: f(y, x, z) = f(x, y, z)). With the reflections of those two it gives the
+    /// field a square's symmetries about k, which an eighth turn about k maps onto themselves:
+    /// `rotate` keeps the reflections then (a square prism turned 45° is still symmetric about
+    /// its cell, so `repeat` evaluates one copy of it).
     pub swap: fn(&Ctx) -> [bool; 3],
     /// The field in f64.
     pub eval: fn(&Ctx, DVec3) -> f64,

@@ -2,13 +2,24 @@
 //! the same field, evaluated at the few copies the repeat's plan looks at instead of at every
 //! copy (on a GPU that runs both sides of a branch, the only way a large union costs less).
 
-use super::Checker;
+use super::{Checker, MAX_NODES};
 use crate::catalog::repeat::{MAX_COPIES, Plan};
 use crate::catalog::{Ctx, Val};
 use crate::diag::Span;
 use crate::scene::{NodeId, NodeKind};
 use glam::DVec3;
 use std::collections::HashMap;
+
+/// How nodes are written: a small number per node, equal for nodes written the same way (the
+/// same primitive or operator, arguments, material, λ and children written the same way), kept
+/// for the whole check so that each node is numbered once.
+#[derive(Debug, Default)]
+pub(super) struct Forms {
+    /// Each numbered node's form.
+    of: HashMap<NodeId, u32>,
+    /// The forms by what they are made of: the node's own part and its children's forms.
+    ids: HashMap<(String, Vec<u32>), u32>,
+}
 
 /// Fewest copies of one shape a union must hold to be grouped.
 const MIN_COPIES: usize = 3;
@@ -102,10 +113,9 @@ impl Checker<'_> {
         if children.len() < MIN_COPIES {
             return children;
         }
-        let mut names: HashMap<NodeId, Option<String>> = HashMap::new();
         // Groups by the shape's written form, in the order of their first copy.
         let mut groups: Vec<(NodeId, Vec<(usize, DVec3)>)> = Vec::new();
-        let mut group_of: HashMap<String, usize> = HashMap::new();
+        let mut group_of: HashMap<u32, usize> = HashMap::new();
         for (k, &c) in children.iter().enumerate() {
             let node = &self.nodes[c];
             let NodeKind::Operator {
@@ -116,10 +126,12 @@ impl Checker<'_> {
             else {
                 continue;
             };
+            // (A copy's own annotation, `(s at v) @lipschitz(3)`, is a λ of its own.)
             if op.name != "translate"
                 || ctx.sym.iter().any(Option::is_some)
                 || node.material.is_some()
                 || node.name.is_some()
+                || node.lambda != node.inferred_lambda
             {
                 continue;
             }
@@ -130,9 +142,7 @@ impl Checker<'_> {
             if !self.nodes[shape].bound.is_finite() || !self.nodes[shape].exact {
                 continue;
             }
-            let Some(key) = self.written_form(shape, &mut names) else {
-                continue;
-            };
+            let key = self.form(shape);
             match group_of.get(&key) {
                 Some(&g) => groups[g].1.push((k, offset)),
                 None => {
@@ -143,7 +153,8 @@ impl Checker<'_> {
         }
         let mut replaced: Vec<Option<NodeId>> = children.iter().map(|&c| Some(c)).collect();
         for (shape, copies) in groups {
-            if copies.len() < MIN_COPIES {
+            // (Each group adds two nodes; never past the limit the scene did not reach.)
+            if copies.len() < MIN_COPIES || self.nodes.len() + 2 >= MAX_NODES {
                 continue;
             }
             let offsets: Vec<DVec3> = copies.iter().map(|c| c.1).collect();
@@ -186,36 +197,46 @@ impl Checker<'_> {
         }
         replaced.into_iter().flatten().collect()
     }
+}
 
-    /// How a shape is written, as a key equal for shapes written the same way: primitives and
-    /// operators with their arguments and materials; `implicit` bodies and nodes that read a
-    /// parameter by node (the same `let` only).
-    fn written_form(
-        &self,
-        id: NodeId,
-        memo: &mut HashMap<NodeId, Option<String>>,
-    ) -> Option<String> {
-        if let Some(k) = memo.get(&id) {
-            return k.clone();
-        }
-        let node = &self.nodes[id];
-        let key = match &node.kind {
-            NodeKind::Primitive { prim, ctx } if ctx.sym.iter().all(Option::is_none) => {
-                Some(format!("{}{:?}:{:?}", prim.name, ctx.args, node.material))
+impl Checker<'_> {
+    /// The form of node `id` (see [`Forms`]), numbering it and the nodes below it that have
+    /// none yet, children first, without recursion (a chain of `let`s may be deep).
+    fn form(&mut self, id: NodeId) -> u32 {
+        let mut stack = vec![id];
+        while let Some(&n) = stack.last() {
+            if self.forms.of.contains_key(&n) {
+                stack.pop();
+                continue;
             }
-            NodeKind::Operator { op, ctx, children } if ctx.sym.iter().all(Option::is_none) => {
-                let mut key = format!("{}{:?}:{:?}(", op.name, ctx.args, node.material);
-                for &c in children {
-                    key.push_str(&self.written_form(c, memo)?);
-                    key.push(',');
+            let node = &self.nodes[n];
+            let children = node.children();
+            let missing: Vec<NodeId> = children
+                .iter()
+                .copied()
+                .filter(|c| !self.forms.of.contains_key(c))
+                .collect();
+            if !missing.is_empty() {
+                stack.extend(missing);
+                continue;
+            }
+            let own = match &node.kind {
+                NodeKind::Primitive { prim, ctx } if ctx.sym.iter().all(Option::is_none) => {
+                    format!("{}{:?}", prim.name, ctx.args)
                 }
-                key.push(')');
-                Some(key)
-            }
-            // The same node (a `let`) is the same shape, whatever it reads.
-            _ => Some(format!("#{id}")),
-        };
-        memo.insert(id, key.clone());
-        key
+                NodeKind::Operator { op, ctx, .. } if ctx.sym.iter().all(Option::is_none) => {
+                    format!("{}{:?}", op.name, ctx.args)
+                }
+                // The same node (a `let`) is the same shape, whatever it reads.
+                _ => format!("#{n}"),
+            };
+            let own = format!("{own}:{:?}:{}", node.material, node.lambda.to_bits());
+            let kids: Vec<u32> = children.iter().map(|c| self.forms.of[c]).collect();
+            let next = self.forms.ids.len() as u32;
+            let f = *self.forms.ids.entry((own, kids)).or_insert(next);
+            self.forms.of.insert(n, f);
+            stack.pop();
+        }
+        self.forms.of[&id]
     }
 }

@@ -317,6 +317,8 @@ pub(crate) struct Checker<'a> {
     call_site: Vec<Option<Span>>,
     /// The line of a name that looked like a misspelt block keyword (`matrial`).
     keyword_typo_line: Option<usize>,
+    /// How nodes are written, for grouping copies (see `lattice`).
+    forms: lattice::Forms,
 }
 
 impl<'a> Checker<'a> {
@@ -374,6 +376,7 @@ impl<'a> Checker<'a> {
             planar: Vec::new(),
             call_site: Vec::new(),
             keyword_typo_line: None,
+            forms: lattice::Forms::default(),
         }
     }
 
