@@ -271,11 +271,13 @@ pub fn parse_all(source: &str) -> Result<File, Vec<Diagnostic>> {
     check_control(source).map_err(|d| vec![d])?;
     check_comments(source).map_err(|d| vec![d])?;
     check_nesting(source).map_err(|d| vec![d])?;
-    let open = recover::open_at_statements(source);
-    if !open.is_empty() {
-        return Err(open);
-    }
     let mut pairs = SdfParser::parse(Rule::file, source).map_err(|e| {
+        // Brackets left open where a statement begins are said first. (Only after a failed
+        // parse: a statement keyword is never a name, so the parse fails whenever there are.)
+        let open = recover::open_at_statements(source);
+        if !open.is_empty() {
+            return open;
+        }
         let first = syntax_error(source, e);
         let later = recover::later_errors(source, &first);
         std::iter::once(first).chain(later).collect::<Vec<_>>()
@@ -422,6 +424,59 @@ fn arg_list(p: Pair<Rule>) -> Vec<Arg> {
 mod tests {
     use super::{BLOCK_KEYWORDS, DEFINITION_KEYWORDS, Rule, SdfParser, VALUE_KEYWORDS};
     use pest::Parser;
+
+    /// A file that parses has no bracket open where a statement begins (so `parse_all` looks
+    /// for them only after a failed parse): random token soups with keywords at line starts.
+    #[test]
+    fn open_brackets_at_statements_fail_the_parse() {
+        let tokens = [
+            "union",
+            "{",
+            "}",
+            "(",
+            ")",
+            "sphere(1)",
+            "\nlet a = 1",
+            "\nfn f() = sphere(1)",
+            "\ncamera { fov 40deg }",
+            "\nbackground #fff",
+            "\nimport \"std/gears.sdf\"",
+            "\nparam p = 1 in 0..2",
+            "\nlight",
+            "\nfog",
+            ",",
+            " at (1, 0, 0)",
+            "\n",
+            "x",
+            "\nmaterial m { color #f00 }",
+            "\n  let",
+            "// c\n",
+            "/* c */",
+        ];
+        let mut state = 0x2545_f491_4f6c_dd1d_u64;
+        let (mut parsed, mut open) = (0, 0);
+        for _ in 0..20_000 {
+            let mut text = String::new();
+            for _ in 0..1 + (state >> 60) {
+                state ^= state << 13;
+                state ^= state >> 7;
+                state ^= state << 17;
+                text.push_str(tokens[(state % tokens.len() as u64) as usize]);
+                text.push(' ');
+            }
+            let found = !super::recover::open_at_statements(&text).is_empty();
+            if SdfParser::parse(Rule::file, &text).is_ok() {
+                parsed += 1;
+                assert!(!found, "{text:?}");
+            }
+            open += usize::from(found);
+        }
+        // (Both kinds drawn: files that parse, and files with brackets open at a statement.)
+        assert!(
+            parsed > 1_000 && open > 1_000,
+            "{parsed} parsed, {open} open"
+        );
+    }
 
     /// No keyword is a name, and every word that only begins or ends like one, or is one with a
     /// letter more or less, is.
