@@ -374,6 +374,10 @@ pub struct Primitive {
     pub params: &'static [Param],
     /// Whether the field is an exact Euclidean distance (else a bound).
     pub exact: bool,
+    /// Whether its function takes the arguments every use in a scene shares as constants
+    /// rather than as parameters: its lowering makes faster code from known values (the
+    /// Mandelbulb's whole powers multiplied out).
+    pub bake: bool,
     /// Whether |∇f| = λ almost everywhere (exact fields, and estimates built to be distances):
     /// then f/λ < ε means the surface is within ε to first order (see
     /// [`Operator::unit_gradient`]).

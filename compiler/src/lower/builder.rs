@@ -21,6 +21,9 @@ pub struct ModuleBuilder {
     pub evaluations: Option<Handle<naga::GlobalVariable>>,
     /// The `Params` uniform, if the scene has parameters (`params.rs`).
     pub params: Option<Handle<naga::GlobalVariable>>,
+    /// Per primitive function (`sd_<name>`), which arguments are constants inside it rather
+    /// than parameters (`Primitive::bake`).
+    pub baked: std::collections::HashMap<String, Vec<bool>>,
 }
 
 impl ModuleBuilder {
@@ -195,6 +198,14 @@ impl<'m> FnBuilder<'m> {
     /// An f32 literal.
     pub fn f(&mut self, x: f64) -> Ex {
         self.expr(Expression::Literal(Literal::F32(x as f32)))
+    }
+
+    /// The value of `e` if it is an f32 literal.
+    pub fn literal(&self, e: Ex) -> Option<f64> {
+        match self.func.expressions[e] {
+            Expression::Literal(Literal::F32(x)) => Some(f64::from(x)),
+            _ => None,
+        }
     }
 
     /// A u32 literal.

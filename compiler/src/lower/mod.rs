@@ -31,7 +31,7 @@ pub mod tracer;
 mod variants;
 mod warp;
 
-use crate::catalog::{Ctx, Ty};
+use crate::catalog::{Ctx, Ty, Val};
 use crate::scene::{Field, NodeId, NodeKind, Scene};
 use crate::syntax::BinOp;
 use builder::{Ex, FnBuilder, ModuleBuilder};
@@ -173,10 +173,15 @@ fn add_primitive_functions(mb: &mut ModuleBuilder, scene: &Scene, reachable: &[N
         if mb.has_helper(&name) {
             continue;
         }
+        let shared = if prim.bake {
+            shared_args(scene, reachable, prim.name)
+        } else {
+            vec![None; prim.params.len()]
+        };
         let v3 = mb.vec3();
         let f32t = mb.f32();
         let mut args = vec![("p", v3)];
-        for param in prim.params {
+        for (param, _) in prim.params.iter().zip(&shared).filter(|(_, s)| s.is_none()) {
             let ty = param_type(mb, param.ty);
             // Keep the module's own function names (`normal`) free for those functions.
             let name = if param.name == "normal" {
@@ -188,12 +193,52 @@ fn add_primitive_functions(mb: &mut ModuleBuilder, scene: &Scene, reachable: &[N
         }
         let mut b = FnBuilder::new(mb, &name, &args, Some(f32t));
         let p = b.arg(0);
-        let params: Vec<Ex> = (1..args.len() as u32).map(|i| b.arg(i)).collect();
+        let mut next = 1;
+        let params: Vec<Ex> = prim
+            .params
+            .iter()
+            .zip(&shared)
+            .map(|(param, s)| match s {
+                Some(v) => params::arg(&mut b, param.ty, *v, None, p),
+                None => {
+                    next += 1;
+                    b.arg(next - 1)
+                }
+            })
+            .collect();
         let d = (prim.lower)(&mut b, p, &params);
         b.ret(Some(d));
         let f = b.finish();
+        mb.baked
+            .insert(name.clone(), shared.iter().map(Option::is_some).collect());
         mb.add_helper(&name, f);
     }
+}
+
+/// Per parameter of primitive `name`, its value where every reachable use of it gives the same
+/// constant (not read from a parameter), else `None`.
+fn shared_args(scene: &Scene, reachable: &[NodeId], name: &str) -> Vec<Option<Val>> {
+    let mut shared: Option<Vec<Option<Val>>> = None;
+    for &n in reachable {
+        let NodeKind::Primitive { prim, ctx } = &scene.nodes[n].kind else {
+            continue;
+        };
+        if prim.name != name {
+            continue;
+        }
+        let here: Vec<Option<Val>> = (0..prim.params.len())
+            .map(|i| ctx.sym(i).is_none().then_some(ctx.args[i]))
+            .collect();
+        shared = Some(match shared {
+            None => here,
+            Some(s) => s
+                .into_iter()
+                .zip(here)
+                .map(|(a, b)| if a == b { a } else { None })
+                .collect(),
+        });
+    }
+    shared.unwrap_or_default()
 }
 
 /// The smooth-blend helpers the scene uses.
@@ -290,10 +335,14 @@ impl Walk<'_> {
         let node = &self.scene.nodes[id];
         match &node.kind {
             NodeKind::Primitive { prim, ctx } => {
-                let f = b.m.helper(&format!("sd_{}", prim.name));
+                let name = format!("sd_{}", prim.name);
+                let f = b.m.helper(&name);
+                let baked = b.m.baked.get(&name).cloned().unwrap_or_default();
                 let mut args = vec![p];
                 for (i, (param, v)) in prim.params.iter().zip(&ctx.args).enumerate() {
-                    args.push(params::arg(b, param.ty, *v, ctx.sym(i), p));
+                    if !baked.get(i).copied().unwrap_or(false) {
+                        args.push(params::arg(b, param.ty, *v, ctx.sym(i), p));
+                    }
                 }
                 b.call(f, args)
             }
@@ -382,7 +431,7 @@ pub(super) fn lower_field(b: &mut FnBuilder, f: &Field, p: Ex) -> Ex {
 }
 
 /// aⁿ by repeated squaring (n = 0 gives 1).
-fn whole_power(b: &mut FnBuilder, a: Ex, n: u32) -> Ex {
+pub(super) fn whole_power(b: &mut FnBuilder, a: Ex, n: u32) -> Ex {
     let mut result: Option<Ex> = None;
     let mut square = a;
     let mut n = n;

@@ -237,6 +237,9 @@ fn b_eq(b: &mut FnBuilder, x: Ex, y: Ex) -> Ex {
     b.bin(naga::BinaryOperator::Equal, x, y)
 }
 
+/// The largest whole Mandelbulb power multiplied out rather than taken by `pow`.
+const MAX_WHOLE_POWER: f64 = 32.0;
+
 /// Mandelbulb distance estimate (Bálint's test scene), with θ by atan2 (lavapipe's acos is
 /// coarse) and, far outside, the distance to the escape sphere.
 pub fn mandelbulb(b: &mut FnBuilder, p: Ex, a: &[Ex]) -> Ex {
@@ -244,9 +247,14 @@ pub fn mandelbulb(b: &mut FnBuilder, p: Ex, a: &[Ex]) -> Ex {
     // Escape radius 2^(1/(power − 1)), as `mandelbulb_radius`.
     let one = b.f(1.0);
     let pm1 = b.sub(power, one);
-    let inv = b.div(one, pm1);
-    let two = b.f(2.0);
-    let escape = b.math(M::Pow, &[two, inv]);
+    let escape = match b.literal(power) {
+        Some(n) => b.f(crate::catalog::primitives::mandelbulb_radius(n)),
+        None => {
+            let inv = b.div(one, pm1);
+            let two = b.f(2.0);
+            b.math(M::Pow, &[two, inv])
+        }
+    };
     let f32t = b.m.f32();
     let v3 = b.m.vec3();
     let z = b.local("z", v3, Some(p));
@@ -268,9 +276,15 @@ pub fn mandelbulb(b: &mut FnBuilder, p: Ex, a: &[Ex]) -> Ex {
         let theta = b.mul(theta, power);
         let phi = b.math(M::Atan2, &[zy, zx]);
         let phi = b.mul(phi, power);
-        // r^(n−1) once: dr' = n·r^(n−1)·dr + 1 and r^n = r^(n−1)·r (one pow per iteration).
+        // r^(n−1) once: dr' = n·r^(n−1)·dr + 1 and r^n = r^(n−1)·r (one pow per iteration),
+        // multiplied out when the power is a known whole number (`Primitive::bake`).
         let one = b.f(1.0);
-        let rp1 = b.math(M::Pow, &[rv, pm1]);
+        let rp1 = match b.literal(power) {
+            Some(n) if n.fract() == 0.0 && (2.0..=MAX_WHOLE_POWER).contains(&n) => {
+                super::whole_power(b, rv, n as u32 - 1)
+            }
+            _ => b.math(M::Pow, &[rv, pm1]),
+        };
         let drv = b.load(dr);
         let t = b.mul(rp1, power);
         let t = b.mul(t, drv);
