@@ -425,6 +425,29 @@ mod tests {
     use super::{BLOCK_KEYWORDS, DEFINITION_KEYWORDS, Rule, SdfParser, VALUE_KEYWORDS};
     use pest::Parser;
 
+    /// Input nested to the limit parses on a thread with Rust's default 2 MiB stack (pest's
+    /// own stack probe is off: `MAX_NESTING`, checked before parsing, is what bounds the
+    /// parser's recursion).
+    #[test]
+    fn nesting_to_the_limit_parses_on_a_default_stack() {
+        let n = super::MAX_NESTING - 2;
+        let sources = [
+            format!("sphere({}1{})", "(".repeat(n), ")".repeat(n)),
+            format!("sphere({}1{})", "sqrt(".repeat(n), ")".repeat(n)),
+            format!("{}sphere(1){}", "union { ".repeat(n), " }".repeat(n)),
+            format!("sphere(1 + {}1{})", "-(".repeat(n / 2), ")".repeat(n / 2)),
+        ];
+        for source in sources {
+            let ok = std::thread::Builder::new()
+                .stack_size(2 << 20)
+                .spawn(move || super::parse(&source).is_ok())
+                .expect("spawn")
+                .join()
+                .expect("no stack overflow");
+            assert!(ok);
+        }
+    }
+
     /// A file that parses has no bracket open where a statement begins (so `parse_all` looks
     /// for them only after a failed parse): random token soups with keywords at line starts.
     #[test]
