@@ -3,7 +3,7 @@
 
 use super::args::RunTime;
 use super::{Binding, Checker, Value};
-use crate::catalog::{self, Arity, Ctx};
+use crate::catalog::{self, Arity};
 use crate::diag::{Diagnostic, did_you_mean};
 use crate::scene::{NodeId, NodeKind};
 use crate::syntax::{Call, Ident};
@@ -51,16 +51,7 @@ impl Checker<'_> {
             }
             let (args, sym) =
                 self.bind_args(name, prim.params, &call.args, call.span, RunTime::All)?;
-            let ctx = Ctx {
-                args,
-                sym,
-                child_lambda: Vec::new(),
-                child_bound: Vec::new(),
-                child_mirror: Vec::new(),
-                child_swap: Vec::new(),
-                child_exact: Vec::new(),
-                prune: None,
-            };
+            let ctx = self.ctx_over((args, sym), &[]);
             let rules = self.rules_over_ranges(&ctx, call.span, name, &|c| {
                 super::ranges::Rules::primitive(prim, c)
             })?;

@@ -3,8 +3,8 @@
 //! copy (on a GPU that runs both sides of a branch, the only way a large union costs less).
 
 use super::{Checker, MAX_NODES};
+use crate::catalog::Val;
 use crate::catalog::repeat::{MAX_COPIES, Plan};
-use crate::catalog::{Ctx, Val};
 use crate::diag::Span;
 use crate::scene::{NodeId, NodeKind};
 use glam::DVec3;
@@ -164,18 +164,8 @@ impl Checker<'_> {
             let spacing = DVec3::from_array(axes.map(|a| a.spacing));
             let count = DVec3::from_array(axes.map(|a| a.count as f64));
             let args = vec![Val::Vec3(spacing), Val::Vec3(count)];
-            let n = &self.nodes[shape];
-            let plan = Plan::new(&Ctx {
-                args: args.clone(),
-                sym: vec![None, None],
-                child_lambda: vec![n.lambda],
-                child_bound: vec![n.bound],
-                child_mirror: vec![n.mirror],
-                child_swap: vec![n.swap],
-                child_exact: vec![n.exact],
-                prune: None,
-            });
-            let looked_at = plan.copies();
+            let ctx = self.ctx_over((args.clone(), vec![None, None]), &[shape]);
+            let looked_at = Plan::new(&ctx).copies();
             if looked_at >= copies.len() as f64 || looked_at > MAX_COPIES as f64 {
                 continue;
             }
@@ -220,17 +210,17 @@ impl Checker<'_> {
                 stack.extend(missing);
                 continue;
             }
+            let (mat, lambda) = (node.material, node.lambda.to_bits());
             let own = match &node.kind {
                 NodeKind::Primitive { prim, ctx } if ctx.sym.iter().all(Option::is_none) => {
-                    format!("{}{:?}", prim.name, ctx.args)
+                    format!("{}{:?}:{mat:?}:{lambda}", prim.name, ctx.args)
                 }
                 NodeKind::Operator { op, ctx, .. } if ctx.sym.iter().all(Option::is_none) => {
-                    format!("{}{:?}", op.name, ctx.args)
+                    format!("{}{:?}:{mat:?}:{lambda}", op.name, ctx.args)
                 }
                 // The same node (a `let`) is the same shape, whatever it reads.
-                _ => format!("#{n}"),
+                _ => format!("#{n}:{mat:?}:{lambda}"),
             };
-            let own = format!("{own}:{:?}:{}", node.material, node.lambda.to_bits());
             let kids: Vec<u32> = children.iter().map(|c| self.forms.of[c]).collect();
             let next = self.forms.ids.len() as u32;
             let f = *self.forms.ids.entry((own, kids)).or_insert(next);

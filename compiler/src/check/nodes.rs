@@ -45,15 +45,10 @@ impl Checker<'_> {
             }
             NodeKind::Implicit { .. } => false,
         };
-        let mirror = match &kind {
-            NodeKind::Primitive { prim, ctx } => (prim.mirror)(ctx),
-            NodeKind::Operator { op, ctx, .. } => (op.mirror)(ctx),
-            NodeKind::Implicit { .. } => [false; 3],
-        };
-        let swap = match &kind {
-            NodeKind::Primitive { prim, ctx } => (prim.swap)(ctx),
-            NodeKind::Operator { op, ctx, .. } => (op.swap)(ctx),
-            NodeKind::Implicit { .. } => [false; 3],
+        let (mirror, swap) = match &kind {
+            NodeKind::Primitive { prim, ctx } => ((prim.mirror)(ctx), (prim.swap)(ctx)),
+            NodeKind::Operator { op, ctx, .. } => ((op.mirror)(ctx), (op.swap)(ctx)),
+            NodeKind::Implicit { .. } => ([false; 3], [false; 3]),
         };
         self.note_planar(&kind);
         self.call_site
@@ -74,6 +69,25 @@ impl Checker<'_> {
             name: None,
         });
         Some(self.nodes.len() - 1)
+    }
+
+    /// What a primitive or operator with these arguments knows of these checked children (none
+    /// for a primitive; no bounding-volume tree yet).
+    pub(super) fn ctx_over(
+        &self,
+        (args, sym): (Vec<crate::catalog::Val>, crate::catalog::ArgSyms),
+        children: &[NodeId],
+    ) -> Ctx {
+        Ctx {
+            args,
+            sym,
+            child_lambda: children.iter().map(|&c| self.nodes[c].lambda).collect(),
+            child_bound: children.iter().map(|&c| self.nodes[c].bound).collect(),
+            child_mirror: children.iter().map(|&c| self.nodes[c].mirror).collect(),
+            child_swap: children.iter().map(|&c| self.nodes[c].swap).collect(),
+            child_exact: children.iter().map(|&c| self.nodes[c].exact).collect(),
+            prune: None,
+        }
     }
 
     /// Builds an operator node over checked children.
@@ -102,17 +116,7 @@ impl Checker<'_> {
         } else {
             children
         };
-        let ctx = Ctx {
-            args,
-            sym,
-            child_lambda: children.iter().map(|&c| self.nodes[c].lambda).collect(),
-            child_bound: children.iter().map(|&c| self.nodes[c].bound).collect(),
-            child_mirror: children.iter().map(|&c| self.nodes[c].mirror).collect(),
-            child_swap: children.iter().map(|&c| self.nodes[c].swap).collect(),
-            child_exact: children.iter().map(|&c| self.nodes[c].exact).collect(),
-            prune: None,
-        };
-        let mut ctx = ctx;
+        let mut ctx = self.ctx_over((args, sym), &children);
         if name == "union" {
             ctx.prune = crate::catalog::prune::Tree::build(&ctx).map(std::sync::Arc::new);
         }
