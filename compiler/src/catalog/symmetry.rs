@@ -17,11 +17,9 @@ pub(crate) fn equal_pairs(v: DVec3) -> [bool; 3] {
 /// The child's symmetry (operators that act the same on x and −x).
 pub(super) const CHILD: fn(&Ctx) -> [bool; 3] = |c| c.child_mirror[0];
 /// Symmetric where every child is.
-pub(super) const EVERY: fn(&Ctx) -> [bool; 3] =
-    |c| [0, 1, 2].map(|i| c.child_mirror.iter().all(|m| m[i]));
+pub(super) const EVERY: fn(&Ctx) -> [bool; 3] = |c| all_of(&c.child_mirror);
 /// Exchange symmetric where every child is.
-pub(super) const SWAP_EVERY: fn(&Ctx) -> [bool; 3] =
-    |c| [0, 1, 2].map(|i| c.child_swap.iter().all(|m| m[i]));
+pub(super) const SWAP_EVERY: fn(&Ctx) -> [bool; 3] = |c| all_of(&c.child_swap);
 /// The child's exchange symmetry.
 pub(super) const SWAP_CHILD: fn(&Ctx) -> [bool; 3] = |c| c.child_swap[0];
 /// Not known to be symmetric.
@@ -102,5 +100,10 @@ pub(super) fn rotated_swap(c: &Ctx) -> [bool; 3] {
 
 /// Per axis, both.
 pub(super) fn and(a: [bool; 3], b: [bool; 3]) -> [bool; 3] {
-    [0, 1, 2].map(|i| a[i] && b[i])
+    all_of(&[a, b])
+}
+
+/// Per axis, whether every one of `flags` has it.
+fn all_of(flags: &[[bool; 3]]) -> [bool; 3] {
+    [0, 1, 2].map(|i| flags.iter().all(|m| m[i]))
 }

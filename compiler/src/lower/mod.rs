@@ -337,10 +337,9 @@ impl Walk<'_> {
             NodeKind::Primitive { prim, ctx } => {
                 let name = format!("sd_{}", prim.name);
                 let f = b.m.helper(&name);
-                let baked = b.m.baked.get(&name).cloned().unwrap_or_default();
                 let mut args = vec![p];
                 for (i, (param, v)) in prim.params.iter().zip(&ctx.args).enumerate() {
-                    if !baked.get(i).copied().unwrap_or(false) {
+                    if !b.m.baked.get(&name).is_some_and(|m| m[i]) {
                         args.push(params::arg(b, param.ty, *v, ctx.sym(i), p));
                     }
                 }
