@@ -244,7 +244,8 @@ fn lights() {
 
 /// What `render` limits (`MAX_DRIVER_CALLS` in the runtime) is counted exactly: a union of n
 /// spheres calls `sd_sphere` n times; a `let` shape used many times is one function in `map`,
-/// but the material function writes its body inline at every use.
+/// and the material function calls it where the shape is in one material, but writes its body
+/// inline at every use where its parts differ in material.
 #[test]
 fn distance_calls_are_the_call_sites() {
     let calls = |source: String| {
@@ -260,7 +261,13 @@ fn distance_calls_are_the_call_sites() {
         "material m {{ color #f00 }}\n{}",
         shared.replace("union { a ", "union { a : m ")
     );
-    // `a : m` is a copy of `a` with a material: a second function (2 more calls), and the
-    // material function inlines the three uses.
-    assert_eq!(calls(with_material), 2 + 2 + 3 * 2);
+    // `a : m` is a copy of `a` with a material: a second function (2 more calls). Each use is
+    // in one material (`m` or none), so the material function calls the two functions.
+    assert_eq!(calls(with_material), 2 + 2);
+    let mixed = format!(
+        "material m {{ color #f00 }}\n{}",
+        shared.replace("sphere(1)", "sphere(1) : m")
+    );
+    // The material varies inside `a`: the material function inlines the three uses.
+    assert_eq!(calls(mixed), 2 + 3 * 2);
 }

@@ -372,3 +372,75 @@ fn lattices_of_copies_leave_the_field_unchanged() {
         );
     });
 }
+
+/// A tag the lowering takes as one constant (`lower::constant_materials`,
+/// `constant_looseness`: the material or tag function then calls the part's field, or returns
+/// the constant without walking) is that constant at every sampled point of the CPU walk:
+/// random shapes in materials `a`, `b` or none, nested so that inner materials win and smooth
+/// blends make parts loose.
+#[test]
+fn constant_tags_hold_where_sampled() {
+    sdfc_tests::with_stack(|| {
+        let seed = sdfc_tests::fuzz_seed(0x7a65_c0de);
+        let mut r = Rng::new(seed);
+        let (mut claims, mut varying, mut points) = (0, 0, 0);
+        let tags = [""; 2]
+            .into_iter()
+            .chain([" : a", " : b"])
+            .collect::<Vec<_>>();
+        for _ in 0..200 {
+            let part = |r: &mut Rng| {
+                let depth = 1 + r.below(2);
+                let s = shape(r, depth);
+                let s = if r.below(3) == 0 {
+                    let op = r.pick(&["union", "smooth_union(0.3)", "intersect", "subtract"]);
+                    let t = *r.pick(&tags);
+                    let other = shape(r, 1);
+                    format!("{op} {{ ({s}){t}  ({other}){} }}", r.pick(&tags))
+                } else {
+                    s
+                };
+                format!("({s}){}", r.pick(&tags))
+            };
+            let parts: Vec<String> = (0..1 + r.below(4)).map(|_| part(&mut r)).collect();
+            let op = r.pick(&["union", "smooth_union(0.2)", "intersect"]);
+            let head = "material a { color #f00 }\nmaterial b { color #0f0 }\n";
+            let source = format!("{head}{op} {{\n  {}\n}}\n", parts.join("\n  "));
+            let Some(scene) = sdfc_compiler::check::compile(&source).scene else {
+                continue;
+            };
+            let materials = sdfc_compiler::lower::constant_materials(&scene);
+            let loose = sdfc_compiler::lower::constant_looseness(&scene);
+            for id in scene.reachable() {
+                let Some(c) = materials[id] else {
+                    varying += 1;
+                    continue;
+                };
+                claims += 1;
+                for _ in 0..20 {
+                    let p = r.dir() * r.range(0.0, 4.0);
+                    points += 1;
+                    let got = eval::node(&scene, id, p).mat.map_or(0, |m| m + 1);
+                    assert_eq!(
+                        got, c,
+                        "node {id} at {p}: material {got}, taken as {c}\n{source}"
+                    );
+                }
+            }
+            if let Some(c) = loose[scene.root] {
+                claims += 1;
+                for _ in 0..20 {
+                    let p = r.dir() * r.range(0.0, 4.0);
+                    points += 1;
+                    let got = u32::from(eval::loose(&scene, p));
+                    assert_eq!(got, c, "at {p}: loose {got}, taken as {c}\n{source}");
+                }
+            }
+        }
+        println!("{claims} constant tags, {varying} varying materials; {points} points");
+        assert!(
+            claims >= 500 && varying >= 100,
+            "{claims} claims, {varying} varying"
+        );
+    });
+}

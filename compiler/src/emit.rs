@@ -52,7 +52,8 @@ pub fn module(
 
 /// How many times the module's code calls a distance function (`sd_*`), each call site once:
 /// what the size of the driver's compile grows with. In `map` a shared `let` is one function,
-/// its calls counted once; `map_material` and `map_loose` write a `let`'s body at each use.
+/// its calls counted once; `map_material` and `map_loose` write a `let`'s body at each use
+/// where the tag varies inside it, and call its function where the tag is one constant.
 pub fn distance_calls(module: &naga::Module) -> usize {
     fn block(module: &naga::Module, b: &naga::Block) -> usize {
         b.iter()

@@ -2,7 +2,8 @@
 //! used, `op_*` helpers for the blends used, a function `let_<name>` per surviving `let` shape,
 //! `map`, (only when the scene has materials) `map_material`, (only when a material has a
 //! pattern) `map_texture` and (only when it has a loose part) `map_loose` (the tag walks:
-//! `tags.rs`); the tracer and entry points come from `tracer.rs`.
+//! `tags.rs`, which return a constant where the scene leaves no choice); the tracer and entry
+//! points come from `tracer.rs`.
 
 mod bounce;
 mod bound;
@@ -39,6 +40,7 @@ use naga::{Function, Handle, MathFunction, Type};
 use std::borrow::Cow;
 use std::collections::HashMap;
 
+pub use tags::{constant_looseness, constant_materials};
 pub use tracer::Entry;
 
 /// Builds the module for a scene and an entry kind. Validation happens in `emit`.
@@ -69,7 +71,7 @@ pub fn lower(scene: &Scene, entry: Entry, options: &tracer::Options) -> naga::Mo
     // (The library always has `map_material`: its interface does not depend on the scene.)
     let material = (has_materials(scene, &reachable) || entry == Entry::Library).then(|| {
         point_function(&mut mb, "map_material", u32t, |b, p| {
-            let (_, m) = walk.with_material(b, scene.root, p);
+            let m = walk.with_material(b, scene.root, p);
             m.unwrap_or_else(|| b.u(0))
         })
     });
@@ -77,7 +79,7 @@ pub fn lower(scene: &Scene, entry: Entry, options: &tracer::Options) -> naga::Mo
     // the nearest part is loose (`eval::loose`), for the tracer's hit confirmation.
     let loose = (!scene.root_node().unit_gradient).then(|| {
         point_function(&mut mb, "map_loose", u32t, |b, p| {
-            let (_, l) = walk.with_loose(b, scene.root, p);
+            let l = walk.with_loose(b, scene.root, p);
             l.unwrap_or_else(|| b.u(0))
         })
     });
@@ -86,7 +88,7 @@ pub fn lower(scene: &Scene, entry: Entry, options: &tracer::Options) -> naga::Mo
     // the shape whose material the surface takes (`eval::surface`).
     let texture = (!used_patterns(scene).is_empty()).then(|| {
         point_function(&mut mb, "map_texture", v3, |b, p| {
-            let (_, q) = walk.with_texture(b, scene.root, p);
+            let q = walk.with_texture(b, scene.root, p);
             // The point itself where no material was given (as `eval::surface`).
             match q {
                 Some(q) => {
@@ -104,7 +106,7 @@ pub fn lower(scene: &Scene, entry: Entry, options: &tracer::Options) -> naga::Mo
     // id, weight of the second) (`crate::blend`, `eval::blend`).
     let blend = crate::blend::has_blends(scene).then(|| {
         point_function(&mut mb, "map_blend", v3, |b, p| {
-            let (_, bl) = walk.with_blend(b, scene.root, p);
+            let bl = walk.with_blend(b, scene.root, p);
             bl.unwrap_or_else(|| b.splat3(0.0))
         })
     });

@@ -6,7 +6,7 @@ use super::Walk;
 use super::builder::{Ex, FnBuilder};
 use super::ops;
 use crate::catalog::MatRule;
-use crate::scene::{NodeId, NodeKind};
+use crate::scene::{NodeId, NodeKind, Scene};
 
 /// The tag a node gives its field: `(node, its point, the tag picked from its children)`.
 pub(super) type TagFn<'a> = dyn Fn(&mut FnBuilder, NodeId, Ex, Option<Ex>) -> Option<Ex> + 'a;
@@ -23,19 +23,78 @@ pub(super) struct Tagging<'a> {
     pub zero: &'a Zero<'a>,
     /// Whether blending operators blend the tags (`map_blend`) rather than pick one.
     pub blends: bool,
+    /// The nodes whose tag is one constant at every point ([`constant_tags`]); empty where
+    /// the tag is not an id.
+    pub constant: &'a [Option<u32>],
+}
+
+/// The tag (an id, 0 for none) each node's walk gives at every point, where its parts leave it
+/// no choice: a part loose as a whole, a group in one material. Operators pick their tag among
+/// their children's (`MatRule::pick`), so children that all tag alike tag their parent alike;
+/// `own(node, inner)` is the node's own rule applied to the tag picked from its children (as
+/// [`Tagging::tag`], 0 standing for none). A function whose root is constant needs no walk.
+fn constant_tags(scene: &Scene, own: &dyn Fn(NodeId, u32) -> u32) -> Vec<Option<u32>> {
+    /// The node's constant tag (`None`: it varies), each node worked out once (`memo`).
+    fn visit(
+        scene: &Scene,
+        id: NodeId,
+        own: &dyn Fn(NodeId, u32) -> u32,
+        memo: &mut [Option<Option<u32>>],
+    ) -> Option<u32> {
+        if let Some(known) = memo[id] {
+            return known;
+        }
+        let inner = match &scene.nodes[id].kind {
+            NodeKind::Operator { children, .. } => {
+                let mut tags = children.iter().map(|&c| visit(scene, c, own, memo));
+                let first = tags.next().flatten();
+                // Every child is visited (the memo is filled for all of them).
+                tags.fold(first, |acc, t| if acc == t { acc } else { None })
+            }
+            _ => Some(0),
+        };
+        let tag = inner.map(|c| own(id, c));
+        memo[id] = Some(tag);
+        tag
+    }
+    let mut memo = vec![None; scene.nodes.len()];
+    (0..scene.nodes.len())
+        .map(|id| visit(scene, id, own, &mut memo))
+        .collect()
+}
+
+/// [`constant_tags`] of the material id (1-based, 0 the default): a node in one material.
+pub fn constant_materials(scene: &Scene) -> Vec<Option<u32>> {
+    constant_tags(scene, &|id, inner| match scene.nodes[id].material {
+        Some(k) if inner == 0 => k + 1,
+        _ => inner,
+    })
+}
+
+/// [`constant_tags`] of looseness (1 loose, 0 not; `eval::loose`): a node loose as a whole.
+pub fn constant_looseness(scene: &Scene) -> Vec<Option<u32>> {
+    constant_tags(scene, &|id, inner| {
+        if scene.breaks_unit_gradient(id) {
+            1
+        } else {
+            inner
+        }
+    })
 }
 
 impl Walk<'_> {
-    /// Field and material id (1-based; 0 the default; `None`: statically no material) of a node.
-    pub(super) fn with_material(&self, b: &mut FnBuilder, id: NodeId, p: Ex) -> (Ex, Option<Ex>) {
+    /// Material id (1-based; 0 the default; `None`: statically no material) of a node.
+    pub(super) fn with_material(&self, b: &mut FnBuilder, id: NodeId, p: Ex) -> Option<Ex> {
         let scene = self.scene;
-        self.with_tag(
+        let constant = constant_materials(scene);
+        self.tag_of(
             b,
             id,
             p,
             &Tagging {
                 zero: &|b| b.u(0),
                 blends: false,
+                constant: &constant,
                 tag: &|b, id, _, inner| match (scene.nodes[id].material, inner) {
                     (None, m) => m,
                     (Some(k), None) => Some(b.u(k + 1)),
@@ -50,17 +109,19 @@ impl Walk<'_> {
         )
     }
 
-    /// Field and looseness of a node: 1 where the part the materials' rule picks is loose
+    /// Looseness of a node: 1 where the part the materials' rule picks is loose
     /// (`Scene::breaks_unit_gradient`, `eval::loose`), 0 or `None` where not.
-    pub(super) fn with_loose(&self, b: &mut FnBuilder, id: NodeId, p: Ex) -> (Ex, Option<Ex>) {
+    pub(super) fn with_loose(&self, b: &mut FnBuilder, id: NodeId, p: Ex) -> Option<Ex> {
         let scene = self.scene;
-        self.with_tag(
+        let constant = constant_looseness(scene);
+        self.tag_of(
             b,
             id,
             p,
             &Tagging {
                 zero: &|b| b.u(0),
                 blends: false,
+                constant: &constant,
                 tag: &|b, id, _, inner| {
                     if scene.breaks_unit_gradient(id) {
                         Some(b.u(1))
@@ -75,9 +136,9 @@ impl Walk<'_> {
     /// Field and `vec4(q, 1)` of a node, q the point in the own coordinates of the node whose
     /// material the surface takes (`eval::surface`); `vec4(0)` where no material was given.
     /// The same picks as [`Walk::with_material`], so the point belongs to the same material.
-    pub(super) fn with_texture(&self, b: &mut FnBuilder, id: NodeId, p: Ex) -> (Ex, Option<Ex>) {
+    pub(super) fn with_texture(&self, b: &mut FnBuilder, id: NodeId, p: Ex) -> Option<Ex> {
         let scene = self.scene;
-        self.with_tag(
+        self.tag_of(
             b,
             id,
             p,
@@ -88,6 +149,7 @@ impl Walk<'_> {
                     b.compose(v4, vec![z, z, z, z])
                 },
                 blends: false,
+                constant: &[],
                 tag: &|b, id, q, inner| {
                     if scene.nodes[id].material.is_none() {
                         return inner;
@@ -112,15 +174,16 @@ impl Walk<'_> {
 
     /// Field and `vec3(first id, second id, weight of the second)` of a node: the materials a
     /// blending operator mixes (`crate::blend`, `eval::blend`); `vec3(0)` where none was given.
-    pub(super) fn with_blend(&self, b: &mut FnBuilder, id: NodeId, p: Ex) -> (Ex, Option<Ex>) {
+    pub(super) fn with_blend(&self, b: &mut FnBuilder, id: NodeId, p: Ex) -> Option<Ex> {
         let scene = self.scene;
-        self.with_tag(
+        self.tag_of(
             b,
             id,
             p,
             &Tagging {
                 zero: &|b| b.splat3(0.0),
                 blends: true,
+                constant: &[],
                 tag: &|b, id, _, inner| {
                     let Some(m) = scene.nodes[id].material else {
                         return inner;
@@ -149,6 +212,15 @@ impl Walk<'_> {
         )
     }
 
+    /// The tag of a node (a function's root): a constant where the node's parts leave it no
+    /// choice (nothing walked), else [`Walk::with_tag`]'s.
+    fn tag_of(&self, b: &mut FnBuilder, id: NodeId, p: Ex, tag: &Tagging) -> Option<Ex> {
+        match tag.constant.get(id) {
+            Some(&Some(c)) => (c != 0).then(|| b.u(c)),
+            _ => self.with_tag(b, id, p, tag).1,
+        }
+    }
+
     /// Field and tag of a node: the tag its operator picks from the children by the materials'
     /// rule, passed through `tag(node, picked)` (as `eval::node_with`).
     pub(super) fn with_tag(
@@ -158,6 +230,14 @@ impl Walk<'_> {
         p: Ex,
         tag: &Tagging,
     ) -> (Ex, Option<Ex>) {
+        // A part whose tag is constant needs only its field. (Not under bounding-volume trees:
+        // the tag walk takes every child's value, which the tree's field may not give.)
+        if !self.trees
+            && let Some(&Some(c)) = tag.constant.get(id)
+        {
+            let d = self.distance(b, id, p);
+            return (d, (c != 0).then(|| b.u(c)));
+        }
         let node = &self.scene.nodes[id];
         let (d, m) = match &node.kind {
             NodeKind::Operator { op, ctx, children } => {
