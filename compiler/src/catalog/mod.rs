@@ -3,6 +3,7 @@
 //! The checker, the evaluator, the docs table and the tests all loop over these tables; adding a
 //! primitive means adding one entry (and its formula) in `primitives.rs`.
 
+pub mod absorb;
 mod bound;
 mod math;
 pub mod operators;

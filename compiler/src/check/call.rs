@@ -9,6 +9,27 @@ use crate::scene::{NodeId, NodeKind};
 use crate::syntax::{Call, Ident};
 
 impl Checker<'_> {
+    /// The node of a primitive with checked arguments.
+    pub(super) fn primitive_node(
+        &mut self,
+        prim: &'static catalog::Primitive,
+        args: (Vec<catalog::Val>, catalog::ArgSyms),
+        span: crate::diag::Span,
+    ) -> Option<NodeId> {
+        let ctx = self.ctx_over(args, &[]);
+        let rules = self.rules_over_ranges(&ctx, span, prim.name, &|c| {
+            super::ranges::Rules::primitive(prim, c)
+        })?;
+        let id = self.push_node(
+            NodeKind::Primitive { prim, ctx },
+            rules.lambda,
+            rules.bound,
+            span,
+        )?;
+        self.narrow_rules(id, &rules);
+        Some(id)
+    }
+
     /// A call: a math function, `implicit`, a primitive or an operator. `piped` is the child
     /// given by `lhs |> call`.
     pub(super) fn call(&mut self, call: &Call, piped: Option<NodeId>) -> Option<Value> {
@@ -49,20 +70,8 @@ impl Checker<'_> {
                 );
                 return None;
             }
-            let (args, sym) =
-                self.bind_args(name, prim.params, &call.args, call.span, RunTime::All)?;
-            let ctx = self.ctx_over((args, sym), &[]);
-            let rules = self.rules_over_ranges(&ctx, call.span, name, &|c| {
-                super::ranges::Rules::primitive(prim, c)
-            })?;
-            let id = self.push_node(
-                NodeKind::Primitive { prim, ctx },
-                rules.lambda,
-                rules.bound,
-                call.span,
-            )?;
-            self.narrow_rules(id, &rules);
-            return Some(Value::Shape(id));
+            let args = self.bind_args(name, prim.params, &call.args, call.span, RunTime::All)?;
+            return self.primitive_node(prim, args, call.span).map(Value::Shape);
         }
         if let Some(op) = catalog::operator(name) {
             let args = self.bind_args(name, op.params, &call.args, call.span, RunTime::All);

@@ -1,6 +1,7 @@
 //! Checking: AST → scene graph. Names resolved, arguments typed and ranged, units converted,
 //! materials resolved, a Lipschitz bound for every node; all errors of a file reported at once.
 
+mod absorb;
 mod args;
 mod call;
 mod derived;
