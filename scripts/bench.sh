@@ -18,6 +18,10 @@ cargo build --release -q -p sdfc
 sdfc=./target/release/sdfc
 out=docs/benchmarks
 mkdir -p "$out"
+# `sdfc emit` of the 10 001-node scene of compiler/benches/compile.rs as a whole process, first:
+# right after criterion's and the GPU's work the same command measured 105 ms against 75 ms
+# on its own (the kernel's huge pages are then fragmented; stop 18).
+python3 scripts/emit_time.py "$sdfc" > "$out/emit-process.json"
 for scene in mandelbulb composition village; do
   $sdfc bench "examples/$scene.sdf" --size "$size" --repeat "$repeat" \
     --epsilon "$eps" --json --plot "$out/$scene.png" > "$out/$scene.json"
@@ -61,7 +65,5 @@ echo "measured the trivial frame" >&2
 # the CPU field with and without bounding-volume trees.
 rm -rf "target/criterion/CPU field"  # (a renamed scene's old estimates would be read too)
 cargo bench -q -p sdfc-compiler > /dev/null
-# `sdfc emit` of the 10 001-node scene of compiler/benches/compile.rs as a whole process.
-python3 scripts/emit_time.py "$sdfc" > "$out/emit-process.json"
 python3 scripts/bench_report.py "$size" "$repeat" "$eps" > docs/benchmarks.md
 echo "wrote docs/benchmarks.md" >&2

@@ -1,4 +1,4 @@
-"""Times `sdfc emit` of a 10 001-node scene as a whole process (median of 15 runs, after one
+"""Times `sdfc emit` of a 10 001-node scene as a whole process (median of 25 runs, after one
 untimed run), the scene being the one compiler/benches/compile.rs generates for 1 000 groups.
 Usage: python3 scripts/emit_time.py path/to/sdfc > emit-process.json"""
 import json
@@ -28,7 +28,7 @@ with tempfile.TemporaryDirectory() as d:
         cmd = [sdfc, "emit", scene, "--target", target, "-q", "-o", os.path.join(d, "out")]
         subprocess.run(cmd, check=True)
         runs = []
-        for _ in range(15):
+        for _ in range(25):
             t = time.perf_counter()
             subprocess.run(cmd, check=True)
             runs.append(time.perf_counter() - t)

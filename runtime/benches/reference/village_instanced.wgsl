@@ -1,17 +1,15 @@
 // village_instanced.wgsl — examples/village.sdf, a copy of runtime/benches/reference/village.wgsl
-// (same tracer, hit confirmation, constants, output; every shape function byte-for-byte the same)
+// (same tracer, constants, output; every shape function byte-for-byte the same)
 // whose map() does NOT write out the repeated copies: houses (10), town houses (3), blocks (6) and
 // trees (8 per side, the two sides folded onto one by abs(p.z) exactly as village.wgsl does) are
 // data: a constant list of translations per kind, enumerated by ONE data-driven loop.
 //
-// Structure of parts(p) (map() and roof_is_nearest() both use it):
+// Structure of parts(p) (map() uses it):
 //   1. The single parts first: ground plane, road slab, church. Their min seeds the running min.
 //   2. Per kind, a lower bound b_j = |gap from p to copy j's bounding box|² for every copy j. The
 //      box is the kind's (known, constant) local bounding box, half extents padded by 1e-3, moved
 //      by the copy's translation. The gaps are separable, so one gap² per distinct x, y, z of the
-//      translations is computed and b_j is a sum of three of them. For the town house, whose roof
-//      is stretched 1.15× along x (its field is a bound of the stretched box, f(p/s)), the x gap is
-//      measured in the unstretched space (×1/1.15), which bounds walls, annex and roof from below.
+//      translations is computed and b_j is a sum of three of them.
 //   3. Per kind, k = the copy with the smallest b_j (select chain, no loop).
 //   4. ONE loop for all four kinds in lockstep (uniform code: no per-lane switch between kinds):
 //      each trip evaluates, for every kind, the copy k of that kind (translation from k by a select
@@ -23,13 +21,11 @@
 //      it, and measured trips here average ~1.03 per lane.
 //   Exactness: a copy is left out only when its box is farther than the running minimum at that
 //   moment, so its field (>= its box distance) cannot be the minimum: the field is exactly the min
-//   over all copies, and roof_is_nearest() (componentwise town-house mins vs the others) gives the
-//   same answer as with every copy evaluated (left-out copies are > the final minimum in every
-//   component).  `sdfc bench` reports the same evaluations per pixel (17.04) and 100% hit agreement.
+//   over all copies.
 //
 // Tracer: basic sphere tracing, 200 steps, ε(t) = max(view.size.z·t, 2.0995714e-4),
-// max_distance 80, p advanced by p += rd·d; hit confirmation over the town-house roofs as in
-// village.wgsl (see its header). Output: out[i] = (bitcast(t), steps | hit << 31).
+// max_distance 80, p advanced by p += rd·d; no hit confirmation (every part is exact, as in
+// village.wgsl). Output: out[i] = (bitcast(t), steps | hit << 31).
 //
 // Written for issue 14 (by a generator from village.wgsl, variant "F": the lockstep loop) to
 // measure whether a data-driven loop over the copies pays on lavapipe: see docs/benchmarks.md.
@@ -75,12 +71,12 @@ fn house(q: vec3<f32>) -> f32 {
     return min(d, box3(q - vec3<f32>(0.0, 1.6, 0.0), vec3<f32>(0.09, 0.45, 0.09)));
 }
 
-// Town house parts (walls, roof, annex): the roof is a 0.9 cube turned 45° about x and
-// stretched 1.15 along x.
+// Town house parts (walls, roof, annex): the roof is a 1.035 × 0.9 × 0.9 box turned 45° about x
+// (the scene's 0.9 cube stretched 1.15 along x, which sdfc takes into the box's size).
 fn townhouse(q: vec3<f32>) -> vec3<f32> {
     let walls = box3(q - vec3<f32>(0.0, 0.9, 0.0), vec3<f32>(0.5, 0.9, 0.6));
-    let s = vec3<f32>(q.x * 0.8695652, q.y - 1.8, q.z);
-    let roof = box3(vec3<f32>(s.x, C45 * (s.y + s.z), C45 * (s.z - s.y)), vec3<f32>(0.45));
+    let s = vec3<f32>(q.x, q.y - 1.8, q.z);
+    let roof = box3(vec3<f32>(s.x, C45 * (s.y + s.z), C45 * (s.z - s.y)), vec3<f32>(0.5175, 0.45, 0.45));
     let annex = box3(q - vec3<f32>(0.0, 0.35, 0.0), vec3<f32>(0.65, 0.35, 0.45));
     return vec3<f32>(walls, roof, annex);
 }
@@ -243,9 +239,9 @@ fn parts(p: vec3<f32>) -> Parts {
     var hk = hi9;
     var hdone = 0u;
     // townhouse: 3 copies
-    let wgx0 = (max(abs(p.x - -6.8) - 0.651, 0.0) * 0.8695652); let wgx02 = wgx0 * wgx0;
-    let wgx1 = (max(abs(p.x - -3.5) - 0.651, 0.0) * 0.8695652); let wgx12 = wgx1 * wgx1;
-    let wgx2 = (max(abs(p.x - -0.2) - 0.651, 0.0) * 0.8695652); let wgx22 = wgx2 * wgx2;
+    let wgx0 = max(abs(p.x - -6.8) - 0.651, 0.0); let wgx02 = wgx0 * wgx0;
+    let wgx1 = max(abs(p.x - -3.5) - 0.651, 0.0); let wgx12 = wgx1 * wgx1;
+    let wgx2 = max(abs(p.x - -0.2) - 0.651, 0.0); let wgx22 = wgx2 * wgx2;
     let wgy0 = max(abs(p.y - 1.2182) - 1.2191999999999998, 0.0); let wgy02 = wgy0 * wgy0;
     let wgz0 = max(abs(p.z - 2.6) - 0.6374, 0.0); let wgz02 = wgz0 * wgz0;
     let wb0 = wgx02 + wgy02 + wgz02;
@@ -353,14 +349,6 @@ fn map(p: vec3<f32>) -> f32 {
     return min(min(q.h, q.r), min(q.t.x, min(q.t.y, q.t.z)));
 }
 
-// Is a town-house roof the nearest part at p? (sdfc's rule: the first strictly nearest part of
-// the top-level union, then within the town house.) Copies left out by the loop are farther
-// than the minimum, so this answer is the same as with every copy evaluated.
-fn roof_is_nearest(p: vec3<f32>) -> bool {
-    let q = parts(p);
-    return q.t.y < min(q.h, q.t.x) && q.t.y <= min(q.t.z, q.r);
-}
-
 @compute @workgroup_size(8, 8, 1)
 fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
     let px = gid.xy + view.offset.xy;
@@ -397,74 +385,5 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
         }
     }
 
-    // Confirm the hit (see the header): it stands unless the nearest part is a roof.
-    if (hit) {
-        p = ro + rd * t;
-        steps += 1u;
-        if (roof_is_nearest(p)) {
-            hit = false;
-            var in_zone = false;
-            var fresh = true;        // known to be over the roof: no second look in this zone
-            var t_out = 0.0;         // last point outside the zone, and its value
-            var d_out = -1.0;
-            loop {
-                if (steps >= STEPS) {
-                    break;
-                }
-                let d = map(p);
-                steps += 1u;
-                if (d <= 0.0) {
-                    // Crossed the surface: place it by regula falsi from the last point.
-                    if (d_out >= 0.0) {
-                        var lo = t_out;
-                        var f_lo = d_out;
-                        var hi = t;
-                        var f_hi = d;
-                        for (var k = 0; k < 2; k++) {
-                            let tm = lo + (hi - lo) * (f_lo / (f_lo - f_hi));
-                            let fm = map(ro + rd * tm);
-                            steps += 1u;
-                            if (fm > 0.0) {
-                                lo = tm;
-                                f_lo = fm;
-                            } else {
-                                hi = tm;
-                                f_hi = fm;
-                            }
-                        }
-                        let back = lo + (hi - lo) * (f_lo / (f_lo - f_hi)) - t;
-                        t += back;
-                        p += rd * back;
-                    }
-                    hit = true;
-                    break;
-                }
-                let e = max(pixel * t, EPS_FLOOR);
-                var step = d;
-                if (d < e) {
-                    // Entering a new zone: a hit unless it is over the roof again.
-                    if (!in_zone && !fresh) {
-                        steps += 1u;
-                        if (!roof_is_nearest(p)) {
-                            hit = true;
-                            break;
-                        }
-                    }
-                    in_zone = true;
-                    step = max(d, e * 0.25);
-                } else {
-                    in_zone = false;
-                }
-                fresh = false;
-                t_out = t;
-                d_out = d;
-                t += step;
-                p += rd * step;
-                if (t > MAX_T) {
-                    break;
-                }
-            }
-        }
-    }
     out[index] = vec2<u32>(bitcast<u32>(t), steps | (select(0u, 1u, hit) << 31u));
 }
