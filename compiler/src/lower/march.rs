@@ -177,14 +177,22 @@ impl Cx {
     }
 
     /// Evaluates the field `step` ahead of the current point (at t0 + step) and tests whether
-    /// the unbounding spheres there and here (radius `r`) fail to overlap (see [`Cx::apart`]).
-    /// Returns (t0 + step, the point, the field there, the test).
-    pub fn probe(&self, b: &mut FnBuilder, t0: Ex, r: Ex, step: Ex) -> (Ex, Ex, Ex, Ex) {
+    /// the unbounding spheres there and here (radius `r`) fail to overlap (see [`Cx::apart`]);
+    /// `e` is ε at t0 where the caller has it at hand (auto's hit test computed it this
+    /// iteration); else it is computed here. Returns (t0 + step, the point, the field there, the
+    /// test).
+    pub fn probe(
+        &self,
+        b: &mut FnBuilder,
+        t0: Ex,
+        (r, step): (Ex, Ex),
+        e: Option<Ex>,
+    ) -> (Ex, Ex, Ex, Ex) {
         let at = b.add(t0, step);
         let point = self.ahead(b, step);
         let rn = self.field_at(b, point, at);
         b.name(rn, "r_next");
-        let e = self.eps(b, t0);
+        let e = e.unwrap_or_else(|| self.eps(b, t0));
         let apart = self.apart(b, step, (r, rn), e);
         (at, point, rn, apart)
     }

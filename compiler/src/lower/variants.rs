@@ -256,7 +256,10 @@ fn enhanced(b: &mut FnBuilder, cx: &Cx) {
         let inferred = b.add(rv, extra);
         let dn = b.select(plain, rv, inferred);
         b.name(dn, "step");
-        let (at, point, rn, fail) = cx.probe(b, t, rv, dn);
+        // ε at the current point is computed again in the overlap test rather than carried from
+        // the last step's hit test: carried in a variable, it measured 5% slower on the
+        // composition (llvmpipe; issue 14).
+        let (at, point, rn, fail) = cx.probe(b, t, (rv, dn), None);
         b.if_(
             fail,
             |b| {
@@ -298,7 +301,7 @@ fn auto(b: &mut FnBuilder, cx: &Cx) {
         cx.stop_if(b, gone, 0);
         cx.budget(b, EXHAUSTED, |_| {});
         let (zv, mv) = (b.load(z), b.load(m));
-        let (tn, point, rn, back) = cx.probe(b, t, rv, zv);
+        let (tn, point, rn, back) = cx.probe(b, t, (rv, zv), Some(e));
         b.name(back, "back");
         let rise = b.sub(rn, rv);
         let slope = b.div(rise, zv);
