@@ -60,6 +60,11 @@ for n in 128 256 512 1024; do
 done
 $sdfc bench examples/bench/trivial.sdf --tracers basic --steps 1 --size 512x512 --repeat 21 \
   --reference runtime/benches/reference/trivial.wgsl --json > "$out/trivial-trivial.json"
+# Frames of 8² and 16² pixels, which are all fixed cost: the fixed cost measured directly.
+for n in 8 16; do
+  $sdfc bench examples/bench/trivial.sdf --tracers basic --steps 1 --size "${n}x${n}" --repeat 41 \
+    --reference runtime/benches/reference/bare.wgsl --json > "$out/trivial-tiny-$n.json"
+done
 echo "measured the trivial frame" >&2
 # Compile time (criterion): parse → check → lower → validate → WGSL for generated scenes; and
 # the CPU field with and without bounding-volume trees.
