@@ -165,7 +165,7 @@ if off and on and grouped and vil and side:
     w("  is symmetric in its cell). The same field; property-tested against the copies written out.")
     w("  The town houses' stretched roofs are exact since a box takes a scale into its sizes")
     w("  (`compiler/src/catalog/absorb.rs`, stop 18), so they group too: a step evaluates 16")
-    w("  primitives where the apart village evaluates 89.")
+    w("  primitives where the apart village evaluates 89 (counted in the emitted `map`s at stop 18).")
     w("- **A tree of boxes** (`compiler/src/catalog/prune.rs`, `--bvh` on the GPU): a group of parts")
     w("  whose box is farther than the running minimum is skipped — the same field, property-tested")
     w("  bit for bit against the plain union.")
@@ -354,7 +354,7 @@ if proc:
     w("to return 1; the WGSL went from 1 466 kB to 680 kB). Of the 525.1 M, parsing (pest and the")
     w("syntax tree) is 60%, checking 9%, lowering, compaction and validation 16%, and naga's WGSL")
     w("writer 12%. The process also spent 32-42 ms of system time in 9 800 page faults with the C")
-    w("library's allocator; sdfc now uses mimalloc, whose large mappings take 343 faults.")
+    w("library's allocator; sdfc now uses mimalloc, whose large mappings take 343-475 faults.")
     w("")
 cut = next(i for i, l in enumerate(out) if l.startswith("## "))
 head, body = out[:cut], out[cut:]

@@ -97,6 +97,38 @@ fn nodes() {
     );
 }
 
+/// A scale that a box takes into its size (`catalog::absorb`) is rebuilt in the box's own
+/// node, one node more only while it is built: near the limit it makes the scene smaller, and
+/// where there is no room even for that the scale stays and is refused with the limit's error —
+/// never a shape dropped without a word (the rewrite once swallowed the error).
+#[test]
+fn a_scale_taken_into_a_box_at_the_node_limit() {
+    // A union of `filler` nodes of spheres under rounds (no more spheres than the evaluation
+    // limit leaves room for), then the box and its scale: the scale is the last node before
+    // the union's own.
+    let scene = |filler: usize| {
+        let mut s = String::from("union {\n");
+        let (lines, extra) = (filler / 10, filler % 10);
+        for i in 0..lines {
+            let rounds = 9 + if i == 0 { extra } else { 0 };
+            s += &format!("sphere(1){}\n", " |> round(0.01)".repeat(rounds));
+        }
+        s + "box(1) |> scale((2, 1, 1))\n}\n"
+    };
+    // The filler, the box, its scale and the union: the limit as written; the scale is taken
+    // into the box, one node fewer.
+    let at = accepted(scene(MAX_NODES - 3));
+    assert_eq!(at.nodes.len(), MAX_NODES - 1);
+    let last = *at.root_node().children().last().unwrap();
+    assert_eq!(at.nodes[last].kind_name(), "box");
+    // The box is the limit's last node: no room to rebuild it, and none for the scale.
+    refused(
+        scene(MAX_NODES - 1),
+        "too many nodes",
+        format!("{MAX_NODES} nodes"),
+    );
+}
+
 #[test]
 fn bracket_nesting() {
     // `sphere(` is one level, so deep(n) nests n + 1 brackets.

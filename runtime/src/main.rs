@@ -35,7 +35,7 @@ mod view_window;
 /// mimalloc instead of the C library's allocator: it maps memory in large pieces (transparent
 /// huge pages where the kernel allows them), so a large scene's compile is not paced by
 /// page faults. `sdfc emit` of the 10 001-node scene of `scripts/emit_time.py`: 9 824 page
-/// faults and 32-42 ms of system time with glibc's malloc, 475 faults and 4-13 ms with this
+/// faults and 32-42 ms of system time with glibc's malloc, 343-475 faults and 4-13 ms with this
 /// (median of 25 alternating runs: 159 ms against 127 ms; issue 14).
 #[global_allocator]
 static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;

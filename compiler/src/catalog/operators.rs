@@ -299,8 +299,9 @@ pub static OPERATORS: &[Operator] = &[
         doc: "Scales its shape by `factor` (a number, or a vector for non-uniform scale): \
               f(p/s)·min(s), λ unchanged (p/s stretches slopes by at most 1/min(s), which the \
               factor min(s) undoes). A box, or a cylinder scaled alike in x and z, takes the \
-              scale into its sizes, also through moves and turns about an axis whose other two \
-              factors are equal: the exact distance instead of a bound.",
+              scale into its sizes, also through moves and turns about a coordinate axis whose \
+              other two factors are equal: the exact distance instead of a bound (not with its \
+              own material, name, annotation or a `param`).",
         params: &[req("factor", Ty::Scale)],
         arity: Arity::Exactly(1),
         lipschitz: SAME,

@@ -1,7 +1,7 @@
 //! A non-uniform `scale` taken into the primitive it scales (`catalog::absorb`), through the
 //! turns and moves between them: an exact field where the scale alone gives a bound.
 
-use super::Checker;
+use super::{Checker, MAX_NODES};
 use crate::catalog::{self, Val};
 use crate::diag::Span;
 use crate::scene::{Node, NodeId, NodeKind};
@@ -12,16 +12,31 @@ impl Checker<'_> {
     /// turns and moves, where every step between allows it: a turn about a coordinate axis k
     /// commutes with a scale whose other two factors are equal, and a move by t becomes a move
     /// by t·v. Only plain steps are rewritten (constant arguments; no material, name or
-    /// annotation of their own, so a `let` keeps its nodes). `None`: the scale stays.
+    /// annotation of their own, so a `let` keeps its nodes), and only where every argument
+    /// made stays within [`catalog::GPU_RANGE`] and the nodes fit under [`MAX_NODES`]. `None`:
+    /// the scale stays.
+    ///
+    /// The surface is the same; the field off it is the distance instead of a bound, which is
+    /// what operators that read it there (`round`, `onion`, the smooth blends, `mix`, `blob`)
+    /// then see. A chain that reads a `param` keeps the scale and its bound.
     pub(super) fn absorb_scale(&mut self, v: DVec3, child: NodeId, span: Span) -> Option<NodeId> {
         if v.min_element() == v.max_element() {
             return None; // a uniform scale is exact already
         }
-        let plain =
-            |n: &Node| n.material.is_none() && n.name.is_none() && n.lambda == n.inferred_lambda;
+        // (An annotation that keeps λ still takes exactness away: `exact` tells.)
+        let plain = |n: &Node| {
+            n.material.is_none() && n.name.is_none() && n.lambda == n.inferred_lambda && n.exact
+        };
+        let fits = |args: &[Val]| {
+            args.iter().all(|a| match a {
+                Val::Num(x) => catalog::fits_gpu(*x),
+                Val::Vec3(v) => v.to_array().into_iter().all(catalog::fits_gpu),
+                Val::Word(_) => true,
+            })
+        };
         let constant = |c: &catalog::Ctx| c.sym.iter().all(Option::is_none);
-        // The steps from the scale down, each as (operator, arguments once scaled, span).
-        let mut steps: Vec<(&'static str, Vec<Val>, Span)> = Vec::new();
+        // The steps from the scale down, each as (operator, arguments once scaled, its node).
+        let mut steps: Vec<(&'static str, Vec<Val>, NodeId)> = Vec::new();
         let mut id = child;
         loop {
             let node = &self.nodes[id];
@@ -45,29 +60,65 @@ impl Checker<'_> {
                         "translate" => vec![Val::Vec3(ctx.vec(0) * v)],
                         _ => return None,
                     };
-                    steps.push((op.name, args, node.span));
+                    if !fits(&args) {
+                        return None;
+                    }
+                    steps.push((op.name, args, id));
                     id = children[0];
                 }
                 NodeKind::Primitive { prim, ctx } if constant(ctx) => {
                     let args = catalog::absorb::scaled(prim, ctx, v)?;
-                    let (prim, at) = (*prim, node.span);
-                    // Where the rewrite is the whole expression, it takes the scale's span.
-                    let at = if steps.is_empty() { span } else { at };
-                    let before = self.diags.len();
-                    let mut top = self.primitive_node(prim, (args, Vec::new()), at);
-                    let outermost = steps.len();
-                    for (i, (name, args, at)) in steps.into_iter().enumerate().rev() {
-                        let at = if i == 0 && outermost > 0 { span } else { at };
-                        top = top.and_then(|c| {
-                            self.operator_node(name, (args, Vec::new()), vec![c], at)
-                        });
+                    // Each new node is built at the end and moved into the slot of the node it
+                    // replaces (no one else refers to an unnamed plain node), so the scene
+                    // does not grow: one node more only for that moment.
+                    if !fits(&args) || self.nodes.len() + 1 > MAX_NODES {
+                        return None;
                     }
-                    // Each step's diagnostics were given where it was written.
-                    self.diags.truncate(before);
-                    return top;
+                    let prim = *prim;
+                    // Each node keeps its span; the outermost takes the scale's (it stands for
+                    // the whole expression now).
+                    let span_of = |c: &Self, n: NodeId, outermost: bool| {
+                        if outermost { span } else { c.nodes[n].span }
+                    };
+                    let before = self.diags.len();
+                    // The nodes replaced, put back if a step cannot be built after all.
+                    let mut saved = Vec::new();
+                    let at = span_of(self, id, steps.is_empty());
+                    let mut built = self.primitive_node(prim, (args, Vec::new()), at);
+                    let mut top = id;
+                    let mut rest = steps.into_iter().enumerate().rev();
+                    while let Some(new) = built {
+                        saved.push((top, self.nodes[top].clone()));
+                        self.move_node(new, top);
+                        let Some((i, (name, args, old))) = rest.next() else {
+                            // With constant arguments that fit and room for a node, building
+                            // them reports nothing (each step's were given where written).
+                            debug_assert_eq!(
+                                self.diags.len(),
+                                before,
+                                "{:?}",
+                                &self.diags[before..]
+                            );
+                            return Some(top);
+                        };
+                        let at = span_of(self, old, i == 0);
+                        built = self.operator_node(name, (args, Vec::new()), vec![top], at);
+                        top = old;
+                    }
+                    for (slot, node) in saved {
+                        self.nodes[slot] = node;
+                    }
+                    return None;
                 }
                 _ => return None,
             }
         }
+    }
+
+    /// Moves the node just built (`new`, the last) into the slot `old`.
+    fn move_node(&mut self, new: NodeId, old: NodeId) {
+        debug_assert_eq!(new + 1, self.nodes.len(), "the node just built is the last");
+        let node = self.nodes.pop().expect("the node just built");
+        self.nodes[old] = node;
     }
 }

@@ -10,6 +10,7 @@ mod bound;
 pub mod builder;
 mod camera;
 mod careful;
+mod constant;
 mod count;
 mod entry;
 mod handoff;
@@ -40,7 +41,7 @@ use naga::{Function, Handle, MathFunction, Type};
 use std::borrow::Cow;
 use std::collections::HashMap;
 
-pub use tags::{constant_looseness, constant_materials};
+pub use constant::{constant_looseness, constant_materials};
 pub use tracer::Entry;
 
 /// Builds the module for a scene and an entry kind. Validation happens in `emit`.
