@@ -120,5 +120,8 @@ impl Checker<'_> {
         debug_assert_eq!(new + 1, self.nodes.len(), "the node just built is the last");
         let node = self.nodes.pop().expect("the node just built");
         self.nodes[old] = node;
+        // (A chain's nodes are built just before and no union holds them yet, so none has a
+        // lattice form; were one numbered, its number would now be stale.)
+        self.forms.forget(old);
     }
 }

@@ -21,6 +21,13 @@ pub(super) struct Forms {
     ids: HashMap<(String, Vec<u32>), u32>,
 }
 
+impl Forms {
+    /// Forgets the form of node `id`, whose slot now holds another node.
+    pub(super) fn forget(&mut self, id: NodeId) {
+        self.of.remove(&id);
+    }
+}
+
 /// Fewest copies of one shape a union must hold to be grouped.
 const MIN_COPIES: usize = 3;
 
