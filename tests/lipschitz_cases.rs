@@ -260,3 +260,42 @@ fn a_scaled_box_is_the_box_with_scaled_sizes() {
         "{absorbed} absorbed, {kept} kept"
     );
 }
+
+/// A scale read from a `param` is taken into the box as a constant one is, so the parameter
+/// does not change the shape: `round`, a smooth blend or `onion` over the scaled box (which
+/// read its field off the surface) give the same field with the factor written as a number and
+/// as a parameter at that value — at the default and at another value set by the host.
+#[test]
+fn a_scale_read_from_a_param_is_taken_in_alike() {
+    let bodies = [
+        "round(0.3) { box(1) |> scale((F, 1, 1)) }",
+        "smooth_union(0.4) { box((1, 2, 0.5)) |> rotate(x, 30deg) at (0.2, 0, 0) |> scale((F, 2, 2))  sphere(0.6) at (1, 0, 0) }",
+        "onion(0.1) { cylinder(0.5, 1) |> scale((F, 1.5, F)) }",
+    ];
+    let mut r = sdfc_tests::Rng::new(0x5ca1_e0ff);
+    for body in bodies {
+        for k in [3.0, 1.7] {
+            let written = sdfc_tests::scene("inline", &body.replace('F', &k.to_string()));
+            let source = format!("param k = 3 in 1..4\n{}", body.replace('F', "k"));
+            let values = std::collections::HashMap::from([("k".to_string(), vec![k])]);
+            let param = sdfc_compiler::check::compile_with(&source, &values)
+                .scene
+                .unwrap_or_else(|| panic!("{source}"));
+            assert!(
+                param.root_node().lambda == written.root_node().lambda,
+                "{source}"
+            );
+            for _ in 0..300 {
+                let p = DVec3::new(r.range(-4.0, 4.0), r.range(-4.0, 4.0), r.range(-4.0, 4.0));
+                let (a, b) = (eval::distance(&written, p), eval::distance(&param, p));
+                assert!(
+                    (a - b).abs() < 1e-12,
+                    "{source} at k = {k}, {p}: {b}, written {a}"
+                );
+            }
+            let options = sdfc_compiler::lower::tracer::Options::from_scene(&param);
+            sdfc_compiler::emit::module(&param, sdfc_compiler::lower::Entry::Compute, &options)
+                .unwrap_or_else(|e| panic!("{source}: {}", e.0));
+        }
+    }
+}

@@ -1,15 +1,22 @@
 //! Scales that a primitive takes into its own arguments: `box(s) |> scale(v)` is `box(s·v)`.
+//!
+//! Arguments are written as expressions (`Field`: constants, or parameters the host sets), so
+//! that a scale read from a `param` is taken in the same way as a constant one.
 
 use super::{Ctx, Primitive, Val};
-use glam::DVec3;
+use crate::scene::Field;
+use crate::syntax::BinOp;
+
+/// An argument as expressions: one component (a number) or three (a vector).
+pub type Comps = Vec<Field>;
 
 /// A primitive whose shape scaled by a vector is the same primitive with other arguments:
-/// `args(ctx, v)` gives them, or `None` where that scale makes another shape.
+/// `args(arguments, v)` gives them, or `None` where that scale makes another shape.
 pub struct Absorb {
     /// The primitive's name.
     pub name: &'static str,
-    /// Its arguments once scaled by `v` (per axis).
-    pub args: fn(&Ctx, DVec3) -> Option<Vec<Val>>,
+    /// Its arguments (each as [`comps`] gives them) once scaled by `v` (per axis).
+    pub args: fn(&[Comps], &[Field; 3]) -> Option<Vec<Comps>>,
 }
 
 /// The primitives that absorb a scale. A non-uniform `scale` of a field is a bound (f(p/s)·min
@@ -18,17 +25,66 @@ pub const ABSORB: &[Absorb] = &[
     // Each face moves with its own axis' factor.
     Absorb {
         name: "box",
-        args: |c, v| Some(vec![Val::Vec3(c.vec(0) * v)]),
+        args: |a, v| Some(vec![times3(&a[0], v)]),
     },
     // A circle stays a circle where x and z scale alike; the height scales with y.
     Absorb {
         name: "cylinder",
-        args: |c, v| (v.x == v.z).then(|| vec![Val::Num(c.num(0) * v.x), Val::Num(c.num(1) * v.y)]),
+        args: |a, v| {
+            (v[0] == v[2]).then(|| vec![vec![times(&a[0][0], &v[0])], vec![times(&a[1][0], &v[1])]])
+        },
     },
 ];
 
 /// `prim`'s arguments once scaled by `v`, where it absorbs that scale.
-pub fn scaled(prim: &Primitive, ctx: &Ctx, v: DVec3) -> Option<Vec<Val>> {
+pub fn scaled(prim: &Primitive, ctx: &Ctx, v: &[Field; 3]) -> Option<Vec<Comps>> {
     let entry = ABSORB.iter().find(|a| a.name == prim.name)?;
-    (entry.args)(ctx, v)
+    let args: Vec<Comps> = (0..ctx.args.len()).map(|i| comps(ctx, i)).collect();
+    (entry.args)(&args, v)
+}
+
+/// Argument `i` of `ctx` as expressions: its parameter expressions where it reads any, else
+/// its constant value (a vector's three components, a number's one).
+pub fn comps(ctx: &Ctx, i: usize) -> Comps {
+    match (ctx.sym(i), ctx.args[i]) {
+        (Some(c), _) => c.to_vec(),
+        (None, Val::Vec3(v)) => v.to_array().map(Field::Const).to_vec(),
+        (None, v) => vec![Field::Const(v.num())],
+    }
+}
+
+/// One or three components as three (a number's one, spread).
+pub fn spread(c: &[Field]) -> [Field; 3] {
+    match c {
+        [x] => [x.clone(), x.clone(), x.clone()],
+        [x, y, z] => [x.clone(), y.clone(), z.clone()],
+        _ => unreachable!("one or three components"),
+    }
+}
+
+/// a·b, folded where both are constants.
+pub fn times(a: &Field, b: &Field) -> Field {
+    match (a, b) {
+        (Field::Const(x), Field::Const(y)) => Field::Const(x * y),
+        (Field::Const(x), other) | (other, Field::Const(x)) if *x == 1.0 => other.clone(),
+        _ => Field::Binary(BinOp::Mul, Box::new(a.clone()), Box::new(b.clone())),
+    }
+}
+
+/// a·v per component (a a number's one component or a vector's three).
+pub fn times3(a: &[Field], v: &[Field; 3]) -> Comps {
+    let a = spread(a);
+    (0..3).map(|k| times(&a[k], &v[k])).collect()
+}
+
+/// An argument from expressions: its value where the scene is checked (parameters at their
+/// values) and its expressions where it reads a parameter.
+pub fn to_arg(c: &[Field]) -> (Val, Option<Vec<Field>>) {
+    let at = |f: &Field| f.eval(glam::DVec3::ZERO);
+    let val = match c {
+        [x] => Val::Num(at(x)),
+        _ => Val::Vec3(glam::DVec3::new(at(&c[0]), at(&c[1]), at(&c[2]))),
+    };
+    let constant = c.iter().all(|f| matches!(f, Field::Const(_)));
+    (val, (!constant).then(|| c.to_vec()))
 }

@@ -301,7 +301,7 @@ pub static OPERATORS: &[Operator] = &[
               factor min(s) undoes). A box, or a cylinder scaled alike in x and z, takes the \
               scale into its sizes, also through moves and turns about a coordinate axis whose \
               other two factors are equal: the exact distance instead of a bound (not with its \
-              own material, name, annotation or a `param`).",
+              own material, name or annotation).",
         params: &[req("factor", Ty::Scale)],
         arity: Arity::Exactly(1),
         lipschitz: SAME,

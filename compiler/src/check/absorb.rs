@@ -2,25 +2,35 @@
 //! turns and moves between them: an exact field where the scale alone gives a bound.
 
 use super::{Checker, MAX_NODES};
-use crate::catalog::{self, Val};
+use crate::catalog::absorb::{comps, times3, to_arg};
+use crate::catalog::{self, ArgSyms, Val};
 use crate::diag::Span;
+use crate::scene::Field;
 use crate::scene::{Node, NodeId, NodeKind};
-use glam::DVec3;
+
+/// A node's arguments: values where the scene is checked, and parameter expressions.
+type Args = (Vec<Val>, ArgSyms);
 
 impl Checker<'_> {
     /// `scale(v)` of `child` rewritten as the primitive with scaled arguments under the same
     /// turns and moves, where every step between allows it: a turn about a coordinate axis k
     /// commutes with a scale whose other two factors are equal, and a move by t becomes a move
-    /// by t·v. Only plain steps are rewritten (constant arguments; no material, name or
-    /// annotation of their own, so a `let` keeps its nodes), and only where every argument
-    /// made stays within [`catalog::GPU_RANGE`] and the nodes fit under [`MAX_NODES`]. `None`:
-    /// the scale stays.
+    /// by t·v; `v` and the arguments may read parameters (the new arguments are then products
+    /// of their expressions). Only plain steps are rewritten (no material, name or annotation
+    /// of their own, so a `let` keeps its nodes; turns about a constant axis), and only where
+    /// every argument made stays within [`catalog::GPU_RANGE`] and the nodes fit under
+    /// [`MAX_NODES`]. `None`: the scale stays.
     ///
     /// The surface is the same; the field off it is the distance instead of a bound, which is
     /// what operators that read it there (`round`, `onion`, the smooth blends, `mix`, `blob`)
-    /// then see. A chain that reads a `param` keeps the scale and its bound.
-    pub(super) fn absorb_scale(&mut self, v: DVec3, child: NodeId, span: Span) -> Option<NodeId> {
-        if v.min_element() == v.max_element() {
+    /// then see, whether the factors are constants or parameters.
+    pub(super) fn absorb_scale(
+        &mut self,
+        v: &[Field; 3],
+        child: NodeId,
+        span: Span,
+    ) -> Option<NodeId> {
+        if v[0] == v[1] && v[1] == v[2] {
             return None; // a uniform scale is exact already
         }
         // (An annotation that keeps λ still takes exactness away: `exact` tells.)
@@ -34,9 +44,19 @@ impl Checker<'_> {
                 Val::Word(_) => true,
             })
         };
-        let constant = |c: &catalog::Ctx| c.sym.iter().all(Option::is_none);
+        // Arguments from expressions: values where the scene is checked, and expressions where
+        // any reads a parameter (none: the empty list, as the checker makes it).
+        let to_args = |comps: Vec<Vec<Field>>| -> Args {
+            let (vals, syms): Args = comps.iter().map(|c| to_arg(c)).unzip();
+            let syms = if syms.iter().all(Option::is_none) {
+                Vec::new()
+            } else {
+                syms
+            };
+            (vals, syms)
+        };
         // The steps from the scale down, each as (operator, arguments once scaled, its node).
-        let mut steps: Vec<(&'static str, Vec<Val>, NodeId)> = Vec::new();
+        let mut steps: Vec<(&'static str, Args, NodeId)> = Vec::new();
         let mut id = child;
         loop {
             let node = &self.nodes[id];
@@ -44,9 +64,9 @@ impl Checker<'_> {
                 return None;
             }
             match &node.kind {
-                NodeKind::Operator { op, ctx, children } if constant(ctx) => {
+                NodeKind::Operator { op, ctx, children } => {
                     let args = match op.name {
-                        "rotate" => {
+                        "rotate" if ctx.sym(0).is_none() => {
                             let axis = ctx.vec(0);
                             let on: Vec<usize> = (0..3).filter(|&k| axis[k] != 0.0).collect();
                             let &[k] = on.as_slice() else {
@@ -55,23 +75,23 @@ impl Checker<'_> {
                             if v[(k + 1) % 3] != v[(k + 2) % 3] {
                                 return None;
                             }
-                            ctx.args.clone()
+                            (ctx.args.clone(), ctx.sym.clone())
                         }
-                        "translate" => vec![Val::Vec3(ctx.vec(0) * v)],
+                        "translate" => to_args(vec![times3(&comps(ctx, 0), v)]),
                         _ => return None,
                     };
-                    if !fits(&args) {
+                    if !fits(&args.0) {
                         return None;
                     }
                     steps.push((op.name, args, id));
                     id = children[0];
                 }
-                NodeKind::Primitive { prim, ctx } if constant(ctx) => {
-                    let args = catalog::absorb::scaled(prim, ctx, v)?;
+                NodeKind::Primitive { prim, ctx } => {
+                    let args = to_args(catalog::absorb::scaled(prim, ctx, v)?);
                     // Each new node is built at the end and moved into the slot of the node it
                     // replaces (no one else refers to an unnamed plain node), so the scene
                     // does not grow: one node more only for that moment.
-                    if !fits(&args) || self.nodes.len() + 1 > MAX_NODES {
+                    if !fits(&args.0) || self.nodes.len() + 1 > MAX_NODES {
                         return None;
                     }
                     let prim = *prim;
@@ -84,7 +104,7 @@ impl Checker<'_> {
                     // The nodes replaced, put back if a step cannot be built after all.
                     let mut saved = Vec::new();
                     let at = span_of(self, id, steps.is_empty());
-                    let mut built = self.primitive_node(prim, (args, Vec::new()), at);
+                    let mut built = self.primitive_node(prim, args, at);
                     let mut top = id;
                     let mut rest = steps.into_iter().enumerate().rev();
                     while let Some(new) = built {
@@ -102,7 +122,7 @@ impl Checker<'_> {
                             return Some(top);
                         };
                         let at = span_of(self, old, i == 0);
-                        built = self.operator_node(name, (args, Vec::new()), vec![top], at);
+                        built = self.operator_node(name, args, vec![top], at);
                         top = old;
                     }
                     for (slot, node) in saved {

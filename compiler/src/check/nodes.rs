@@ -100,12 +100,15 @@ impl Checker<'_> {
     ) -> Option<NodeId> {
         let op = crate::catalog::operator(name).expect("operator in the catalog");
         if name == "scale"
-            && let ([crate::catalog::Val::Vec3(v)], [child]) =
-                (args.as_slice(), children.as_slice())
-            && sym.iter().all(Option::is_none)
-            && let Some(id) = self.absorb_scale(*v, *child, span)
+            && let ([arg], [child]) = (args.as_slice(), children.as_slice())
         {
-            return Some(id);
+            let v = match sym.first() {
+                Some(Some(c)) => crate::catalog::absorb::spread(c),
+                _ => arg.vec().to_array().map(crate::scene::Field::Const),
+            };
+            if let Some(id) = self.absorb_scale(&v, *child, span) {
+                return Some(id);
+            }
         }
         // The first argument of the operators that move a 2D shape out of its plane (a turn's
         // or mirror's axis, a repeat's spacing), and whether the host may change it.
