@@ -300,7 +300,8 @@ pub static OPERATORS: &[Operator] = &[
               f(p/s)·min(s), λ unchanged (p/s stretches slopes by at most 1/min(s), which the \
               factor min(s) undoes). A box, or a cylinder scaled alike in x and z, takes the \
               scale into its sizes, also through moves and turns about a coordinate axis whose \
-              other two factors are equal: the exact distance instead of a bound (not with its \
+              other two factors are equal (any turn for a uniform scale): the exact distance \
+              instead of a bound (not with its \
               own material, name or annotation).",
         params: &[req("factor", Ty::Scale)],
         arity: Arity::Exactly(1),

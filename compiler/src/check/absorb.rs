@@ -14,10 +14,11 @@ type Args = (Vec<Val>, ArgSyms);
 impl Checker<'_> {
     /// `scale(v)` of `child` rewritten as the primitive with scaled arguments under the same
     /// turns and moves, where every step between allows it: a turn about a coordinate axis k
-    /// commutes with a scale whose other two factors are equal, and a move by t becomes a move
-    /// by t·v; `v` and the arguments may read parameters (the new arguments are then products
-    /// of their expressions). Only plain steps are rewritten (no material, name or annotation
-    /// of their own, so a `let` keeps its nodes; turns about a constant axis), and only where
+    /// commutes with a scale whose other two factors are equal (any turn with a uniform
+    /// scale), and a move by t becomes a move by t·v; `v` and the arguments may read
+    /// parameters (the new arguments are then products of their expressions). Only plain steps
+    /// are rewritten (no material, name or annotation of their own, so a `let` keeps its nodes;
+    /// turns about a constant axis unless the scale is uniform), and only where
     /// every argument made stays within [`catalog::GPU_RANGE`] and the nodes fit under
     /// [`MAX_NODES`]. `None`: the scale stays.
     ///
@@ -30,9 +31,9 @@ impl Checker<'_> {
         child: NodeId,
         span: Span,
     ) -> Option<NodeId> {
-        if v[0] == v[1] && v[1] == v[2] {
-            return None; // a uniform scale is exact already
-        }
+        // (A uniform scale is exact already; taken in all the same, it leaves one node fewer
+        // and lets an outer non-uniform scale reach the box.)
+        let uniform = v[0] == v[1] && v[1] == v[2];
         // (An annotation that keeps λ still takes exactness away: `exact` tells.)
         let plain = |n: &Node| {
             n.material.is_none() && n.name.is_none() && n.lambda == n.inferred_lambda && n.exact
@@ -66,6 +67,8 @@ impl Checker<'_> {
             match &node.kind {
                 NodeKind::Operator { op, ctx, children } => {
                     let args = match op.name {
+                        // A uniform scale commutes with every turn.
+                        "rotate" if uniform => (ctx.args.clone(), ctx.sym.clone()),
                         "rotate" if ctx.sym(0).is_none() => {
                             let axis = ctx.vec(0);
                             let on: Vec<usize> = (0..3).filter(|&k| axis[k] != 0.0).collect();
