@@ -62,6 +62,15 @@ impl Val {
             Val::Word(_) => DVec3::ZERO,
         }
     }
+
+    /// Whether every component is 0 or within [`GPU_RANGE`] (see [`fits_gpu`]; words fit).
+    pub fn fits_gpu(self) -> bool {
+        match self {
+            Val::Num(x) => fits_gpu(x),
+            Val::Vec3(v) => v.to_array().into_iter().all(fits_gpu),
+            Val::Word(_) => true,
+        }
+    }
 }
 
 /// The type of a parameter, with the range the checker enforces.

@@ -38,13 +38,7 @@ impl Checker<'_> {
         let plain = |n: &Node| {
             n.material.is_none() && n.name.is_none() && n.lambda == n.inferred_lambda && n.exact
         };
-        let fits = |args: &[Val]| {
-            args.iter().all(|a| match a {
-                Val::Num(x) => catalog::fits_gpu(*x),
-                Val::Vec3(v) => v.to_array().into_iter().all(catalog::fits_gpu),
-                Val::Word(_) => true,
-            })
-        };
+        let fits = |args: &[Val]| args.iter().all(|a| a.fits_gpu());
         // Arguments from expressions: values where the scene is checked, and expressions where
         // any reads a parameter (none: the empty list, as the checker makes it).
         let to_args = |comps: Vec<Vec<Field>>| -> Args {

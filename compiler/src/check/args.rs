@@ -343,12 +343,7 @@ impl Checker<'_> {
     /// [`Self::convert_value`] and the check that the value fits f32.
     fn convert_checked(&mut self, e: &Expr, ty: Ty, param: &str, value: Value) -> Option<Val> {
         let v = self.convert_value(e, ty, param, value)?;
-        let fits = match v {
-            Val::Num(x) => catalog::fits_gpu(x),
-            Val::Vec3(v) => v.to_array().iter().all(|&x| catalog::fits_gpu(x)),
-            Val::Word(_) => true,
-        };
-        if !fits {
+        if !v.fits_gpu() {
             self.diags.push(
                 Diagnostic::error(e.span, format!("`{param}` is beyond what the GPU's f32 arithmetic can use"))
                     .label("out of range")
