@@ -5,7 +5,8 @@
 #   f64 ground truth, trace-only and full-frame times;
 # - sdfc's trace-only shader next to hand-written references (runtime/benches/reference/),
 #   alternating frames in one process;
-# - a flat 39-part village: every part, a box tree (--bvh), copies grouped into repeats; the CPU;
+# - bounding boxes in map(): a flat 39-part village with and without its box tree, copies
+#   grouped into repeats, and every example with a tree against its plain trace; the CPU;
 # - the cost of a trivial frame against a bare dispatch and a hand-written one-step tracer;
 # - compile time: criterion in the library, and `sdfc emit` as a whole process.
 # Usage: bash scripts/bench.sh [WIDTHxHEIGHT] [REPEAT]
@@ -31,25 +32,44 @@ done
 for spec in composition:160:composition mandelbulb:256:mandelbulb village:200:village \
   village:200:village_cells village:200:village_instanced; do
   IFS=: read -r scene steps ref <<< "$spec"
-  $sdfc bench "examples/$scene.sdf" --tracers basic --steps "$steps" --size "$size" \
+  $sdfc bench "examples/$scene.sdf" --tracers basic --steps "$steps" --size "$size" --no-bvh \
     --repeat 21 --reference "runtime/benches/reference/$ref.wgsl" --json > "$out/reference-$ref.json"
   echo "measured $scene against $ref.wgsl" >&2
 done
-# Large unions: the flat village written apart (every part evaluated), with the box tree
-# (--bvh), as written (its copies grouped into repeats by the compiler), and the village's own
-# repeats; then the grouped one's trace beside the apart one's, alternating frames.
-for bvh in "" --bvh; do
-  $sdfc bench examples/bench/village_flat_apart.sdf --tracers basic,enhanced --steps 200 \
-    --size "$size" --repeat 9 $bvh --json > "$out/bvh${bvh:+-on}.json"
+# Large unions: the flat village written apart (every part its own), without and with its box
+# tree, as written (copies grouped into repeats), and the village's own repeats; then each
+# beside the apart village's plain trace, alternating frames.
+for v in village_flat_apart village_flat; do
+  for bvh in --no-bvh ""; do
+    $sdfc bench "examples/bench/$v.sdf" --tracers basic,enhanced --steps 200 --size "$size" \
+      --repeat 9 $bvh --json > "$out/bvh-$v${bvh:+-off}.json"
+  done
 done
-$sdfc bench examples/bench/village_flat.sdf --tracers basic,enhanced --steps 200 --size "$size" \
-  --repeat 9 --json > "$out/bvh-grouped.json"
 $sdfc bench examples/village.sdf --tracers basic,enhanced --steps 200 --size "$size" \
   --repeat 9 --json > "$out/bvh-village.json"
 tmp=$(mktemp -d)
-$sdfc emit examples/bench/village_flat_apart.sdf --entry trace --tracer basic -q -o "$tmp/apart.wgsl"
-$sdfc bench examples/bench/village_flat.sdf --tracers basic --steps 200 --size "$size" \
-  --repeat 21 --reference "$tmp/apart.wgsl" --json > "$out/bvh-side.json"
+$sdfc emit examples/bench/village_flat_apart.sdf --entry trace --tracer basic --no-bvh -q \
+  -o "$tmp/apart.wgsl"
+for v in village_flat_apart village_flat; do
+  $sdfc bench "examples/bench/$v.sdf" --tracers basic --steps 200 --size "$size" --repeat 21 \
+    --reference "$tmp/apart.wgsl" --json > "$out/bvh-side-$v.json"
+done
+# Where trees pay: each example's trace with its default trees (only unions of 5 or more
+# parts) and with every tree (--bvh), each beside its plain trace (--no-bvh).
+for scene in blobs composition dodecahedron domain_ops jewel lamp primitives shapes temple \
+  textures tori_terrain village; do
+  f="examples/$scene.sdf"
+  $sdfc emit "$f" --entry trace --tracer basic --steps 200 --no-bvh -q -o "$tmp/plain.wgsl"
+  for bvh in "" --bvh; do
+    $sdfc emit "$f" --entry trace --tracer basic --steps 200 $bvh -q -o "$tmp/trees.wgsl"
+    if cmp -s "$tmp/plain.wgsl" "$tmp/trees.wgsl"; then
+      echo '{"plain": true}' > "$out/trees-$scene${bvh:+-all}.json"
+    else
+      $sdfc bench "$f" --tracers basic --steps 200 --size "$size" --repeat 11 $bvh \
+        --reference "$tmp/plain.wgsl" --json > "$out/trees-$scene${bvh:+-all}.json"
+    fi
+  done
+done
 rm -r "$tmp"
 echo "measured large unions" >&2
 # A trivial frame: against a dispatch that traces nothing at four sizes (the fixed cost per

@@ -372,7 +372,7 @@ fn bounding_volumes_and_trace_only_snapshot() {
             .unwrap(),
     );
     let mut options = Options::from_scene(&scene);
-    options.bounding_volumes = true;
+    options.bounding_volumes = sdfc_compiler::lower::tracer::BoundingVolumes::All;
     let (m, info) =
         emit::module(&scene, Entry::Trace, &options).unwrap_or_else(|e| panic!("{}", e.0));
     match emit::write(&m, &info, Target::Wgsl, Entry::Trace).unwrap_or_else(|e| panic!("{}", e.0)) {

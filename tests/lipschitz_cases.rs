@@ -1,6 +1,7 @@
 //! The Lipschitz promise, case by case: each `implicit` domain error, branch cut and huge
 //! argument of the audit; the innermost material tag; the annotation corpus
-//! (`tests/lipschitz/`) against the annotation check; and the exact box a scale makes.
+//! (`tests/lipschitz/`) against the annotation check; the exact box a scale makes; which unions
+//! the shader tests bounding boxes in.
 
 use glam::DVec3;
 use sdfc_compiler::eval;
@@ -333,4 +334,38 @@ fn same_field(
         let (x, y) = (eval::distance(a, p), eval::distance(b, p));
         assert!((x - y).abs() < 1e-12, "{what} at {p}: {y}, against {x}");
     }
+}
+
+/// The shader tests a union's bounding boxes by default only where the union groups at least
+/// `GPU_MIN_GROUPED` parts (fewer measured slower on lavapipe); `--bvh` (`All`) tests every
+/// tree and `--no-bvh` (`Off`) none. Spheres spread along x, one per 3 units, on a plane
+/// (each of its own radius, or they would be grouped into a `repeat`).
+#[test]
+fn bounding_boxes_are_tested_by_default_only_in_large_unions() {
+    use sdfc_compiler::catalog::prune::GPU_MIN_GROUPED;
+    use sdfc_compiler::emit::{self, Output, Target};
+    use sdfc_compiler::lower::{Entry, tracer::BoundingVolumes, tracer::Options};
+    let tests = |n: usize, trees: BoundingVolumes| {
+        let parts: String = (0..n)
+            .map(|i| format!("  sphere(0.5 + 0.01 * {i}) at ({}, 0.5, 0)\n", 3 * i))
+            .collect();
+        let scene = sdfc_tests::scene("spheres", &format!("union {{\n{parts}  plane()\n}}"));
+        let mut options = Options::from_scene(&scene);
+        options.bounding_volumes = trees;
+        let (m, info) =
+            emit::module(&scene, Entry::Trace, &options).unwrap_or_else(|e| panic!("{}", e.0));
+        let Ok(Output::Text(wgsl)) = emit::write(&m, &info, Target::Wgsl, Entry::Trace) else {
+            panic!("no WGSL");
+        };
+        wgsl.matches("if (dot(").count()
+    };
+    let (few, enough) = (GPU_MIN_GROUPED - 1, GPU_MIN_GROUPED);
+    assert_eq!(tests(few, BoundingVolumes::Large), 0, "{few} spheres");
+    assert!(
+        tests(enough, BoundingVolumes::Large) > 0,
+        "{enough} spheres"
+    );
+    assert!(tests(few, BoundingVolumes::All) > 0, "{few} spheres, --bvh");
+    assert_eq!(tests(40, BoundingVolumes::Off), 0, "40 spheres, --no-bvh");
+    assert_eq!(BoundingVolumes::default(), BoundingVolumes::Large);
 }

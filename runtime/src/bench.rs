@@ -100,8 +100,8 @@ pub struct Job<'a> {
     /// A hand-written reference (WGSL text, its file name) to time alternately with the
     /// trace.
     pub reference: Option<(&'a str, &'a str)>,
-    /// Compile `map` with bounding-volume tests.
-    pub bvh: bool,
+    /// Which unions' bounding-volume trees `map` tests.
+    pub bvh: sdfc_compiler::lower::tracer::BoundingVolumes,
     /// Start secondary rays a fixed 2·ε_floor off the surface.
     pub fixed_offset: bool,
 }

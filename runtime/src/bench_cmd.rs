@@ -6,6 +6,7 @@ use crate::render_cmd::{parse_size, progress_bar};
 use sdfc::bench::{self, Cell, Truth};
 use sdfc::gpu::{BackendChoice, Gpu};
 use sdfc_compiler::check::tracer::with_overrides;
+use sdfc_compiler::lower::tracer::BoundingVolumes;
 use sdfc_compiler::truth;
 use sdfc_compiler::view::View;
 use serde::Serialize;
@@ -41,8 +42,8 @@ pub struct BenchArgs<'a> {
     pub passes: u32,
     /// A hand-written WGSL reference tracer to time alternately with each cell's trace.
     pub reference: Option<&'a Path>,
-    /// Compile `map` with bounding-volume tests.
-    pub bvh: bool,
+    /// Which unions' bounding-volume trees `map` tests.
+    pub bvh: BoundingVolumes,
     /// Start secondary rays a fixed 2·ε_floor off the surface.
     pub fixed_offset: bool,
     /// Go on with a shader above `render_cmd::MAX_DRIVER_CALLS`.

@@ -228,9 +228,12 @@ enum Command {
         /// timed alternately with each cell's trace, same view and size.
         #[arg(long)]
         reference: Option<PathBuf>,
-        /// Compile `map` with bounding-volume tests (as `render --bvh`).
-        #[arg(long)]
+        /// Test every union's bounding boxes in `map` (as `render --bvh`).
+        #[arg(long, conflicts_with = "no_bvh")]
         bvh: bool,
+        /// No bounding-box tests in `map` (as `render --no-bvh`).
+        #[arg(long)]
+        no_bvh: bool,
         /// Start secondary rays a fixed 2·ε_floor off the surface (as `render --fixed-offset`).
         #[arg(long)]
         fixed_offset: bool,
@@ -394,6 +397,7 @@ pub fn run() -> i32 {
             passes,
             reference,
             bvh,
+            no_bvh,
             fixed_offset,
             allow_slow_compile,
         } => crate::bench_cmd::run(&crate::bench_cmd::BenchArgs {
@@ -411,7 +415,7 @@ pub fn run() -> i32 {
             backend: backend.into(),
             passes,
             reference: reference.as_deref(),
-            bvh,
+            bvh: crate::tracer_args::bounding_volumes(bvh, no_bvh),
             fixed_offset,
             allow_slow_compile,
         }),

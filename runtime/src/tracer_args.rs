@@ -1,8 +1,9 @@
-//! The tracer flags `emit` and `render` share (`--tracer`, `--steps`, …, `--passes`, `--bvh`),
-//! and how they settle a scene's settings.
+//! The tracer flags `emit` and `render` share (`--tracer`, `--steps`, …, `--passes`, `--bvh`,
+//! `--no-bvh`), and how they settle a scene's settings.
 
 use clap::Args;
 use sdfc_compiler::check;
+use sdfc_compiler::lower::tracer::BoundingVolumes;
 
 /// Tracer settings that override the scene's `trace` block (emit and render).
 #[derive(Args, Debug, Default)]
@@ -48,10 +49,14 @@ pub struct TracerArgs {
     /// Ignore the scene's `bound` block (trace every ray from the camera).
     #[arg(long)]
     pub no_bound: bool,
-    /// Test bounding boxes in `map` to skip far groups of a union's parts (the same field;
-    /// pays on GPUs that branch per SIMD group, not on lavapipe: docs/benchmarks.md).
-    #[arg(long)]
+    /// Test the bounding boxes of every union's groups of parts in `map`, skipping far groups
+    /// (the same field). By default only unions of 8 or more boxed parts test them, where
+    /// that measured faster (docs/benchmarks.md).
+    #[arg(long, conflicts_with = "no_bvh")]
     pub bvh: bool,
+    /// Evaluate every part of every union each time: no bounding-box tests in `map`.
+    #[arg(long)]
+    pub no_bvh: bool,
     /// Start shadow, reflected and refracted rays a fixed 2·ε_floor off the surface instead of
     /// Keinert's ε_dynamic = 2·max(ε, |f(p)|): only to see and measure what ε_dynamic prevents
     /// (shadow acne, self-intersecting refraction).
@@ -97,7 +102,7 @@ impl TracerArgs {
         check_passes(self.passes)?;
         let mut options = sdfc_compiler::lower::tracer::Options::from_scene(scene);
         options.passes = self.passes > 1;
-        options.bounding_volumes = self.bvh;
+        options.bounding_volumes = bounding_volumes(self.bvh, self.no_bvh);
         options.fixed_offset = self.fixed_offset;
         Ok(options)
     }
@@ -114,4 +119,14 @@ pub fn check_passes(passes: u32) -> Result<(), String> {
         "error: `--passes {passes}`: there are schedules for {} passes",
         list.join(", ")
     ))
+}
+
+/// The trees `--bvh` (every union's) or `--no-bvh` (none) ask for; by default those of large
+/// unions (`BoundingVolumes::Large`).
+pub fn bounding_volumes(bvh: bool, no_bvh: bool) -> BoundingVolumes {
+    match (bvh, no_bvh) {
+        (true, _) => BoundingVolumes::All,
+        (_, true) => BoundingVolumes::Off,
+        _ => BoundingVolumes::Large,
+    }
 }

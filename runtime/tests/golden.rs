@@ -14,7 +14,10 @@
 
 use sdfc::frames::{Layout, Source, TILE};
 use sdfc::gpu::Frame;
-use sdfc_compiler::lower::{Entry, tracer::Options};
+use sdfc_compiler::lower::{
+    Entry,
+    tracer::{BoundingVolumes, Options},
+};
 use sdfc_compiler::scene::{Epsilon, Method, Scene};
 use sdfc_compiler::view::View;
 use sdfc_compiler::{emit, eval};
@@ -124,7 +127,11 @@ fn code_generation_keeps_every_picture() {
     for (name, scene, bvh) in cases().into_iter().map(|(n, s)| (n, s, false)).chain(bvh) {
         let view = View::new(&scene.camera, W, H);
         let mut options = Options::from_scene(&scene);
-        options.bounding_volumes = bvh;
+        options.bounding_volumes = if bvh {
+            BoundingVolumes::All
+        } else {
+            BoundingVolumes::Off
+        };
         let (module, _) = emit::module(&scene, Entry::Compute, &options)
             .unwrap_or_else(|e| panic!("{name}: {}", e.0));
         let name = if bvh { format!("{name} (bvh)") } else { name };

@@ -22,6 +22,17 @@ pub const MIN_CHILDREN: usize = 3;
 /// better (3.6–4.5 s, 2.0–4.3 s). `cargo bench --bench eval` keeps the first comparison.
 pub const LEAF: usize = 2;
 
+/// Fewest grouped children for the shader to test a union's tree by default
+/// (`BoundingVolumes::Large`). Measured on lavapipe (Mesa 25.0.7, which skips a branch no lane
+/// takes), each example's trace with trees against its plain trace, alternating frames at
+/// 320×180 (`sdfc bench … --reference plain.wgsl`, stop 19). With every tree tested, the
+/// examples whose unions group 3 or 4 parts were up to 1.33× slower (the temple's platform and
+/// columns, the dodecahedron's spheres, the jewel's setting, the lamp, domain_ops), and those
+/// with a union of 5 or more 0.46–0.86× (textures, shapes, the village, primitives,
+/// composition). With this threshold every example is either plain or faster (0.21–0.86×);
+/// scattered scenes of 3–64 random parts measured 0.15–0.94× with every tree.
+pub const GPU_MIN_GROUPED: usize = 5;
+
 /// A union's evaluation plan.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Tree {
@@ -72,6 +83,11 @@ impl Tree {
         Some(Tree { first, groups })
     }
 
+    /// How many children the groups hold (every child but `first`).
+    pub fn grouped(&self) -> usize {
+        self.groups.iter().map(Group::children).sum()
+    }
+
     /// The union's value at `p` given each child's f/λ by `child`: the same as the minimum of
     /// all, evaluating only the children a box test does not rule out.
     pub fn min(&self, p: DVec3, child: &mut dyn FnMut(usize) -> f64) -> f64 {
@@ -115,6 +131,14 @@ impl Group {
         let q = ((p - c).abs() - h).max(DVec3::ZERO);
         let m = d.max(0.0);
         q.dot(q) <= m * m
+    }
+
+    /// How many children the group holds, in all its groups.
+    fn children(&self) -> usize {
+        match &self.inside {
+            Inside::Children(c) => c.len(),
+            Inside::Groups(g) => g.iter().map(Group::children).sum(),
+        }
     }
 
     /// The box's centre.

@@ -40,6 +40,7 @@ use builder::{Ex, FnBuilder, ModuleBuilder};
 use naga::{Function, Handle, MathFunction, Type};
 use std::borrow::Cow;
 use std::collections::HashMap;
+use tracer::BoundingVolumes;
 
 pub use constant::{constant_looseness, constant_materials};
 pub use tracer::Entry;
@@ -56,12 +57,17 @@ pub fn lower(scene: &Scene, entry: Entry, options: &tracer::Options) -> naga::Mo
     add_primitive_functions(&mut mb, scene, &reachable);
     add_operator_helpers(&mut mb, scene, &reachable);
     let trees = options.bounding_volumes;
-    let named = add_let_functions(&mut mb, scene, &reachable, trees);
+    let any_tree = scene.nodes.iter().any(|n| match &n.kind {
+        NodeKind::Operator { ctx, .. } => ctx.prune.as_deref().is_some_and(|t| trees.uses(t)),
+        _ => false,
+    });
+    let named = add_let_functions(&mut mb, scene, &reachable, trees, any_tree);
     let walk = Walk {
         scene,
         named: &named,
         root_fn: None,
         trees,
+        any_tree,
     };
     let f32t = mb.f32();
     let map = point_function(&mut mb, "map", f32t, |b, p| {
@@ -277,7 +283,8 @@ fn add_let_functions(
     mb: &mut ModuleBuilder,
     scene: &Scene,
     reachable: &[NodeId],
-    trees: bool,
+    trees: BoundingVolumes,
+    any_tree: bool,
 ) -> HashMap<NodeId, Handle<Function>> {
     let mut named = HashMap::new();
     for &n in reachable {
@@ -296,6 +303,7 @@ fn add_let_functions(
             named: &named,
             root_fn: Some(n),
             trees,
+            any_tree,
         }
         .distance(&mut b, n, p);
         b.ret(Some(d));
@@ -311,16 +319,18 @@ struct Walk<'s> {
     named: &'s HashMap<NodeId, Handle<Function>>,
     /// The `let` function being built (which must not call itself).
     root_fn: Option<NodeId>,
-    /// Whether a union's field tests its bounding-volume tree (`Options::bounding_volumes`).
-    trees: bool,
+    /// Which unions' fields test their bounding-volume tree (`Options::bounding_volumes`).
+    trees: BoundingVolumes,
+    /// Whether any union of the scene tests its tree.
+    any_tree: bool,
 }
 
 impl Walk<'_> {
     /// An operator's context as this walk lowers it: a union's bounding-volume tree dropped
-    /// unless the field tests trees; always for `tags`, which need every child's value.
+    /// unless the field tests it; always for `tags`, which need every child's value.
     fn ctx_for<'c>(&self, ctx: &'c Ctx, tags: bool) -> Cow<'c, Ctx> {
-        match ctx.prune {
-            Some(_) if tags || !self.trees => Cow::Owned(Ctx {
+        match &ctx.prune {
+            Some(t) if tags || !self.trees.uses(t) => Cow::Owned(Ctx {
                 prune: None,
                 ..ctx.clone()
             }),

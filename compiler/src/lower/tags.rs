@@ -179,7 +179,7 @@ impl Walk<'_> {
     ) -> (Ex, Option<Ex>) {
         // A part whose tag is constant needs only its field. (Not under bounding-volume trees:
         // the tag walk takes every child's value, which the tree's field may not give.)
-        if !self.trees
+        if !self.any_tree
             && let Some(&Some(c)) = tag.constant.get(id)
         {
             let d = self.distance(b, id, p);

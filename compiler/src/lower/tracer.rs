@@ -46,10 +46,9 @@ pub struct Options {
     /// Compile the compute entry for multi-resolution passes (Bálint §4): a `pass` field in
     /// the view and two buffers handing each pixel's t and step count to the next pass.
     pub passes: bool,
-    /// Test a union's bounding-volume tree in `map` (`catalog::prune`): the same field with
-    /// groups of far parts skipped. Off by default: on lavapipe a branch does not skip work
-    /// (every lane runs both sides), so the tests only cost (docs/benchmarks.md).
-    pub bounding_volumes: bool,
+    /// Which unions test their bounding-volume tree in `map` (`catalog::prune`): the same
+    /// field with groups of far parts skipped.
+    pub bounding_volumes: BoundingVolumes,
     /// Start shadow, reflected and refracted rays a fixed 2·ε_floor from the surface instead
     /// of Keinert's ε_dynamic = 2·max(h, |f(p)|) (§3.3): only to measure what ε_dynamic
     /// prevents (`--fixed-offset`).
@@ -62,13 +61,37 @@ pub struct Options {
     pub params_binding: u32,
 }
 
+/// Which unions' bounding-volume trees (`catalog::prune::Tree`) the shader tests.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum BoundingVolumes {
+    /// None: every child of every union is evaluated each time (`--no-bvh`).
+    Off,
+    /// Unions whose tree groups at least `prune::GPU_MIN_GROUPED` children: where the tests
+    /// measured faster than the plain union (the default).
+    #[default]
+    Large,
+    /// Every union that has a tree (`--bvh`).
+    All,
+}
+
+impl BoundingVolumes {
+    /// Whether the shader tests `tree`.
+    pub fn uses(self, tree: &crate::catalog::prune::Tree) -> bool {
+        match self {
+            BoundingVolumes::Off => false,
+            BoundingVolumes::Large => tree.grouped() >= crate::catalog::prune::GPU_MIN_GROUPED,
+            BoundingVolumes::All => true,
+        }
+    }
+}
+
 impl Options {
     /// The scene's own settings, one pass.
     pub fn from_scene(scene: &Scene) -> Options {
         Options {
             trace: scene.trace,
             passes: false,
-            bounding_volumes: false,
+            bounding_volumes: BoundingVolumes::default(),
             fixed_offset: false,
             private_params: false,
             params_binding: super::params::PARAMS_BINDING,
