@@ -57,6 +57,8 @@ struct Report {
     width: u32,
     height: u32,
     adapter: String,
+    /// The driver's own version string (Mesa's, on lavapipe).
+    driver: String,
     backend: String,
     timing: String,
     repeat: u32,
@@ -199,6 +201,7 @@ fn bench(args: &BenchArgs) -> Result<(), String> {
         width: w,
         height: h,
         adapter: gpu.info.name.clone(),
+        driver: gpu.info.driver_info.clone(),
         backend: gpu.backend(),
         timing: timing(&gpu),
         repeat: args.repeat,

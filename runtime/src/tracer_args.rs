@@ -50,8 +50,9 @@ pub struct TracerArgs {
     #[arg(long)]
     pub no_bound: bool,
     /// Test the bounding boxes of every union's groups of parts in `map`, skipping far groups
-    /// (the same field). By default only unions of 8 or more boxed parts test them, where
-    /// that measured faster (docs/benchmarks.md).
+    /// (the same field). By default only unions whose tree groups 5 or more parts (with
+    /// finite boxes and exact distances) test them, where that measured faster on Mesa 25's
+    /// lavapipe (docs/benchmarks.md).
     #[arg(long, conflicts_with = "no_bvh")]
     pub bvh: bool,
     /// Evaluate every part of every union each time: no bounding-box tests in `map`.

@@ -47,7 +47,7 @@ pub struct Scene {
 impl Scene {
     /// The same scene with every union's bounding-volume tree dropped (each child evaluated
     /// every time): the plain field the trees are measured and tested against. (The lowering
-    /// drops the trees itself unless `Options::bounding_volumes`.)
+    /// drops each tree itself unless `Options::bounding_volumes` uses it.)
     pub fn without_bounding_volumes(&self) -> Scene {
         let mut s = self.clone();
         for n in &mut s.nodes {
