@@ -43,10 +43,15 @@ pub fn scaled(prim: &Primitive, ctx: &Ctx, v: &[Field; 3]) -> Option<Vec<Comps>>
     (entry.args)(&args, v)
 }
 
-/// Argument `i` of `ctx` as expressions: its parameter expressions where it reads any, else
-/// its constant value (a vector's three components, a number's one).
+/// Argument `i` of `ctx` as expressions (see [`comps_of`]).
 pub fn comps(ctx: &Ctx, i: usize) -> Comps {
-    match (ctx.sym(i), ctx.args[i]) {
+    comps_of(ctx.sym(i), ctx.args[i])
+}
+
+/// An argument as expressions: its parameter expressions `sym` where it reads any, else its
+/// constant value `v` (a vector's three components, a number's one).
+pub fn comps_of(sym: Option<&[Field]>, v: Val) -> Comps {
+    match (sym, v) {
         (Some(c), _) => c.to_vec(),
         (None, Val::Vec3(v)) => v.to_array().map(Field::Const).to_vec(),
         (None, v) => vec![Field::Const(v.num())],

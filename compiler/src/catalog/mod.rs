@@ -236,6 +236,15 @@ pub struct Ctx {
 /// Per argument, its components as expressions of parameters if it reads any.
 pub type ArgSyms = Vec<Option<Vec<crate::scene::Field>>>;
 
+/// `syms` in the form every checked node holds: the empty list where no argument reads a
+/// parameter.
+pub fn arg_syms(mut syms: ArgSyms) -> ArgSyms {
+    if syms.iter().all(Option::is_none) {
+        syms.clear();
+    }
+    syms
+}
+
 impl Ctx {
     /// The bound of the children's surfaces grown by `by`, where the part that grows is
     /// {f/λ < by}: that lies within `by` of a child's surface only where the child's f/λ is its

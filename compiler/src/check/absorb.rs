@@ -40,15 +40,10 @@ impl Checker<'_> {
         };
         let fits = |args: &[Val]| args.iter().all(|a| a.fits_gpu());
         // Arguments from expressions: values where the scene is checked, and expressions where
-        // any reads a parameter (none: the empty list, as the checker makes it).
+        // any reads a parameter.
         let to_args = |comps: Vec<Vec<Field>>| -> Args {
             let (vals, syms): Args = comps.iter().map(|c| to_arg(c)).unzip();
-            let syms = if syms.iter().all(Option::is_none) {
-                Vec::new()
-            } else {
-                syms
-            };
-            (vals, syms)
+            (vals, catalog::arg_syms(syms))
         };
         // The steps from the scale down, each as (operator, arguments once scaled, its node).
         let mut steps: Vec<(&'static str, Args, NodeId)> = Vec::new();

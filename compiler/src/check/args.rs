@@ -239,10 +239,7 @@ impl Checker<'_> {
                 }
             }
         }
-        if syms.iter().all(Option::is_none) {
-            syms.clear();
-        }
-        ok.then_some((out, syms))
+        ok.then_some((out, catalog::arg_syms(syms)))
     }
 
     /// Converts an expression to a value of type `ty`, checking its range.

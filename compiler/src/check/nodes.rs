@@ -102,10 +102,8 @@ impl Checker<'_> {
         if name == "scale"
             && let ([arg], [child]) = (args.as_slice(), children.as_slice())
         {
-            let v = match sym.first() {
-                Some(Some(c)) => crate::catalog::absorb::spread(c),
-                _ => arg.vec().to_array().map(crate::scene::Field::Const),
-            };
+            use crate::catalog::absorb::{comps_of, spread};
+            let v = spread(&comps_of(sym.first().and_then(|s| s.as_deref()), *arg));
             if let Some(id) = self.absorb_scale(&v, *child, span) {
                 return Some(id);
             }
