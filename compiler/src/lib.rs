@@ -13,6 +13,7 @@ pub mod docs;
 pub mod emit;
 pub mod eval;
 pub mod interval;
+pub mod layout;
 pub mod lipschitz;
 pub mod lower;
 pub mod manifest;

@@ -1,6 +1,7 @@
 //! The pinhole camera (Munini §2.1) shared by the GPU's `View` uniform and the CPU reference
 //! tracer, so both trace exactly the same rays.
 
+use crate::layout::{VIEW_BYTES, VIEW_FIELDS};
 use crate::scene::Camera;
 use glam::DVec3;
 
@@ -75,12 +76,12 @@ impl View {
         (self.forward + self.right * u + self.up * v).normalize()
     }
 
-    /// The `View` uniform's 112 bytes: seven vec4s, the sixth (tile offset, image size) as
+    /// The `View` uniform's bytes (`layout::VIEW_BYTES`): seven vec4s, the sixth (tile offset, image size) as
     /// u32, the seventh the multi-resolution `pass` field (cone slope, budget, previous pass's
     /// width and height; zeros outside passes, where the module's view is 96 bytes). `right.w`
     /// and `up.w` hold the jitter (x and y).
-    pub fn uniform(&self, tile_x: u32, tile_y: u32, pass: [f32; 4]) -> [u8; 112] {
-        let mut out = [0u8; 112];
+    pub fn uniform(&self, tile_x: u32, tile_y: u32, pass: [f32; 4]) -> [u8; VIEW_BYTES] {
+        let mut out = [0u8; VIEW_BYTES];
         let vecs = [
             (self.eye, 0.0),
             (self.right, self.jitter[0]),
@@ -98,13 +99,21 @@ impl View {
             }
         }
         for (j, c) in [tile_x, tile_y, self.width, self.height].iter().enumerate() {
-            let at = 80 + 4 * j;
+            let at = 16 * field("offset") + 4 * j;
             out[at..at + 4].copy_from_slice(&c.to_le_bytes());
         }
         for (j, c) in pass.iter().enumerate() {
-            let at = 96 + 4 * j;
+            let at = 16 * field("handoff") + 4 * j;
             out[at..at + 4].copy_from_slice(&c.to_le_bytes());
         }
         out
     }
+}
+
+/// The index of a field of the `View` uniform.
+fn field(name: &str) -> usize {
+    VIEW_FIELDS
+        .iter()
+        .position(|f| *f == name)
+        .expect("a View field")
 }

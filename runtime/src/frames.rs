@@ -184,9 +184,9 @@ impl Gpu {
         }];
         let schedule = passes.unwrap_or(&one);
         let layout_0 = pipeline.get_bind_group_layout(0);
-        let step = tile.min(MAX_SIDE) / sdfc_compiler::lower::tracer::WORKGROUP
-            * sdfc_compiler::lower::tracer::WORKGROUP;
-        let step = step.max(sdfc_compiler::lower::tracer::WORKGROUP);
+        let step = tile.min(MAX_SIDE) / sdfc_compiler::layout::WORKGROUP
+            * sdfc_compiler::layout::WORKGROUP;
+        let step = step.max(sdfc_compiler::layout::WORKGROUP);
         let mut runs = Vec::new();
         for (k, pass) in schedule.iter().enumerate() {
             let field = match (passes, k.checked_sub(1)) {
@@ -239,10 +239,7 @@ impl Gpu {
                         layout: &layout_0,
                         entries: &entries,
                     });
-                    let groups = |n: u32| {
-                        n.min(step)
-                            .div_ceil(sdfc_compiler::lower::tracer::WORKGROUP)
-                    };
+                    let groups = |n: u32| n.min(step).div_ceil(sdfc_compiler::layout::WORKGROUP);
                     dispatches.push(Dispatch {
                         uniform: (uniform, bytes),
                         origin: (x, y),

@@ -59,14 +59,14 @@ impl Gpu {
     }
 
     /// The `Params` uniform for a module that reads one (binding
-    /// `sdfc_compiler::lower::params::PARAMS_BINDING`), holding the values last set
+    /// `sdfc_compiler::layout::PARAMS_BINDING`), holding the values last set
     /// ([`Gpu::set_params`]); an internal error when those are not the module's (none set, or
     /// another scene's), rather than a scene drawn at zeros.
     pub(crate) fn params_buffer(
         &self,
         module: &naga::Module,
     ) -> Result<Option<(wgpu::Buffer, u32)>, String> {
-        let binding = sdfc_compiler::lower::params::PARAMS_BINDING;
+        let binding = sdfc_compiler::layout::PARAMS_BINDING;
         let Some(global) = module
             .global_variables
             .iter()
@@ -213,7 +213,7 @@ impl Gpu {
             .iter()
             .flat_map(|(o, d, px)| [o[0], o[1], o[2], *px, d[0], d[1], d[2], 0.0])
             .collect();
-        let groups = (rays.len() as u32).div_ceil(sdfc_compiler::lower::tracer::RAYS_WORKGROUP);
+        let groups = (rays.len() as u32).div_ceil(sdfc_compiler::layout::RAYS_WORKGROUP);
         self.run_list(module, ("rays", "hits"), &input, rays.len(), groups)
     }
 
@@ -229,7 +229,7 @@ impl Gpu {
             .iter()
             .flat_map(|p| [p[0], p[1], p[2], 0.0])
             .collect();
-        let groups = (points.len() as u32).div_ceil(sdfc_compiler::lower::tracer::FIELD_WORKGROUP);
+        let groups = (points.len() as u32).div_ceil(sdfc_compiler::layout::FIELD_WORKGROUP);
         let out = self.run_list(module, ("points", "values"), &input, points.len(), groups)?;
         Ok(out.iter().map(|v| v[0]).collect())
     }

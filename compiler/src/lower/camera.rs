@@ -2,7 +2,8 @@
 //! arrays, and `camera_ray`, the pinhole camera.
 
 use super::builder::{Ex, FnBuilder, ModuleBuilder};
-use super::tracer::{VIEW_FIELDS, struct_ty};
+use super::tracer::struct_ty;
+use crate::layout::{self, VIEW_FIELDS};
 use naga::{
     AddressSpace, Expression, Function, Handle, MathFunction as M, ResourceBinding, Span,
     StorageAccess, Type, TypeInner, VectorSize,
@@ -19,7 +20,7 @@ pub(super) fn add_view(mb: &mut ModuleBuilder, passes: bool) -> Handle<naga::Glo
         .map(|(i, n)| (*n, if *n == "offset" { u4 } else { v4 }, 16 * i as u32))
         .collect();
     let ty = struct_ty(mb, "View", &members, 16 * fields as u32);
-    global(mb, "view", ty, AddressSpace::Uniform, 0)
+    global(mb, "view", ty, AddressSpace::Uniform, layout::VIEW_BINDING)
 }
 
 pub(super) fn global(
@@ -33,7 +34,10 @@ pub(super) fn global(
         naga::GlobalVariable {
             name: Some(name.to_string()),
             space,
-            binding: Some(ResourceBinding { group: 0, binding }),
+            binding: Some(ResourceBinding {
+                group: layout::GROUP,
+                binding,
+            }),
             ty,
             init: None,
             memory_decorations: naga::MemoryDecorations::empty(),
@@ -42,25 +46,29 @@ pub(super) fn global(
     )
 }
 
-/// A runtime-sized storage array at group 0, `binding`: elements of `base`, `stride` bytes
-/// apart; the shader may write it if `write`.
+/// The runtime-sized storage array `buffer` of the interface (`crate::layout`): elements of
+/// `base`; the shader may write it if `write`.
 pub(super) fn storage_array(
     mb: &mut ModuleBuilder,
-    name: &str,
-    (base, stride): (Handle<Type>, u32),
-    write: bool,
-    binding: u32,
+    buffer: layout::Buffer,
+    (base, write): (Handle<Type>, bool),
 ) -> Handle<naga::GlobalVariable> {
     let ty = mb.ty(TypeInner::Array {
         base,
         size: naga::ArraySize::Dynamic,
-        stride,
+        stride: buffer.stride as u32,
     });
     let access = match write {
         true => StorageAccess::LOAD | StorageAccess::STORE,
         false => StorageAccess::LOAD,
     };
-    global(mb, name, ty, AddressSpace::Storage { access }, binding)
+    global(
+        mb,
+        buffer.name,
+        ty,
+        AddressSpace::Storage { access },
+        buffer.binding,
+    )
 }
 
 /// Loads member `i` of the view uniform.

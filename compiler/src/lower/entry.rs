@@ -7,7 +7,8 @@ use super::camera::{add_camera_ray, add_view};
 pub(super) use super::camera::{global, storage_array, view_field};
 use super::handoff::{hand_over, trace_in_pass};
 use super::march::{epsilon, is_hit};
-use super::tracer::{Options, Pass, Tracer, WORKGROUP};
+use super::tracer::{Options, Pass, Tracer};
+use crate::layout::{self, Element, WORKGROUP};
 use crate::scene::{Epsilon, Scene};
 use naga::{
     Binding, BuiltIn, EntryPoint, Expression, Function, Handle, MathFunction as M, ScalarKind,
@@ -219,7 +220,7 @@ fn compute_pixel(b: &mut FnBuilder, fns: &Fns) -> (Ex, Ex) {
 pub(super) fn add_trace_only(mb: &mut ModuleBuilder, fns: &Fns) {
     let u3 = mb.uvec(VectorSize::Tri);
     let u2 = mb.uvec(VectorSize::Bi);
-    let out = storage_array(mb, "out", (u2, 8), true, 1);
+    let out = storage_array(mb, layout::TRACE_OUTPUT, (u2, true));
     let hand_over = hand_over(mb, fns);
     let mut b = FnBuilder::new(mb, "main", &[("gid", u3)], None);
     b.func.arguments[0].binding = Some(Binding::BuiltIn(BuiltIn::GlobalInvocationId));
@@ -259,20 +260,18 @@ pub(super) fn add_compute(
 ) {
     let u3 = mb.uvec(VectorSize::Tri);
     let (u, f, v4) = (mb.u32(), mb.f32(), mb.vec(VectorSize::Quad));
-    let outputs: Vec<Handle<naga::GlobalVariable>> = [
-        ("out_color", u, 1),
-        ("out_depth", f, 2),
-        ("out_normal", v4, 3),
-        ("out_material", u, 4),
-        ("out_steps", u, 5),
-        ("out_shading", u, 8),
-    ]
-    .iter()
-    .map(|&(name, base, binding)| {
-        let stride = if base == v4 { 16 } else { 4 };
-        storage_array(mb, name, (base, stride), true, binding)
-    })
-    .collect();
+    let outputs: Vec<Handle<naga::GlobalVariable>> = layout::PIXEL_OUTPUTS
+        .iter()
+        .map(|&out| {
+            let base = match out.element {
+                Element::U32 => u,
+                Element::F32 => f,
+                Element::Vec4F32 => v4,
+                Element::Vec2U32 => unreachable!("no pixel output is a vec2"),
+            };
+            storage_array(mb, out, (base, true))
+        })
+        .collect();
     let hand_over = hand_over(mb, fns);
     let mut b = FnBuilder::new(mb, "main", &[("gid", u3)], None);
     b.func.arguments[0].binding = Some(Binding::BuiltIn(BuiltIn::GlobalInvocationId));

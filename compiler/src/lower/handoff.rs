@@ -14,8 +14,8 @@ pub(super) fn hand_over(
     fns.passes.then(|| {
         let v2 = mb.vec(VectorSize::Bi);
         (
-            storage_array(mb, "pass_in", (v2, 8), false, 6),
-            storage_array(mb, "pass_out", (v2, 8), true, 7),
+            storage_array(mb, crate::layout::HAND_OVER[0], (v2, false)),
+            storage_array(mb, crate::layout::HAND_OVER[1], (v2, true)),
         )
     })
 }

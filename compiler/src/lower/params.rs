@@ -6,10 +6,6 @@ use crate::catalog::{Ctx, Ty, Val};
 use crate::scene::{Field, ParamDecl, ParamKind, ParamRef, Scene};
 use naga::{AddressSpace, Expression, Handle, VectorSize};
 
-/// The binding (in group 0) of the `Params` uniform, in every module of a scene with
-/// parameters.
-pub const PARAMS_BINDING: u32 = 9;
-
 /// The byte offset of each parameter in the `Params` uniform and the struct's size: std140
 /// (and WGSL uniform) layout, a number 4-byte aligned, a vector or colour a `vec3<f32>`
 /// 16-byte aligned, the whole a multiple of 16 bytes.

@@ -4,7 +4,8 @@
 
 use super::builder::{Ex, FnBuilder, ModuleBuilder};
 use super::entry::{compute_main, storage_array};
-use super::tracer::{FIELD_WORKGROUP, Pass, RAYS_WORKGROUP, Tracer};
+use super::tracer::{Pass, Tracer};
+use crate::layout::{self, FIELD_WORKGROUP, RAYS_WORKGROUP};
 use naga::{Binding, BuiltIn, Expression, Function, Handle, ScalarKind, VectorSize};
 
 /// The ray-list compute entry ([`Entry::Rays`]), 64 rays per workgroup.
@@ -92,11 +93,18 @@ struct List<'m> {
 }
 
 impl<'m> List<'m> {
-    fn new(mb: &'m mut ModuleBuilder, names: [&str; 2]) -> List<'m> {
+    fn new(mb: &'m mut ModuleBuilder, names: [&'static str; 2]) -> List<'m> {
         let v4 = mb.vec(VectorSize::Quad);
         let u3 = mb.uvec(VectorSize::Tri);
-        let [input, output] = [(names[0], false, 0), (names[1], true, 1)]
-            .map(|(name, write, binding)| storage_array(mb, name, (v4, 16), write, binding));
+        let [input, output] = [0, 1].map(|k| {
+            let buffer = layout::Buffer {
+                name: names[k],
+                binding: layout::LIST_BINDINGS[k],
+                stride: layout::LIST_STRIDE,
+                element: layout::Element::Vec4F32,
+            };
+            storage_array(mb, buffer, (v4, k == 1))
+        });
         let mut b = FnBuilder::new(mb, "main", &[("gid", u3)], None);
         b.func.arguments[0].binding = Some(Binding::BuiltIn(BuiltIn::GlobalInvocationId));
         let gid = b.arg(0);

@@ -94,23 +94,14 @@ impl Options {
             bounding_volumes: BoundingVolumes::default(),
             fixed_offset: false,
             private_params: false,
-            params_binding: super::params::PARAMS_BINDING,
+            params_binding: crate::layout::PARAMS_BINDING,
         }
     }
 }
 
-/// Workgroup size of the compute entry point (8×8).
-pub const WORKGROUP: u32 = 8;
-
 /// Smallest hit threshold, relative to the camera's distance from its target: keeps ε above the
 /// f32 resolution of positions there (about 6e-8 of their magnitude).
 pub const EPSILON_FLOOR: f64 = 1e-5;
-
-/// The uniform block: camera basis (right and up pre-scaled by tan(fov/2)·aspect and
-/// tan(fov/2)), image size and pixel footprint, the tile's offset and the image size as
-/// integers, and (only with [`Options::passes`]) the pass: cone slope, step budget and the
-/// previous pass's size.
-pub const VIEW_FIELDS: [&str; 7] = ["eye", "right", "up", "forward", "size", "offset", "handoff"];
 
 /// The function the entries call to trace a ray, and the inputs it takes.
 #[derive(Clone, Copy)]
@@ -156,12 +147,6 @@ impl Tracer {
         b.call(self.function, args)
     }
 }
-
-/// Workgroup size of the ray-list entry.
-pub const RAYS_WORKGROUP: u32 = 64;
-
-/// Workgroup size of the field-list entry.
-pub const FIELD_WORKGROUP: u32 = 64;
 
 /// Adds the tracer, normal, shading and the entry interface to a module that has `map` (for
 /// [`Entry::Field`], only the entry: it calls `map` alone).

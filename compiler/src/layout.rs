@@ -1,0 +1,134 @@
+//! The interface between an emitted module and its host, written once: bindings, buffer
+//! element sizes, the `View` uniform's fields and size, workgroup sizes.
+//!
+//! The lowering declares its globals from these tables and the runtime creates its buffers
+//! from them, so the two cannot disagree. Every binding is in group [`GROUP`].
+
+/// The bind group of every resource a module declares.
+pub const GROUP: u32 = 0;
+
+/// A storage buffer an entry reads or writes: its global's name, binding and bytes per element.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Buffer {
+    /// The global variable's name in the module.
+    pub name: &'static str,
+    /// Its binding in [`GROUP`].
+    pub binding: u32,
+    /// Bytes per element (per pixel, ray or point).
+    pub stride: u64,
+    /// What one element holds.
+    pub element: Element,
+}
+
+/// The type of a buffer's elements.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Element {
+    /// `u32`
+    U32,
+    /// `f32`
+    F32,
+    /// `vec2<u32>`
+    Vec2U32,
+    /// `vec4<f32>`
+    Vec4F32,
+}
+
+/// The `View` uniform's binding (camera, image size, tile offset, pass).
+pub const VIEW_BINDING: u32 = 0;
+
+/// The `View` uniform's fields, each a 16-byte vector: camera basis (right and up pre-scaled by
+/// tan(fov/2)·aspect and tan(fov/2)), image size and pixel footprint, the tile's offset and
+/// the image size as integers, and (only in a module with multi-resolution passes) the pass:
+/// cone slope, step budget and the previous pass's size.
+pub const VIEW_FIELDS: [&str; 7] = ["eye", "right", "up", "forward", "size", "offset", "handoff"];
+
+/// The `View` uniform's size in bytes with every field (a module without passes declares the
+/// first six, 96 bytes; a host may always bind all of them).
+pub const VIEW_BYTES: usize = 16 * VIEW_FIELDS.len();
+
+/// The `Params` uniform's binding, in every module of a scene with parameters (unless
+/// `Options::params_binding` moves it).
+pub const PARAMS_BINDING: u32 = 9;
+
+/// The full compute entry's outputs, per pixel, in binding order: colour (rgba8 packed), depth
+/// t (−1 for a miss), normal, material id, steps (the camera ray's evaluations of the field)
+/// and the evaluations shading took.
+pub const PIXEL_OUTPUTS: [Buffer; 6] = [
+    Buffer {
+        name: "out_color",
+        binding: 1,
+        stride: 4,
+        element: Element::U32,
+    },
+    Buffer {
+        name: "out_depth",
+        binding: 2,
+        stride: 4,
+        element: Element::F32,
+    },
+    Buffer {
+        name: "out_normal",
+        binding: 3,
+        stride: 16,
+        element: Element::Vec4F32,
+    },
+    Buffer {
+        name: "out_material",
+        binding: 4,
+        stride: 4,
+        element: Element::U32,
+    },
+    Buffer {
+        name: "out_steps",
+        binding: 5,
+        stride: 4,
+        element: Element::U32,
+    },
+    Buffer {
+        name: "out_shading",
+        binding: 8,
+        stride: 4,
+        element: Element::U32,
+    },
+];
+
+/// The trace-only entry's output: `vec2<u32>(bitcast(t), steps | hit << 31)` per pixel.
+pub const TRACE_OUTPUT: Buffer = Buffer {
+    name: "out",
+    binding: 1,
+    stride: 8,
+    element: Element::Vec2U32,
+};
+
+/// With multi-resolution passes: the buffer a pass reads its rays' start from, and the one it
+/// hands its (t, steps) to; the host swaps them between passes.
+pub const HAND_OVER: [Buffer; 2] = [
+    Buffer {
+        name: "pass_in",
+        binding: 6,
+        stride: 8,
+        element: Element::Vec2U32,
+    },
+    Buffer {
+        name: "pass_out",
+        binding: 7,
+        stride: 8,
+        element: Element::Vec2U32,
+    },
+];
+
+/// The ray-list and field-list entries' input (rays or points) and output, one `vec4<f32>`
+/// each; the names are the entry's own (`rays`/`hits`, `points`/`values`).
+pub const LIST_BINDINGS: [u32; 2] = [0, 1];
+
+/// Bytes per element of a list entry's input and output.
+pub const LIST_STRIDE: u64 = 16;
+
+/// Workgroup size of the camera compute entries (8×8).
+pub const WORKGROUP: u32 = 8;
+
+/// Workgroup size of the ray-list entry.
+pub const RAYS_WORKGROUP: u32 = 64;
+
+/// Workgroup size of the field-list entry.
+pub const FIELD_WORKGROUP: u32 = 64;
