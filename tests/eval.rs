@@ -283,7 +283,7 @@ fn noise_is_periodic_and_defined_everywhere() {
 /// random shapes placed off the axis, across it and turned (so every plan is taken).
 #[test]
 fn polar_repeat_is_the_union_of_its_copies() {
-    use sdfc_compiler::catalog::polar::{self, PolarPlan};
+    use sdfc_compiler::catalog::repeat::{self, PolarPlan};
     let shapes = [
         "sphere(0.3)",
         "box((0.4, 0.2, 0.1))",
@@ -312,7 +312,7 @@ fn polar_repeat_is_the_union_of_its_copies() {
         else {
             panic!("{source}: the root is the operator");
         };
-        plans[match polar::plan(ctx).1 {
+        plans[match repeat::polar_plan(ctx).1 {
             PolarPlan::Own => 0,
             PolarPlan::Window(_) => 1,
             PolarPlan::All => 2,

@@ -4,7 +4,7 @@
 #![allow(dead_code)]
 
 use glam::DVec3;
-use sdfc_compiler::catalog::polar;
+use sdfc_compiler::catalog::repeat;
 use sdfc_compiler::catalog::repeat::{AxisPlan, Plan};
 use sdfc_compiler::catalog::{PRIMITIVES, Param, Ty};
 use sdfc_compiler::eval;
@@ -310,7 +310,7 @@ pub(crate) fn steps_allowed(scene: &Scene, id: NodeId) -> bool {
             several && !exact(scene, children[0])
         }
         NodeKind::Operator { op, ctx, children } if op.name == "repeat_polar" => {
-            let several = matches!(polar::plan(ctx).1, polar::PolarPlan::Window(_));
+            let several = matches!(repeat::polar_plan(ctx).1, repeat::PolarPlan::Window(_));
             several && !exact(scene, children[0])
         }
         _ => false,

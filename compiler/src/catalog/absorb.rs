@@ -3,8 +3,8 @@
 //! Arguments are written as expressions (`Field`: constants, or parameters the host sets), so
 //! that a scale read from a `param` is taken in the same way as a constant one.
 
+use super::Field;
 use super::{Ctx, Primitive, Val};
-use crate::scene::Field;
 use crate::syntax::BinOp;
 
 /// An argument as expressions: one component (a number) or three (a vector).

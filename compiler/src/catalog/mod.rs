@@ -5,6 +5,9 @@
 
 pub mod absorb;
 mod bound;
+pub mod field;
+pub mod geometry;
+pub mod gpu;
 mod math;
 pub mod operators;
 pub mod planar;
@@ -17,6 +20,7 @@ mod symmetry;
 mod warp;
 
 pub use bound::Bound;
+pub use field::{Field, ParamRef};
 pub use math::{DERIVED_FUNCTIONS, DerivedFn, MATH_FUNCTIONS, MathFn, Units};
 pub use operators::OPERATORS;
 pub use primitives::PRIMITIVES;
@@ -234,7 +238,7 @@ pub struct Ctx {
 }
 
 /// Per argument, its components as expressions of parameters if it reads any.
-pub type ArgSyms = Vec<Option<Vec<crate::scene::Field>>>;
+pub type ArgSyms = Vec<Option<Vec<Field>>>;
 
 /// `syms` in the form every checked node holds: the empty list where no argument reads a
 /// parameter.
@@ -271,7 +275,7 @@ impl Ctx {
 
     /// The context with every parameter use valued by `value` (the arguments that read
     /// parameters recomputed).
-    pub fn at_values(&self, value: &dyn Fn(&crate::scene::ParamRef) -> f64) -> Ctx {
+    pub fn at_values(&self, value: &dyn Fn(&ParamRef) -> f64) -> Ctx {
         let mut c = self.clone();
         for (i, sym) in self.sym.iter().enumerate() {
             let Some(comps) = sym else { continue };
@@ -289,7 +293,7 @@ impl Ctx {
     }
 
     /// Argument `i`'s components as expressions of parameters, if it reads any.
-    pub fn sym(&self, i: usize) -> Option<&[crate::scene::Field]> {
+    pub fn sym(&self, i: usize) -> Option<&[Field]> {
         self.sym.get(i).and_then(|s| s.as_deref())
     }
 }
@@ -417,7 +421,7 @@ pub struct Primitive {
     /// The field in f64.
     pub eval: fn(&Ctx, DVec3) -> f64,
     /// The same field as the body of `sd_<name>(p, params...)` in naga IR.
-    pub lower: crate::lower::prims::PrimLower,
+    pub lower: gpu::PrimLower,
 }
 
 /// An operator on child shapes (CSG, blend, transform, domain operation).
@@ -456,7 +460,7 @@ pub struct Operator {
     /// (`repeat`'s copies, a warp's stretch), so they cannot be parameters.
     pub fixed_args: bool,
     /// The same field in naga IR.
-    pub lower: crate::lower::ops::OpLower,
+    pub lower: gpu::OpLower,
 }
 
 /// Looks up a primitive by name.

@@ -6,15 +6,15 @@
 //! IQ's polynomial smooth minimum is a convex combination of its operands' gradients). Operators
 //! that only move the domain keep the child's λ, or raise it by their Jacobian's norm.
 
+use super::geometry::{FALLOFF_SLOPE, rotate};
+use super::gpu::ops as ir;
 use super::symmetry::{
     CHILD, EVERY, NONE, SWAP_CHILD, SWAP_EVERY, and, rotated_mirror, rotated_swap,
 };
-pub use super::warp::twist_stretch;
-use super::warp::{bend_point, twist_point, warp, warp_lambda};
+use super::warp::{bend_point, twist_point, twist_stretch, warp, warp_lambda};
 use super::{
     Arity, Bound, ChildEval, Ctx, MatRule, NO_SWAP, Operator, Ty, Val, equal_pairs, opt, req,
 };
-use crate::lower::ops as ir;
 use glam::DVec3;
 
 const fn num(x: f64) -> Val {
@@ -69,20 +69,11 @@ fn all(c: &Ctx) -> Bound {
         .unwrap_or(Bound::INFINITE)
 }
 
-/// Rodrigues' rotation of `v` by `angle` about the unit `axis`.
-pub fn rotate(v: DVec3, axis: DVec3, angle: f64) -> DVec3 {
-    let (s, co) = angle.sin_cos();
-    v * co + axis.cross(v) * s + axis * axis.dot(v) * (1.0 - co)
-}
-
 /// Wyvill's blob falloff (1 − s²)³ on [0, 1]; its slope is at most 96/(25√5) ≈ 1.7173.
 pub fn falloff(s: f64) -> f64 {
     let t = (1.0 - s * s).max(0.0);
     t * t * t
 }
-
-/// The steepest slope of [`falloff`], reached at s = 1/√5.
-pub const FALLOFF_SLOPE: f64 = 1.717_300_316_677_839_6;
 
 /// Every operator of the language.
 pub static OPERATORS: &[Operator] = &[
@@ -390,7 +381,7 @@ pub static OPERATORS: &[Operator] = &[
         materials: MatRule::Pass,
         unit_gradient: SHORTENS,
         keeps_exact: SHORTENS,
-        lower: ir::twist,
+        lower: super::gpu::warp::twist,
         doc: "Twists its shape about the y axis by `rate` radians per unit of y; normalised by \
               the Jacobian bound (a + √(a²+4))/2, a = |rate|·ρ, inside the bounding cylinder of \
               radius ρ, points outside projected onto it (λ = 1; an unbounded shape needs an \
@@ -420,7 +411,7 @@ pub static OPERATORS: &[Operator] = &[
         materials: MatRule::Pass,
         unit_gradient: SHORTENS,
         keeps_exact: SHORTENS,
-        lower: ir::bend,
+        lower: super::gpu::warp::bend,
         doc: "Bends its shape in the xy plane by `rate` radians per unit of x; normalised by the \
               Jacobian bound 1 + |rate|·ρ inside the bounding cylinder about z (λ = 1).",
         params: &[req("rate", Ty::Number)],

@@ -4,9 +4,9 @@
 //! (about y) turn them into solids. Both are exact for an exact shape (Inigo Quilez's
 //! extrusion and revolution), with λ = 1 and the child's λ.
 
+use super::gpu::planar as ir;
 use super::shapes::sign0;
 use super::{Arity, Bound, MatRule, NO_SWAP, Operator, Primitive, Ty, Val, opt, shapes};
-use crate::lower::planar as ir;
 use glam::{DVec2, DVec3};
 use std::f64::consts::PI;
 

@@ -4,8 +4,9 @@
 //! not copied); the dodecahedron is the generalised distance function of Akleman et al. as used in
 //! the Keinert seed (Fig. 11); the Mandelbulb is the distance estimator of Bálint's test scene.
 
+use super::geometry::{ELLIPSOID_MIN_RADIUS, dodecahedron_normals, mandelbulb_radius};
+use super::gpu::prims as ir;
 use super::{Bound, Ctx, NO_SWAP, Primitive, Ty, Val, equal_pairs, opt};
-use crate::lower::prims as ir;
 use glam::{DVec2, DVec3};
 
 const ONE: fn(&Ctx) -> f64 = |_| 1.0;
@@ -304,9 +305,6 @@ fn sd_capped_cone(p: DVec3, h: f64, r1: f64, r2: f64) -> f64 {
     s * ca.length_squared().min(cb.length_squared()).sqrt()
 }
 
-/// Smallest semi-axis the ellipsoid uses: a zero radius is raised to it (a flat disc).
-pub const ELLIPSOID_MIN_RADIUS: f64 = 1e-9;
-
 /// IQ's exact octahedron.
 fn sd_octahedron(p: DVec3, s: f64) -> f64 {
     let p = p.abs();
@@ -322,20 +320,6 @@ fn sd_octahedron(p: DVec3, s: f64) -> f64 {
     };
     let k = (0.5 * (q.z - q.y + s)).clamp(0.0, s);
     DVec3::new(q.x, q.y - s + k, q.z - k).length()
-}
-
-/// The six face normals of a dodecahedron: cyclic permutations of (0, ±1, φ), normalised.
-pub fn dodecahedron_normals() -> [DVec3; 6] {
-    let phi = (1.0 + 5f64.sqrt()) / 2.0;
-    let n = |x: f64, y: f64, z: f64| DVec3::new(x, y, z).normalize();
-    [
-        n(0.0, 1.0, phi),
-        n(0.0, -1.0, phi),
-        n(1.0, phi, 0.0),
-        n(-1.0, phi, 0.0),
-        n(phi, 0.0, 1.0),
-        n(-phi, 0.0, 1.0),
-    ]
 }
 
 /// Generalised distance: max of |p·n| (exponent 0) or the `e`-norm of the |p·n| minus the radius.
@@ -359,11 +343,6 @@ fn gdf_dodecahedron(p: DVec3, r: f64, e: f64) -> f64 {
 
 /// Most iterations a Mandelbulb may ask for (each evaluation loops this often).
 pub const MANDELBULB_MAX_ITERATIONS: u32 = 64;
-
-/// Radius beyond which every point escapes: |z|^(n−1) > 2 (then |z₁| ≥ |z|ⁿ − |z| > |z|).
-pub fn mandelbulb_radius(power: f64) -> f64 {
-    2f64.powf(1.0 / (power - 1.0))
-}
 
 /// Mandelbulb distance estimate 0.5·ln r·r/dr; far outside (beyond twice the escape radius) the
 /// distance to the escape sphere, which is a true bound where the estimator is not.

@@ -15,8 +15,9 @@
 //!   ⌊(hi − lo)/s⌋ + 3 copies, unrolled; no copy outside it is nearer, so the result is the
 //!   union's field for exact shapes, and a bound at every point for any shape.
 
-use super::{ChildEval, Ctx};
-use glam::DVec3;
+use super::{Bound, ChildEval, Ctx};
+use glam::{DVec2, DVec3};
+use std::f64::consts::{PI, TAU};
 
 /// The most copies one evaluation of a `repeat` may look at; the checker refuses more.
 pub const MAX_COPIES: usize = 64;
@@ -163,4 +164,108 @@ pub fn field(c: &Ctx, p: DVec3, child: ChildEval) -> f64 {
 /// floor(x + 0.5): the rounding the shaders use too, so cells agree at exact halves.
 pub fn round_half_up(x: f64) -> f64 {
     (x + 0.5).floor()
+}
+
+/// How a `repeat_polar` node is evaluated.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum PolarPlan {
+    /// The own sector only.
+    Own,
+    /// Every copy.
+    All,
+    /// This many copies from K₋ on.
+    Window(u32),
+}
+
+/// `repeat_polar`: the angle between copies and the plan for a node (`catalog/polar.rs` says
+/// why the window holds the nearest copy).
+pub fn polar_plan(c: &Ctx) -> (f64, PolarPlan) {
+    let n = c.num(0).max(1.0);
+    let alpha = TAU / n;
+    let Some((lo, hi)) = polar_extent(c.child_bound[0]) else {
+        return (alpha, PolarPlan::All);
+    };
+    if c.child_mirror[0][2] && lo >= -alpha / 2.0 && hi <= alpha / 2.0 {
+        return (alpha, PolarPlan::Own);
+    }
+    let window = ((hi - lo) / alpha).floor() + 3.0;
+    if n <= window {
+        (alpha, PolarPlan::All)
+    } else {
+        (alpha, PolarPlan::Window(window as u32))
+    }
+}
+
+/// How many copies one evaluation looks at.
+pub fn polar_copies(c: &Ctx) -> f64 {
+    match polar_plan(c).1 {
+        PolarPlan::Own => 1.0,
+        PolarPlan::All => c.num(0),
+        PolarPlan::Window(w) => f64::from(w),
+    }
+}
+
+/// The angles about the y axis (from +x towards +z) the bound spans, if it keeps away from
+/// the axis: the tighter of its box's corners and its sphere's cone.
+pub fn polar_extent(b: Bound) -> Option<(f64, f64)> {
+    if !b.is_finite() {
+        return None;
+    }
+    let mut best: Option<(f64, f64)> = None;
+    let mut narrow = |lo: f64, hi: f64| {
+        best = Some(match best {
+            Some((a, b)) => (a.max(lo), b.min(hi)),
+            None => (lo, hi),
+        });
+    };
+    // The rectangle of the box in xz, when the axis is outside it.
+    let (x0, x1, z0, z1) = (b.lo.x, b.hi.x, b.lo.z, b.hi.z);
+    if x0 > 0.0 || x1 < 0.0 || z0 > 0.0 || z1 < 0.0 {
+        let centre = DVec2::new((x0 + x1) / 2.0, (z0 + z1) / 2.0);
+        let mid = centre.y.atan2(centre.x);
+        let rel = [(x0, z0), (x0, z1), (x1, z0), (x1, z1)].map(|(x, z)| wrap(z.atan2(x) - mid));
+        let lo = rel.iter().copied().fold(f64::INFINITY, f64::min);
+        let hi = rel.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        narrow(mid + lo, mid + hi);
+    }
+    // The cone of the sphere seen from the axis, when the axis is outside it.
+    let r = DVec2::new(b.center.x, b.center.z).length();
+    if r > b.radius {
+        let mid = b.center.z.atan2(b.center.x);
+        let half = (b.radius / r).asin();
+        narrow(mid - half, mid + half);
+    }
+    // The two descriptions of the same region overlap: their intersection is the extent (it
+    // may straddle ±π, the copies' angles are taken modulo a turn).
+    best.filter(|(lo, hi)| lo <= hi)
+}
+
+/// An angle moved into (−π, π].
+fn wrap(a: f64) -> f64 {
+    let w = a - TAU * ((a + PI) / TAU).floor();
+    if w <= -PI { w + TAU } else { w }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::{PI, TAU};
+
+    #[test]
+    fn wrap_keeps_angles_in_a_half_turn() {
+        for a in [-7.0, -PI, -1.0, 0.0, 1.0, PI, 4.0, 10.0] {
+            let w = wrap(a);
+            assert!(w > -PI && w <= PI, "{a} → {w}");
+            assert!(((w - a) / TAU - ((w - a) / TAU).round()).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn extent_of_a_box_beside_the_axis() {
+        let b = Bound::centered_box(DVec3::splat(0.5)).moved(DVec3::new(2.0, 0.0, 0.0));
+        let (lo, hi) = polar_extent(b).expect("away from the axis");
+        assert!((hi - (0.5f64).atan2(1.5)).abs() < 1e-12, "{hi}");
+        assert!((lo + hi).abs() < 1e-12);
+        assert!(polar_extent(Bound::origin(1.0)).is_none());
+    }
 }

@@ -3,16 +3,14 @@
 //! pyramid, rounded cylinder. Each is an exact distance (λ = 1); `tests/data/iq_reference.py`
 //! computes each a second, independent way.
 
+use super::geometry::HEX_FOLD;
+use super::gpu::shapes as ir;
 use super::{Bound, Ctx, NO_SWAP, Primitive, Ty, Val, opt};
-use crate::lower::shapes as ir;
 use glam::{DVec2, DVec3};
 
 const fn num(x: f64) -> Val {
     Val::Num(x)
 }
-
-/// −√3/2, 1/2 and 1/√3: the hexagon's fold direction and its half side over its inradius.
-pub const HEX_FOLD: (f64, f64, f64) = (-0.866_025_403_784_438_6, 0.5, 0.577_350_269_189_625_8);
 
 /// GLSL's sign: 0 at 0 (Rust's `signum` gives 1), so that the CPU agrees with the shader.
 pub(crate) fn sign0(x: f64) -> f64 {

@@ -139,7 +139,7 @@ impl Checker<'_> {
                 copies
             }
             "repeat_polar" => {
-                let copies = crate::catalog::polar::copies(&ctx);
+                let copies = crate::catalog::repeat::polar_copies(&ctx);
                 self.check_polar_copies(copies, span);
                 if copies > 4.0 && !ctx.child_bound[0].is_finite() {
                     self.diags.push(

@@ -10,9 +10,7 @@ use crate::scene::Field;
 use crate::syntax::BinOp;
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
-/// The largest |n| for which the shaders multiply out `a ^ n` with a whole n (WGSL's `pow` is
-/// undefined for negative bases), so that it agrees with the CPU's `powf`, exact there.
-pub const MAX_WHOLE_POWER: f64 = 64.0;
+pub use crate::catalog::field::MAX_WHOLE_POWER;
 
 /// A bound on |∇f| over all of space for an `implicit` body, by forward-mode differentiation in
 /// interval arithmetic (Liktor §2.2: the Lipschitz constant is the supremum of the gradient's

@@ -7,7 +7,6 @@
 
 mod bounce;
 mod bound;
-pub mod builder;
 mod camera;
 mod careful;
 mod constant;
@@ -17,27 +16,20 @@ mod handoff;
 mod hybrid;
 pub mod interface;
 pub mod march;
-mod math;
-pub mod ops;
 pub mod params;
-pub mod planar;
-pub mod prims;
 mod probes;
-mod prune;
 mod rays;
 mod shading;
-pub mod shapes;
 mod tags;
 mod texture;
 pub mod tracer;
 mod variants;
-mod warp;
 
+use crate::catalog::gpu::{args, field, ops};
 use crate::catalog::{Ctx, Ty, Val};
-use crate::scene::{Field, NodeId, NodeKind, Scene};
-use crate::syntax::BinOp;
-use builder::{Ex, FnBuilder, ModuleBuilder};
-use naga::{Function, Handle, MathFunction, Type};
+use crate::ir::builder::{self, Ex, FnBuilder, ModuleBuilder};
+use crate::scene::{NodeId, NodeKind, Scene};
+use naga::{Function, Handle, Type};
 use std::borrow::Cow;
 use std::collections::HashMap;
 use tracer::BoundingVolumes;
@@ -72,7 +64,7 @@ pub fn lower(scene: &Scene, entry: Entry, options: &tracer::Options) -> naga::Mo
     let f32t = mb.f32();
     let map = point_function(&mut mb, "map", f32t, |b, p| {
         let d = walk.distance(b, scene.root, p);
-        ops::scale_by(b, d, 1.0 / scene.root_node().lambda)
+        crate::catalog::gpu::scale_by(b, d, 1.0 / scene.root_node().lambda)
     });
     let u32t = mb.u32();
     // (The library always has `map_material`: its interface does not depend on the scene.)
@@ -208,7 +200,7 @@ fn add_primitive_functions(mb: &mut ModuleBuilder, scene: &Scene, reachable: &[N
             .iter()
             .zip(&shared)
             .map(|(param, s)| match s {
-                Some(v) => params::arg(&mut b, param.ty, *v, None, p),
+                Some(v) => args::arg(&mut b, param.ty, *v, None, p),
                 None => {
                     next += 1;
                     b.arg(next - 1)
@@ -353,12 +345,12 @@ impl Walk<'_> {
                 let mut args = vec![p];
                 for (i, (param, v)) in prim.params.iter().zip(&ctx.args).enumerate() {
                     if !b.m.baked.get(&name).is_some_and(|m| m[i]) {
-                        args.push(params::arg(b, param.ty, *v, ctx.sym(i), p));
+                        args.push(args::arg(b, param.ty, *v, ctx.sym(i), p));
                     }
                 }
                 b.call(f, args)
             }
-            NodeKind::Implicit { field } => lower_field(b, field, p),
+            NodeKind::Implicit { field: f } => field::lower(b, f, p),
             NodeKind::Operator { op, ctx, children } => {
                 let inner = Walk {
                     root_fn: None,
@@ -370,94 +362,4 @@ impl Walk<'_> {
             }
         }
     }
-}
-
-/// An `implicit` body in IR. Whole powers with |n| ≤ 64 are multiplied out by repeated squaring
-/// (WGSL's `pow` is undefined for negative bases; the CPU's `powf` is exact there), negative
-/// ones as the reciprocal.
-pub(super) fn lower_field(b: &mut FnBuilder, f: &Field, p: Ex) -> Ex {
-    match f {
-        Field::Const(c) => b.f(*c),
-        Field::Param(r) => params::load(b, r),
-        Field::Coord(i) => b.at(p, *i as u32),
-        Field::Neg(a) => {
-            let a = lower_field(b, a, p);
-            b.neg(a)
-        }
-        Field::Binary(BinOp::Pow, a, n) if matches!(**n, Field::Const(k) if k.fract() == 0.0 && k.abs() <= crate::lipschitz::MAX_WHOLE_POWER) =>
-        {
-            let Field::Const(k) = **n else { unreachable!() };
-            let a = lower_field(b, a, p);
-            let power = whole_power(b, a, k.abs() as u32);
-            if k < 0.0 {
-                let one = b.f(1.0);
-                b.div(one, power)
-            } else {
-                power
-            }
-        }
-        Field::Binary(op, x, y) => {
-            let (x, y) = (lower_field(b, x, p), lower_field(b, y, p));
-            match op {
-                BinOp::Add => b.add(x, y),
-                BinOp::Sub => b.sub(x, y),
-                BinOp::Mul => b.mul(x, y),
-                BinOp::Div => b.div(x, y),
-                BinOp::Pow => b.math(MathFunction::Pow, &[x, y]),
-            }
-        }
-        Field::Call(func, args) => {
-            let args: Vec<Ex> = args.iter().map(|a| lower_field(b, a, p)).collect();
-            if func.lower == MathFunction::Length {
-                let v = b.compose_vec3([args[0], args[1], args[2]]);
-                return b.length(v);
-            }
-            match func.name {
-                // a − b·floor(a / b)
-                "mod" => {
-                    let q = b.div(args[0], args[1]);
-                    let k = b.math(MathFunction::Floor, &[q]);
-                    let m = b.mul(args[1], k);
-                    return b.sub(args[0], m);
-                }
-                // t²·(3 − 2t), t = clamp((c − a) / (b − a), 0, 1), written out (the
-                // built-in's result for b < a is not the same in every shading language).
-                "smoothstep" => {
-                    let n = b.sub(args[2], args[0]);
-                    let w = b.sub(args[1], args[0]);
-                    let t = b.div(n, w);
-                    let (zero, one) = (b.f(0.0), b.f(1.0));
-                    let t = b.clamp(t, zero, one);
-                    let tt = b.mul(t, t);
-                    let two = b.f(2.0);
-                    let three = b.f(3.0);
-                    let t2 = b.mul(two, t);
-                    let r = b.sub(three, t2);
-                    return b.mul(tt, r);
-                }
-                _ => {}
-            }
-            b.math(func.lower, &args)
-        }
-    }
-}
-
-/// aⁿ by repeated squaring (n = 0 gives 1).
-pub(super) fn whole_power(b: &mut FnBuilder, a: Ex, n: u32) -> Ex {
-    let mut result: Option<Ex> = None;
-    let mut square = a;
-    let mut n = n;
-    while n > 0 {
-        if n & 1 == 1 {
-            result = Some(match result {
-                Some(r) => b.mul(r, square),
-                None => square,
-            });
-        }
-        n >>= 1;
-        if n > 0 {
-            square = b.mul(square, square);
-        }
-    }
-    result.unwrap_or_else(|| b.f(1.0))
 }

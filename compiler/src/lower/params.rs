@@ -2,9 +2,12 @@
 //! computed from it.
 
 use super::builder::{Ex, FnBuilder, ModuleBuilder};
-use crate::catalog::{Ctx, Ty, Val};
-use crate::scene::{Field, ParamDecl, ParamKind, ParamRef, Scene};
-use naga::{AddressSpace, Expression, Handle, VectorSize};
+use crate::catalog::gpu::args::components;
+use crate::scene::{Field, ParamDecl, ParamKind, Scene};
+use naga::{AddressSpace, Handle, VectorSize};
+
+// Arguments read from the uniform are the catalog's (its shader bodies read them too).
+pub(super) use crate::catalog::gpu::args::{arg, num, varies};
 
 /// The byte offset of each parameter in the `Params` uniform and the struct's size: std140
 /// (and WGSL uniform) layout, a number 4-byte aligned, a vector or colour a `vec3<f32>`
@@ -96,46 +99,6 @@ pub(super) fn add(
     ))
 }
 
-/// One component of a parameter, loaded from the uniform.
-pub(super) fn load(b: &mut FnBuilder, r: &ParamRef) -> Ex {
-    let global =
-        b.m.params
-            .expect("a module with parameters has the uniform");
-    let g = b.expr(Expression::GlobalVariable(global));
-    let ptr = b.at(g, r.index as u32);
-    let v = b.load(ptr);
-    let vector = matches!(
-        b.m.module.types[b.m.module.global_variables[global].ty].inner,
-        naga::TypeInner::Struct { ref members, .. }
-            if matches!(b.m.module.types[members[r.index].ty].inner, naga::TypeInner::Vector { .. })
-    );
-    if vector { b.at(v, r.comp as u32) } else { v }
-}
-
-/// Components computed from parameters, as one value (a `vec3` for three).
-fn components(b: &mut FnBuilder, comps: &[Field], p: Ex) -> Ex {
-    let parts: Vec<Ex> = comps.iter().map(|f| super::lower_field(b, f, p)).collect();
-    match parts[..] {
-        [x] => x,
-        [x, y, z] => b.compose_vec3([x, y, z]),
-        _ => unreachable!("one or three components"),
-    }
-}
-
-/// An argument of type `ty`: computed from the uniform if it reads parameters, else a literal.
-pub(super) fn arg(b: &mut FnBuilder, ty: Ty, v: Val, sym: Option<&[Field]>, p: Ex) -> Ex {
-    match sym {
-        Some(comps) => components(b, comps, p),
-        None => match ty {
-            Ty::Count | Ty::CountTo(_) | Ty::WholeIn(..) => b.u(v.num() as u32),
-            Ty::Vec3 | Ty::Size | Ty::Scale | Ty::Axis | Ty::Color | Ty::Counts => {
-                b.vec3_lit(v.vec())
-            }
-            _ => b.f(v.num()),
-        },
-    }
-}
-
 /// Setting `i` of a material or light (`Material::sym`, `Light::sym`), if computed from
 /// parameters.
 pub(super) fn setting(sym: &crate::catalog::ArgSyms, i: usize) -> Option<&[Field]> {
@@ -165,20 +128,4 @@ pub(super) fn linear_color(
     let e = b.splat3(2.4);
     let above = b.math(naga::MathFunction::Pow, &[scaled, e]);
     b.select(low, below, above)
-}
-
-/// Argument `i` of an operator as a number (`p` is any expression of the function: parameters
-/// do not read it).
-pub fn num(b: &mut FnBuilder, c: &Ctx, i: usize, p: Ex) -> Ex {
-    arg(b, Ty::Number, c.args[i], c.sym(i), p)
-}
-
-/// Argument `i` of an operator as a vector.
-pub fn vec3(b: &mut FnBuilder, c: &Ctx, i: usize, p: Ex) -> Ex {
-    arg(b, Ty::Vec3, c.args[i], c.sym(i), p)
-}
-
-/// Whether argument `i` is read at run time.
-pub fn varies(c: &Ctx, i: usize) -> bool {
-    c.sym(i).is_some()
 }

@@ -5,7 +5,6 @@
 use super::Walk;
 use super::builder::{Ex, FnBuilder};
 use super::constant::{constant_looseness, constant_materials};
-use super::ops;
 use crate::catalog::MatRule;
 use crate::scene::{NodeId, NodeKind};
 
@@ -255,10 +254,10 @@ fn pick_material(
         MatRule::Weighted => Some(mat(b, usize::from(ctx.num(0) > 0.5))),
         MatRule::Nearest | MatRule::Farthest | MatRule::Cut => {
             let sign = if rule == MatRule::Cut { -1.0 } else { 1.0 };
-            let mut d = ops::scale_by(b, seen[0].0, 1.0 / ctx.child_lambda[0]);
+            let mut d = crate::catalog::gpu::scale_by(b, seen[0].0, 1.0 / ctx.child_lambda[0]);
             let mut m = mat(b, 0);
             for (i, &(di, _)) in seen.iter().enumerate().skip(1) {
-                let di = ops::scale_by(b, di, sign / ctx.child_lambda[i]);
+                let di = crate::catalog::gpu::scale_by(b, di, sign / ctx.child_lambda[i]);
                 let better = if rule == MatRule::Nearest {
                     b.lt(di, d)
                 } else {
@@ -302,10 +301,10 @@ fn pick_blend(
         return Some(b.compose(v3, vec![a, c, w]));
     }
     let k = Radius::of(b, ctx, seen[0].0);
-    let mut d = ops::scale_by(b, seen[0].0, 1.0 / ctx.child_lambda[0]);
+    let mut d = crate::catalog::gpu::scale_by(b, seen[0].0, 1.0 / ctx.child_lambda[0]);
     let mut blend = seen[0].1.unwrap_or_else(|| b.splat3(0.0));
     for (i, &(di, _)) in seen.iter().enumerate().skip(1) {
-        let di = ops::scale_by(b, di, 1.0 / ctx.child_lambda[i]);
+        let di = crate::catalog::gpu::scale_by(b, di, 1.0 / ctx.child_lambda[i]);
         // smax(a, b) = −smin(−a, −b); the cut is smax(d, −dᵢ).
         let (x, y) = match rule {
             MatRule::SmoothNearest => (d, di),

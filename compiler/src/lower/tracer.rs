@@ -99,10 +99,6 @@ impl Options {
     }
 }
 
-/// Smallest hit threshold, relative to the camera's distance from its target: keeps ε above the
-/// f32 resolution of positions there (about 6e-8 of their magnitude).
-pub const EPSILON_FLOOR: f64 = 1e-5;
-
 /// The function the entries call to trace a ray, and the inputs it takes.
 #[derive(Clone, Copy)]
 pub(super) struct Tracer {

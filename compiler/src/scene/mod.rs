@@ -1,13 +1,14 @@
 //! The checked scene graph: shape nodes with their Lipschitz bounds, materials, camera, lights and
 //! tracer settings. Both the CPU evaluator and the lowering read this, so they cannot drift apart.
 
-mod field;
 mod params;
 mod settings;
 
-pub use field::{Field, binary};
-pub use params::{ParamDecl, ParamKind, ParamRef};
-pub use settings::{Epsilon, Fog, Light, LightKind, Method, Occlusion, Shadow, Trace};
+pub use crate::catalog::field::{Field, ParamRef, binary};
+pub use params::{ParamDecl, ParamKind};
+pub use settings::{
+    EPSILON_FLOOR, Epsilon, Fog, Light, LightKind, Method, Occlusion, Shadow, Trace,
+};
 
 use crate::catalog::{Bound, Ctx, Operator, Primitive};
 use crate::diag::Span;
@@ -314,7 +315,7 @@ impl Camera {
     /// The smallest hit threshold the tracers use with this camera: `EPSILON_FLOOR` times its
     /// distance from its target, above f32's resolution of positions there.
     pub fn epsilon_floor(&self) -> f64 {
-        crate::lower::tracer::EPSILON_FLOOR * (self.eye - self.target).length()
+        EPSILON_FLOOR * (self.eye - self.target).length()
     }
 }
 

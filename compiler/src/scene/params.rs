@@ -3,28 +3,6 @@
 use crate::diag::Span;
 use glam::DVec3;
 
-/// A use of one component of a parameter in an expression.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ParamRef {
-    /// Index into [`Scene::params`].
-    pub index: usize,
-    /// The component (0 for numbers).
-    pub comp: usize,
-    /// Its value where the scene was checked (the default, or the value asked for).
-    pub value: f64,
-    /// The lowest value it may take (−∞ without a declared range).
-    pub lo: f64,
-    /// The highest value it may take (+∞ without a declared range).
-    pub hi: f64,
-}
-
-impl ParamRef {
-    /// Whether the parameter was declared with a range.
-    pub fn ranged(&self) -> bool {
-        self.lo.is_finite() && self.hi.is_finite()
-    }
-}
-
 /// What kind of value a parameter holds.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ParamKind {

@@ -2,6 +2,10 @@
 
 use glam::DVec3;
 
+/// Smallest hit threshold, relative to the camera's distance from its target: keeps ε above the
+/// f32 resolution of positions there (about 6e-8 of their magnitude).
+pub const EPSILON_FLOOR: f64 = 1e-5;
+
 /// A light.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Light {

@@ -1,8 +1,8 @@
 //! Primitive bodies in naga IR: each builds `sd_<name>(p, params...)`, mirroring the f64 formula
 //! of the same catalog entry in `catalog/primitives.rs`.
 
-use super::builder::{Ex, FnBuilder};
-use crate::catalog::primitives::dodecahedron_normals;
+use crate::catalog::geometry::dodecahedron_normals;
+use crate::ir::{Ex, FnBuilder};
 use naga::{MathFunction as M, VectorSize};
 
 /// A primitive's IR body: the builder, the point, the parameters (as function arguments).
@@ -151,7 +151,7 @@ pub fn cone(b: &mut FnBuilder, p: Ex, a: &[Ex]) -> Ex {
 
 /// The 1-Lipschitz ellipsoid bound (|p / r| − 1)·min(r); radii below 1e-9 are raised to it.
 pub fn ellipsoid(b: &mut FnBuilder, p: Ex, a: &[Ex]) -> Ex {
-    let floor = b.splat3(crate::catalog::primitives::ELLIPSOID_MIN_RADIUS);
+    let floor = b.splat3(crate::catalog::geometry::ELLIPSOID_MIN_RADIUS);
     let r = b.max(a[0], floor);
     let q = b.div(p, r);
     let l = b.length(q);
@@ -248,7 +248,7 @@ pub fn mandelbulb(b: &mut FnBuilder, p: Ex, a: &[Ex]) -> Ex {
     let one = b.f(1.0);
     let pm1 = b.sub(power, one);
     let escape = match b.literal(power) {
-        Some(n) => b.f(crate::catalog::primitives::mandelbulb_radius(n)),
+        Some(n) => b.f(crate::catalog::geometry::mandelbulb_radius(n)),
         None => {
             let inv = b.div(one, pm1);
             let two = b.f(2.0);
@@ -281,7 +281,7 @@ pub fn mandelbulb(b: &mut FnBuilder, p: Ex, a: &[Ex]) -> Ex {
         let one = b.f(1.0);
         let rp1 = match b.literal(power) {
             Some(n) if n.fract() == 0.0 && (2.0..=MAX_WHOLE_POWER).contains(&n) => {
-                super::whole_power(b, rv, n as u32 - 1)
+                super::field::whole_power(b, rv, n as u32 - 1)
             }
             _ => b.math(M::Pow, &[rv, pm1]),
         };

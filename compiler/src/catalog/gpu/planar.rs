@@ -1,11 +1,11 @@
 //! IR of the 2D shapes and of `extrude` and `revolve` (`catalog/planar.rs`), operation for
 //! operation as their f64 formulas.
 
-use super::builder::{Ex, FnBuilder};
-use super::ops::{ChildLower, norm};
-use super::params;
+use super::args as params;
 use super::shapes::{extrude as extruded, triangle as triangle_2d};
+use super::{ChildLower, norm};
 use crate::catalog::Ctx;
+use crate::ir::{Ex, FnBuilder};
 use naga::{MathFunction as M, ScalarKind, VectorSize};
 
 /// |p.xy| − r

@@ -1,36 +1,15 @@
 //! Operator lowering in naga IR, inline in `map`, mirroring each catalog entry's f64 evaluation
 //! in `catalog/operators.rs`; the smooth blends call small `op_*` helper functions.
 
-use super::builder::{Ex, FnBuilder};
-use super::params;
+use super::args as params;
 use super::warp::turn;
-pub use super::warp::{bend, twist};
+use super::{ChildLower, norm, scale_by};
 use crate::catalog::Ctx;
-use crate::catalog::operators::{FALLOFF_SLOPE, rotate as rotate_point};
+use crate::catalog::geometry::{FALLOFF_SLOPE, rotate as rotate_point};
 use crate::catalog::repeat::{AxisPlan, Plan};
+use crate::ir::{Ex, FnBuilder};
 use glam::DVec3;
 use naga::{MathFunction as M, VectorSize};
-
-/// Lowers child `i` at a point; returns its raw field.
-pub type ChildLower<'a> = &'a mut dyn FnMut(&mut FnBuilder, usize, Ex) -> Ex;
-
-/// An operator's IR: builder, arguments, point, children.
-pub type OpLower = fn(&mut FnBuilder, &Ctx, Ex, ChildLower) -> Ex;
-
-/// Child `i` at `p` divided by its λ (no division when λ = 1).
-pub(super) fn norm(b: &mut FnBuilder, c: &Ctx, child: ChildLower, i: usize, p: Ex) -> Ex {
-    let d = child(b, i, p);
-    scale_by(b, d, 1.0 / c.child_lambda[i])
-}
-
-/// d·k, skipped when k = 1.
-pub fn scale_by(b: &mut FnBuilder, d: Ex, k: f64) -> Ex {
-    if k == 1.0 {
-        return d;
-    }
-    let k = b.f(k);
-    b.mul(d, k)
-}
 
 fn fold(
     b: &mut FnBuilder,

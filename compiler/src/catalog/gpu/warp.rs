@@ -1,10 +1,10 @@
 //! The warps' lowering (`twist`, `bend`), as `catalog::warp` evaluates them, and the plane
 //! turn they share with `rotate` about a coordinate axis.
 
-use super::builder::{Ex, FnBuilder};
-use super::ops::{ChildLower, scale_by};
+use super::{ChildLower, scale_by};
 use crate::catalog::Ctx;
-use crate::catalog::operators::twist_stretch;
+use crate::catalog::warp::twist_stretch;
+use crate::ir::{Ex, FnBuilder};
 use glam::DVec3;
 use naga::MathFunction as M;
 

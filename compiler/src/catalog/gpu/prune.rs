@@ -1,10 +1,10 @@
 //! A union's bounding-volume tree in IR (`catalog::prune`): the parts outside the tree first,
 //! then each group of parts behind a test of its box against the running minimum.
 
-use super::builder::{Ex, FnBuilder};
-use super::ops::{ChildLower, norm};
+use super::{ChildLower, norm};
 use crate::catalog::Ctx;
 use crate::catalog::prune::{Group, Inside, Tree};
+use crate::ir::{Ex, FnBuilder};
 
 /// The union by `tree`: `d` starts at f32's largest value and takes the minimum with each
 /// child evaluated.

@@ -1,8 +1,8 @@
 //! IR bodies of the primitives in `catalog/shapes.rs`, each mirroring its f64 formula
 //! operation for operation (GLSL's `sign`, 0 at 0, is the CPU's `sign0`).
 
-use super::builder::{Ex, FnBuilder};
-use crate::catalog::shapes::HEX_FOLD;
+use crate::catalog::geometry::HEX_FOLD;
+use crate::ir::{Ex, FnBuilder};
 use naga::MathFunction as M;
 
 /// The extrusion of a 2D distance `d` to `half` along the coordinate `w`.

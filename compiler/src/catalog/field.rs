@@ -1,10 +1,35 @@
 //! Expressions of the coordinates and of parameters: `implicit` bodies and arguments computed
 //! from parameters at run time.
 
-use super::ParamRef;
-use crate::catalog::MathFn;
+use super::MathFn;
 use crate::syntax::BinOp;
 use glam::DVec3;
+
+/// The largest |n| for which the shaders multiply out `a ^ n` with a whole n (WGSL's `pow` is
+/// undefined for negative bases), so that it agrees with the CPU's `powf`, exact there.
+pub const MAX_WHOLE_POWER: f64 = 64.0;
+
+/// A use of one component of a parameter in an expression.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ParamRef {
+    /// Index into [`crate::scene::Scene::params`].
+    pub index: usize,
+    /// The component (0 for numbers).
+    pub comp: usize,
+    /// Its value where the scene was checked (the default, or the value asked for).
+    pub value: f64,
+    /// The lowest value it may take (−∞ without a declared range).
+    pub lo: f64,
+    /// The highest value it may take (+∞ without a declared range).
+    pub hi: f64,
+}
+
+impl ParamRef {
+    /// Whether the parameter was declared with a range.
+    pub fn ranged(&self) -> bool {
+        self.lo.is_finite() && self.hi.is_finite()
+    }
+}
 
 /// An expression of the coordinates x, y, z (the body of `implicit`), constants folded.
 #[derive(Clone, Debug, PartialEq)]
