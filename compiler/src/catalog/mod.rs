@@ -17,6 +17,7 @@ pub mod prune;
 pub mod repeat;
 pub mod shapes;
 mod symmetry;
+pub mod traits;
 mod warp;
 
 pub use bound::Bound;
@@ -401,6 +402,8 @@ pub struct Primitive {
     /// rather than as parameters: its lowering makes faster code from known values (the
     /// Mandelbulb's whole powers multiplied out).
     pub bake: bool,
+    /// Whether it is a 2D shape: in the xy plane, the same at every z (`catalog/planar.rs`).
+    pub planar: bool,
     /// Whether |∇f| = λ almost everywhere (exact fields, and estimates built to be distances):
     /// then f/λ < ε means the surface is within ε to first order (see
     /// [`Operator::unit_gradient`]).
@@ -461,6 +464,8 @@ pub struct Operator {
     pub fixed_args: bool,
     /// The same field in naga IR.
     pub lower: gpu::OpLower,
+    /// What the checker and the lowering do with it besides its field.
+    pub traits: traits::Traits,
 }
 
 /// Looks up a primitive by name.

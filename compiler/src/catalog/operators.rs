@@ -11,6 +11,7 @@ use super::gpu::ops as ir;
 use super::symmetry::{
     CHILD, EVERY, NONE, SWAP_CHILD, SWAP_EVERY, and, rotated_mirror, rotated_swap,
 };
+use super::traits::{Helper, Motion, PLAIN, Plane, PlaneRule, Traits};
 use super::warp::{bend_point, twist_point, twist_stretch, warp, warp_lambda};
 use super::{
     Arity, Bound, ChildEval, Ctx, MatRule, NO_SWAP, Operator, Ty, Val, equal_pairs, opt, req,
@@ -80,6 +81,11 @@ pub static OPERATORS: &[Operator] = &[
     Operator {
         name: "union",
         fixed_args: false,
+        traits: Traits {
+            groups: true,
+            plane: Plane::Keeps,
+            ..PLAIN
+        },
         materials: MatRule::Nearest,
         unit_gradient: KEEPS,
         keeps_exact: KEEPS,
@@ -100,6 +106,10 @@ pub static OPERATORS: &[Operator] = &[
     Operator {
         name: "intersect",
         fixed_args: false,
+        traits: Traits {
+            plane: Plane::Keeps,
+            ..PLAIN
+        },
         materials: MatRule::Farthest,
         unit_gradient: KEEPS,
         keeps_exact: SHORTENS,
@@ -116,6 +126,10 @@ pub static OPERATORS: &[Operator] = &[
     Operator {
         name: "subtract",
         fixed_args: false,
+        traits: Traits {
+            plane: Plane::Keeps,
+            ..PLAIN
+        },
         materials: MatRule::Cut,
         unit_gradient: KEEPS,
         keeps_exact: SHORTENS,
@@ -133,6 +147,10 @@ pub static OPERATORS: &[Operator] = &[
     Operator {
         name: "complement",
         fixed_args: false,
+        traits: Traits {
+            plane: Plane::Keeps,
+            ..PLAIN
+        },
         materials: MatRule::Pass,
         unit_gradient: KEEPS,
         keeps_exact: SHORTENS,
@@ -149,6 +167,14 @@ pub static OPERATORS: &[Operator] = &[
     Operator {
         name: "smooth_union",
         fixed_args: false,
+        traits: Traits {
+            plane: Plane::Keeps,
+            helper: Some(Helper {
+                name: "op_smooth_union",
+                body: ir::smooth_min_body,
+            }),
+            ..PLAIN
+        },
         materials: MatRule::SmoothNearest,
         unit_gradient: SHORTENS,
         keeps_exact: SHORTENS,
@@ -166,6 +192,14 @@ pub static OPERATORS: &[Operator] = &[
     Operator {
         name: "smooth_intersect",
         fixed_args: false,
+        traits: Traits {
+            plane: Plane::Keeps,
+            helper: Some(Helper {
+                name: "op_smooth_intersect",
+                body: ir::smooth_max_body,
+            }),
+            ..PLAIN
+        },
         materials: MatRule::SmoothFarthest,
         unit_gradient: SHORTENS,
         keeps_exact: SHORTENS,
@@ -182,6 +216,14 @@ pub static OPERATORS: &[Operator] = &[
     Operator {
         name: "smooth_subtract",
         fixed_args: false,
+        traits: Traits {
+            plane: Plane::Keeps,
+            helper: Some(Helper {
+                name: "op_smooth_intersect",
+                body: ir::smooth_max_body,
+            }),
+            ..PLAIN
+        },
         materials: MatRule::SmoothCut,
         unit_gradient: SHORTENS,
         keeps_exact: SHORTENS,
@@ -198,6 +240,10 @@ pub static OPERATORS: &[Operator] = &[
     Operator {
         name: "mix",
         fixed_args: false,
+        traits: Traits {
+            plane: Plane::Keeps,
+            ..PLAIN
+        },
         materials: MatRule::Weighted,
         unit_gradient: SHORTENS,
         keeps_exact: SHORTENS,
@@ -218,6 +264,10 @@ pub static OPERATORS: &[Operator] = &[
     Operator {
         name: "blob",
         fixed_args: false,
+        traits: Traits {
+            plane: Plane::Keeps,
+            ..PLAIN
+        },
         materials: MatRule::Nearest,
         unit_gradient: SHORTENS,
         keeps_exact: SHORTENS,
@@ -251,6 +301,11 @@ pub static OPERATORS: &[Operator] = &[
     Operator {
         name: "translate",
         fixed_args: false,
+        traits: Traits {
+            motion: Motion::Move,
+            plane: Plane::Keeps,
+            ..PLAIN
+        },
         materials: MatRule::Pass,
         unit_gradient: KEEPS,
         keeps_exact: KEEPS,
@@ -267,6 +322,15 @@ pub static OPERATORS: &[Operator] = &[
     Operator {
         name: "rotate",
         fixed_args: false,
+        traits: Traits {
+            motion: Motion::Turn,
+            plane: Plane::KeepsIf(PlaneRule {
+                keeps: |a| (a.z.abs() - 1.0).abs() <= 1e-12,
+                message: "a 2D shape turns only in its plane",
+                help: "turn it about `z`, or turn the solid after `extrude` or `revolve`",
+            }),
+            ..PLAIN
+        },
         materials: MatRule::Pass,
         unit_gradient: KEEPS,
         keeps_exact: KEEPS,
@@ -283,6 +347,11 @@ pub static OPERATORS: &[Operator] = &[
     Operator {
         name: "scale",
         fixed_args: false,
+        traits: Traits {
+            motion: Motion::Scale,
+            plane: Plane::Keeps,
+            ..PLAIN
+        },
         materials: MatRule::Pass,
         unit_gradient: |c| c.vec(0).min_element() == c.vec(0).max_element(),
         keeps_exact: |c| c.vec(0).min_element() == c.vec(0).max_element(),
@@ -308,6 +377,18 @@ pub static OPERATORS: &[Operator] = &[
     Operator {
         name: "repeat",
         fixed_args: true,
+        traits: Traits {
+            plane: Plane::KeepsIf(PlaneRule {
+                keeps: |a| a.z == 0.0,
+                message: "a 2D shape repeats only in its plane",
+                help: "give the spacing 0 along z: `repeat((sx, sy, 0)) { … }`",
+            }),
+            copies: Some(super::repeat::COPIES),
+            unbounded: Some(
+                "`repeat` can only be bounded when its shape is bounded along the repeated axes",
+            ),
+            ..PLAIN
+        },
         materials: MatRule::Pass,
         unit_gradient: KEEPS,
         keeps_exact: KEEPS,
@@ -345,6 +426,14 @@ pub static OPERATORS: &[Operator] = &[
     Operator {
         name: "mirror",
         fixed_args: false,
+        traits: Traits {
+            plane: Plane::KeepsIf(PlaneRule {
+                keeps: |a| a.z == 0.0 || (a.z.abs() - 1.0).abs() <= 1e-12,
+                message: "a 2D shape mirrors only within its plane",
+                help: "mirror it across a plane through the z axis (a normal `(x, y, 0)`), or mirror the solid",
+            }),
+            ..PLAIN
+        },
         materials: MatRule::Pass,
         unit_gradient: KEEPS,
         keeps_exact: SHORTENS,
@@ -378,6 +467,10 @@ pub static OPERATORS: &[Operator] = &[
     Operator {
         name: "twist",
         fixed_args: true,
+        traits: Traits {
+            unbounded: Some("`twist` can only be bounded when its shape is bounded"),
+            ..PLAIN
+        },
         materials: MatRule::Pass,
         unit_gradient: SHORTENS,
         keeps_exact: SHORTENS,
@@ -408,6 +501,10 @@ pub static OPERATORS: &[Operator] = &[
     Operator {
         name: "bend",
         fixed_args: true,
+        traits: Traits {
+            unbounded: Some("`bend` can only be bounded when its shape is bounded"),
+            ..PLAIN
+        },
         materials: MatRule::Pass,
         unit_gradient: SHORTENS,
         keeps_exact: SHORTENS,
@@ -436,6 +533,10 @@ pub static OPERATORS: &[Operator] = &[
     Operator {
         name: "round",
         fixed_args: false,
+        traits: Traits {
+            plane: Plane::Keeps,
+            ..PLAIN
+        },
         materials: MatRule::Pass,
         unit_gradient: KEEPS,
         keeps_exact: KEEPS,
@@ -452,6 +553,10 @@ pub static OPERATORS: &[Operator] = &[
     Operator {
         name: "onion",
         fixed_args: false,
+        traits: Traits {
+            plane: Plane::Keeps,
+            ..PLAIN
+        },
         materials: MatRule::Pass,
         unit_gradient: KEEPS,
         keeps_exact: KEEPS,
@@ -468,6 +573,10 @@ pub static OPERATORS: &[Operator] = &[
     Operator {
         name: "elongate",
         fixed_args: false,
+        traits: Traits {
+            plane: Plane::Keeps,
+            ..PLAIN
+        },
         materials: MatRule::Pass,
         unit_gradient: |c| (0..3).all(|i| c.vec(0)[i] == 0.0 || c.child_mirror[0][i]),
         keeps_exact: SHORTENS,

@@ -6,6 +6,7 @@
 
 use super::gpu::planar as ir;
 use super::shapes::sign0;
+use super::traits::{PLAIN, Plane, Traits};
 use super::{Arity, Bound, MatRule, NO_SWAP, Operator, Primitive, Ty, Val, opt, shapes};
 use glam::{DVec2, DVec3};
 use std::f64::consts::PI;
@@ -14,43 +15,32 @@ const fn num(x: f64) -> Val {
     Val::Num(x)
 }
 
-/// The 2D primitives.
-pub const PRIMITIVES_2D: &[&str] = &["circle", "rectangle", "polygon", "triangle"];
-
-/// Operators that keep a 2D shape 2D (its children all 2D); `rotate` only about z.
-const KEEP_PLANAR: &[&str] = &[
-    "union",
-    "intersect",
-    "subtract",
-    "complement",
-    "smooth_union",
-    "smooth_intersect",
-    "smooth_subtract",
-    "mix",
-    "blob",
-    "translate",
-    "rotate",
-    "scale",
-    "mirror",
-    "round",
-    "onion",
-    "repeat",
-    "elongate",
-];
+/// The 2D primitives' names, in the catalog's order.
+pub fn primitives_2d() -> impl Iterator<Item = &'static str> {
+    super::PRIMITIVES
+        .iter()
+        .filter(|p| p.planar)
+        .map(|p| p.name)
+}
 
 /// Whether a primitive is 2D.
 pub fn is_planar_primitive(name: &str) -> bool {
-    PRIMITIVES_2D.contains(&name)
+    super::primitive(name).is_some_and(|p| p.planar)
 }
 
 /// Whether an operator of 2D shapes gives a 2D shape (`extrude` and `revolve` give solids).
 pub fn keeps_planar(name: &str) -> bool {
-    KEEP_PLANAR.contains(&name)
+    super::operator(name).is_some_and(|o| {
+        matches!(
+            o.traits.plane,
+            super::traits::Plane::Keeps | super::traits::Plane::KeepsIf(_)
+        )
+    })
 }
 
 /// Whether an operator takes 2D shapes only.
 pub fn takes_planar(name: &str) -> bool {
-    matches!(name, "extrude" | "revolve")
+    super::operator(name).is_some_and(|o| matches!(o.traits.plane, super::traits::Plane::Makes))
 }
 
 /// The bound of a 2D shape within `lo..hi` of the plane: every z.
@@ -90,6 +80,7 @@ pub const CIRCLE: Primitive = Primitive {
     doc: "2D: a disc of `radius` in the xy plane, centred (extrude or revolve it).",
     params: &[opt("radius", Ty::Length, num(0.5))],
     bake: false,
+    planar: true,
     exact: true,
     unit_gradient: |_| true,
     lipschitz: |_| 1.0,
@@ -109,6 +100,7 @@ pub const RECTANGLE: Primitive = Primitive {
         opt("height", Ty::Length, num(1.0)),
     ],
     bake: false,
+    planar: true,
     exact: true,
     unit_gradient: |_| true,
     lipschitz: |_| 1.0,
@@ -131,6 +123,7 @@ pub const POLYGON: Primitive = Primitive {
         opt("radius", Ty::Length, num(0.5)),
     ],
     bake: false,
+    planar: true,
     exact: true,
     unit_gradient: |_| true,
     lipschitz: |_| 1.0,
@@ -147,6 +140,7 @@ pub const TRIANGLE: Primitive = Primitive {
     doc: "2D: an equilateral triangle of side `size`, apex up (+y), centroid at the origin.",
     params: &[opt("size", Ty::Length, num(1.0))],
     bake: false,
+    planar: true,
     exact: true,
     unit_gradient: |_| true,
     lipschitz: |_| 1.0,
@@ -167,6 +161,10 @@ pub const TRIANGLE: Primitive = Primitive {
 pub const EXTRUDE: Operator = Operator {
     name: "extrude",
     fixed_args: false,
+    traits: Traits {
+        plane: Plane::Makes,
+        ..PLAIN
+    },
     materials: MatRule::Pass,
     unit_gradient: |_| true,
     keeps_exact: |_| true,
@@ -197,6 +195,10 @@ pub const EXTRUDE: Operator = Operator {
 pub const REVOLVE: Operator = Operator {
     name: "revolve",
     fixed_args: false,
+    traits: Traits {
+        plane: Plane::Makes,
+        ..PLAIN
+    },
     materials: MatRule::Pass,
     unit_gradient: |_| true,
     keeps_exact: |c| c.child_bound[0].lo.x >= -c.num(0),

@@ -16,6 +16,7 @@
 //! copies are evaluated. Turns keep distances, so λ is the shape's.
 
 use super::repeat::{PolarPlan, polar_extent as extent, polar_plan as plan};
+use super::traits::{PLAIN, Traits};
 use super::{Arity, Bound, ChildEval, Ctx, MatRule, NO_SWAP, Operator, Ty, req};
 use glam::{DVec2, DVec3};
 
@@ -80,6 +81,10 @@ fn bound(c: &Ctx) -> Bound {
 pub const REPEAT_POLAR: Operator = Operator {
     name: "repeat_polar",
     fixed_args: true,
+    traits: Traits {
+        copies: Some(super::repeat::POLAR_COPIES),
+        ..PLAIN
+    },
     materials: MatRule::Pass,
     unit_gradient: |_| true,
     keeps_exact: |_| true,

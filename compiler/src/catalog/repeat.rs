@@ -15,7 +15,9 @@
 //!   ⌊(hi − lo)/s⌋ + 3 copies, unrolled; no copy outside it is nearer, so the result is the
 //!   union's field for exact shapes, and a bound at every point for any shape.
 
+use super::traits::Copies;
 use super::{Bound, ChildEval, Ctx};
+use crate::diag::{Diagnostic, Span};
 use glam::{DVec2, DVec3};
 use std::f64::consts::{PI, TAU};
 
@@ -164,6 +166,57 @@ pub fn field(c: &Ctx, p: DVec3, child: ChildEval) -> f64 {
 /// floor(x + 0.5): the rounding the shaders use too, so cells agree at exact halves.
 pub fn round_half_up(x: f64) -> f64 {
     (x + 0.5).floor()
+}
+
+/// `repeat`'s copies per evaluation: its plan's; more than [`MAX_COPIES`] is an error.
+pub const COPIES: Copies = Copies {
+    count: |c| Plan::new(c).copies(),
+    diagnose: too_many_cells,
+};
+
+fn too_many_cells(c: &Ctx, copies: f64, span: Span) -> Vec<Diagnostic> {
+    if copies <= MAX_COPIES as f64 {
+        return Vec::new();
+    }
+    let size = c.child_bound[0].hi - c.child_bound[0].lo;
+    let s = c.vec(0);
+    vec![
+        Diagnostic::error(span, "the repeated shape spans too many cells")
+            .label(format!(
+                "each evaluation would look at {copies:.0} copies (the shape is {:.3} × {:.3} × {:.3}, the spacing {} × {} × {})",
+                size.x, size.y, size.z, s.x, s.y, s.z
+            ))
+            .note(format!("at most {MAX_COPIES} copies are evaluated per point"))
+            .help("use a larger spacing, or a smaller shape"),
+    ]
+}
+
+/// `repeat_polar`'s copies per evaluation: its plan's; more than [`MAX_COPIES`] is an error,
+/// and every copy of an unbounded shape a warning.
+pub const POLAR_COPIES: Copies = Copies {
+    count: polar_copies,
+    diagnose: too_many_sectors,
+};
+
+fn too_many_sectors(c: &Ctx, copies: f64, span: Span) -> Vec<Diagnostic> {
+    let mut out = Vec::new();
+    if copies > MAX_COPIES as f64 {
+        out.push(
+            Diagnostic::error(span, "the turned shape spans too many sectors")
+                .label(format!("each evaluation would look at {copies:.0} copies"))
+                .note(format!("at most {MAX_COPIES} copies are evaluated per point; a shape around the y axis needs every copy"))
+                .help("use fewer copies, or move the shape away from the axis (`at (r, 0, 0)`)"),
+        );
+    }
+    if copies > 4.0 && !c.child_bound[0].is_finite() {
+        out.push(
+            Diagnostic::warning(span, format!("every one of the {copies:.0} copies is evaluated at every point"))
+                .label("the shape's bound is not known")
+                .note("with a bounded shape only the own sector, or the few copies that can be nearest, are evaluated; a smooth blend, `round` or `onion` of a shape whose field is not a distance has no bound")
+                .help("use `union` instead of a smooth blend inside the repeated shape"),
+        );
+    }
+    out
 }
 
 /// How a `repeat_polar` node is evaluated.

@@ -3,7 +3,7 @@
 //! plane, and is never a shape of the scene by itself.
 
 use super::Checker;
-use crate::catalog::planar::{PRIMITIVES_2D, is_planar_primitive, keeps_planar, takes_planar};
+use crate::catalog::planar::{is_planar_primitive, keeps_planar, primitives_2d, takes_planar};
 use crate::diag::{Diagnostic, Span};
 use crate::scene::{NodeId, NodeKind};
 
@@ -39,8 +39,7 @@ impl Checker<'_> {
         if takes_planar(name) {
             if let Some(i) = flat.iter().position(|f| !f) {
                 let c = self.nodes[children[i]].span;
-                let shapes_2d = PRIMITIVES_2D
-                    .iter()
+                let shapes_2d = primitives_2d()
                     .map(|n| format!("`{n}`"))
                     .collect::<Vec<_>>()
                     .join(", ");

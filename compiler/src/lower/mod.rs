@@ -25,7 +25,8 @@ mod texture;
 pub mod tracer;
 mod variants;
 
-use crate::catalog::gpu::{args, field, ops};
+use crate::catalog::gpu::{args, field};
+use crate::catalog::traits::Helper;
 use crate::catalog::{Ctx, Ty, Val};
 use crate::ir::builder::{self, Ex, FnBuilder, ModuleBuilder};
 use crate::scene::{NodeId, NodeKind, Scene};
@@ -248,10 +249,8 @@ fn add_operator_helpers(mb: &mut ModuleBuilder, scene: &Scene, reachable: &[Node
         let NodeKind::Operator { op, .. } = &scene.nodes[n].kind else {
             continue;
         };
-        let (name, body): (&str, fn(&mut FnBuilder) -> Ex) = match op.name {
-            "smooth_union" => ("op_smooth_union", ops::smooth_min_body),
-            "smooth_intersect" | "smooth_subtract" => ("op_smooth_intersect", ops::smooth_max_body),
-            _ => continue,
+        let Some(Helper { name, body }) = op.traits.helper else {
+            continue;
         };
         if mb.has_helper(name) {
             continue;
