@@ -2,12 +2,14 @@
 //! default arguments, each typed by its declaration or its default's literal, every problem
 //! reported at the call with the definition beside it.
 
-use super::functions::TYPES;
 use super::params::SymKind;
 use super::{Checker, Dim, Value};
 use crate::diag::{Diagnostic, Span, did_you_mean};
 use crate::scene::NodeId;
 use crate::syntax::{Call, Expr, ExprKind, FnDef, FnParam};
+
+/// The types a parameter may declare.
+pub(super) const TYPES: &[&str] = &["number", "angle", "vector", "color", "shape"];
 
 impl Checker<'_> {
     /// The arguments of a call by parameter (none where the default applies), each checked in

@@ -4,6 +4,7 @@
 //! materials flow through a call exactly as through `let`. Errors in a body are shown at the
 //! body with the call beside them; recursion is refused.
 
+use super::fn_args::TYPES;
 use super::{Checker, Value};
 use crate::diag::{Diagnostic, Span, did_you_mean};
 use crate::scene::NodeId;
@@ -16,9 +17,6 @@ pub const MAX_CALLS: usize = 100_000;
 
 /// Most calls of a chain a diagnostic in a body shows.
 const MAX_CALL_LABELS: usize = 3;
-
-/// The types a parameter may declare.
-pub(super) const TYPES: &[&str] = &["number", "angle", "vector", "color", "shape"];
 
 /// A declared function.
 pub(super) struct FnEntry<'a> {
