@@ -3,6 +3,7 @@
 
 mod absorb;
 mod args;
+mod arith;
 mod call;
 mod derived;
 mod expr;
@@ -11,6 +12,7 @@ mod functions;
 mod implicit;
 mod lattice;
 mod look;
+mod names;
 mod nodes;
 mod param_args;
 mod params;
