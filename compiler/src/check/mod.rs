@@ -5,6 +5,7 @@ mod absorb;
 mod args;
 mod arith;
 mod call;
+mod convert;
 mod derived;
 mod expr;
 mod fn_args;
