@@ -16,6 +16,7 @@ mod look;
 mod names;
 mod nodes;
 mod param_args;
+mod param_decl;
 mod params;
 mod planar;
 mod ranges;

@@ -132,14 +132,32 @@ impl Checker<'_> {
         let rules =
             self.rules_over_ranges(&ctx, span, name, &|c| ranges::Rules::operator(op, c))?;
         let (lambda, bound) = (rules.lambda, rules.bound);
-        let copies = match name {
+        let copies = self.copies_of(name, &ctx, span);
+        let each: f64 = children.iter().map(|&c| self.nodes[c].evaluations).sum();
+        let evaluations = each * copies;
+        self.check_evaluations(&children, evaluations, span);
+        let id = self.push_node(
+            NodeKind::Operator { op, ctx, children },
+            lambda,
+            bound,
+            span,
+        )?;
+        self.nodes[id].evaluations = evaluations;
+        self.narrow_rules(id, &rules);
+        Some(id)
+    }
+
+    /// How many copies of its child an operator evaluates at a point (1 but for the repeats,
+    /// whose copies are checked against their limits).
+    fn copies_of(&mut self, name: &str, ctx: &Ctx, span: Span) -> f64 {
+        match name {
             "repeat" => {
-                let copies = crate::catalog::repeat::Plan::new(&ctx).copies();
-                self.check_repeat_copies(&ctx, copies, span);
+                let copies = crate::catalog::repeat::Plan::new(ctx).copies();
+                self.check_repeat_copies(ctx, copies, span);
                 copies
             }
             "repeat_polar" => {
-                let copies = crate::catalog::polar::copies(&ctx);
+                let copies = crate::catalog::polar::copies(ctx);
                 self.check_polar_copies(copies, span);
                 if copies > 4.0 && !ctx.child_bound[0].is_finite() {
                     self.diags.push(
@@ -152,9 +170,12 @@ impl Checker<'_> {
                 copies
             }
             _ => 1.0,
-        };
-        let each: f64 = children.iter().map(|&c| self.nodes[c].evaluations).sum();
-        let evaluations = each * copies;
+        }
+    }
+
+    /// An error when a node of `evaluations` primitive evaluations goes past
+    /// [`MAX_EVALUATIONS`] (once: at the node whose children are all within it).
+    fn check_evaluations(&mut self, children: &[NodeId], evaluations: f64, span: Span) {
         if evaluations > MAX_EVALUATIONS
             && children
                 .iter()
@@ -171,15 +192,6 @@ impl Checker<'_> {
                     .help("use a shape fewer times, or fewer copies"),
             );
         }
-        let id = self.push_node(
-            NodeKind::Operator { op, ctx, children },
-            lambda,
-            bound,
-            span,
-        )?;
-        self.nodes[id].evaluations = evaluations;
-        self.narrow_rules(id, &rules);
-        Some(id)
     }
 
     /// A node's symmetries, exactness and gradient as every value of its parameters has them.

@@ -37,24 +37,7 @@ impl Checker<'_> {
     ) -> Result<(), ()> {
         let flat: Vec<bool> = children.iter().map(|&c| self.is_planar(c)).collect();
         if takes_planar(name) {
-            if let Some(i) = flat.iter().position(|f| !f) {
-                let c = self.nodes[children[i]].span;
-                let shapes_2d = PRIMITIVES_2D
-                    .iter()
-                    .map(|n| format!("`{n}`"))
-                    .collect::<Vec<_>>()
-                    .join(", ");
-                self.diags.push(
-                    Diagnostic::error(c, format!("`{name}` makes a solid of a 2D shape"))
-                        .label("this is already a solid")
-                        .also(span, format!("`{name}` here"))
-                        .note(format!(
-                            "the 2D shapes are {shapes_2d}, and what operators make of them"
-                        )),
-                );
-                return Err(());
-            }
-            return Ok(());
+            return self.check_takes_planar(name, &flat, children, span);
         }
         if !flat.iter().any(|&f| f) {
             return Ok(());
@@ -81,6 +64,46 @@ impl Checker<'_> {
             );
             return Err(());
         }
+        self.check_in_plane(name, axis, c, span)
+    }
+
+    /// `extrude`/`revolve` (`name`) of children (`flat`: which are 2D): an error for a solid.
+    fn check_takes_planar(
+        &mut self,
+        name: &str,
+        flat: &[bool],
+        children: &[NodeId],
+        span: Span,
+    ) -> Result<(), ()> {
+        if let Some(i) = flat.iter().position(|f| !f) {
+            let c = self.nodes[children[i]].span;
+            let shapes_2d = PRIMITIVES_2D
+                .iter()
+                .map(|n| format!("`{n}`"))
+                .collect::<Vec<_>>()
+                .join(", ");
+            self.diags.push(
+                Diagnostic::error(c, format!("`{name}` makes a solid of a 2D shape"))
+                    .label("this is already a solid")
+                    .also(span, format!("`{name}` here"))
+                    .note(format!(
+                        "the 2D shapes are {shapes_2d}, and what operators make of them"
+                    )),
+            );
+            return Err(());
+        }
+        Ok(())
+    }
+
+    /// A 2D shape (at `c`) turned, mirrored or repeated by `name` about or along `axis` (and
+    /// whether that is set at run time): an error unless it stays in its plane.
+    fn check_in_plane(
+        &mut self,
+        name: &str,
+        axis: Option<(glam::DVec3, bool)>,
+        c: Span,
+        span: Span,
+    ) -> Result<(), ()> {
         // A 2D shape must stay the same at every z (extrude's λ = 1 rests on it): turns only
         // about z, mirrors only across planes that contain z or are across it, repeats only in
         // its plane — and none of these set at run time.
