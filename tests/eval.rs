@@ -443,7 +443,7 @@ fn every_primitive_bound_holds_its_solid() {
                 .map(|(p, a)| format!("{} = {a}", p.name))
                 .collect();
             let mut source = format!("{}({})", prim.name, named.join(", "));
-            let planar = sdfc_compiler::catalog::planar::is_planar_primitive(prim.name);
+            let planar = prim.planar;
             if planar {
                 source = format!("extrude(2) {{ {source} }}");
             }

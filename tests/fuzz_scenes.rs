@@ -87,7 +87,7 @@ fn shape(r: &mut Rng, depth: usize) -> String {
     if depth == 0 || r.below(3) == 0 {
         let p = r.pick(PRIMITIVES);
         let s = format!("{}({})", p.name, args(r, p.params));
-        let s = if sdfc_compiler::catalog::planar::is_planar_primitive(p.name) {
+        let s = if p.planar {
             sdfc_tests::solid_of_2d(r, s)
         } else {
             s

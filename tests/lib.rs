@@ -121,7 +121,10 @@ pub fn operator_block(
     // `extrude` and `revolve` take 2D shapes: made by `solid_of_2d` where one is drawn.
     let op = loop {
         let op = r.pick(OPERATORS);
-        if !sdfc_compiler::catalog::planar::takes_planar(op.name) {
+        if !matches!(
+            op.traits.plane,
+            sdfc_compiler::catalog::traits::Plane::Makes
+        ) {
             break op;
         }
     };

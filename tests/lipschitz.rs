@@ -81,7 +81,7 @@ fn crowd_source(seed: u64) -> String {
                 let p = r.pick(PRIMITIVES);
                 match p.name {
                     "mandelbulb" => "sphere(0.5)".to_string(),
-                    name if sdfc_compiler::catalog::planar::is_planar_primitive(name) => {
+                    _ if p.planar => {
                         let s = format!("{}({})", p.name, args(&mut r, p.name, p.params));
                         sdfc_tests::solid_of_2d(&mut r, s)
                     }

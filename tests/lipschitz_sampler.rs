@@ -201,7 +201,7 @@ pub(crate) fn shape(r: &mut Rng, depth: usize) -> String {
                 return shape(r, depth);
             }
             let s = format!("{}({})", p.name, args(r, p.name, p.params));
-            if sdfc_compiler::catalog::planar::is_planar_primitive(p.name) {
+            if p.planar {
                 sdfc_tests::solid_of_2d(r, s)
             } else {
                 s

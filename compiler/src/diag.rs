@@ -1,43 +1,10 @@
 //! Diagnostics: errors and warnings with source spans, rendered with codespan-reporting.
 
 use crate::source::Sources;
+pub use crate::source::Span;
 use codespan_reporting::diagnostic as cs;
 use codespan_reporting::files::SimpleFiles;
 use codespan_reporting::term;
-
-/// A byte range in the source text.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
-pub struct Span {
-    /// First byte.
-    pub start: usize,
-    /// One past the last byte.
-    pub end: usize,
-}
-
-impl Span {
-    /// The span from `start` to `end`.
-    pub fn new(start: usize, end: usize) -> Span {
-        Span { start, end }
-    }
-
-    /// Whether `other` lies within this span.
-    pub fn contains(self, other: Span) -> bool {
-        self.start <= other.start && other.end <= self.end
-    }
-
-    /// The smallest span covering both.
-    pub fn to(self, other: Span) -> Span {
-        Span::new(self.start.min(other.start), self.end.max(other.end))
-    }
-}
-
-impl From<pest::Span<'_>> for Span {
-    /// pest spans of rules ending in an optional part include the whitespace before it; trim it.
-    fn from(s: pest::Span<'_>) -> Span {
-        let text = s.as_str();
-        Span::new(s.start(), s.start() + text.trim_end().len())
-    }
-}
 
 /// How bad a diagnostic is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

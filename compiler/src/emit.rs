@@ -251,30 +251,7 @@ pub fn write_with(
         // empty fragment one for GLSL ES 3.00, which has no compute); the library functions are
         // written beside it.
         Target::Glsl | Target::Spirv if entry == Entry::Library => {
-            let mut m = module.clone();
-            let fragment = target == Target::Glsl && !settings.glsl_version.has_compute();
-            m.entry_points.push(naga::EntryPoint {
-                name: "main".into(),
-                stage: if fragment {
-                    naga::ShaderStage::Fragment
-                } else {
-                    naga::ShaderStage::Compute
-                },
-                early_depth_test: None,
-                workgroup_size: if fragment { [0, 0, 0] } else { [1, 1, 1] },
-                workgroup_size_overrides: None,
-                function: touching_globals(&m),
-                mesh_info: None,
-                task_payload: None,
-                incoming_ray_payload: None,
-            });
-            let info = validate(&m)?;
-            let as_entry = if fragment {
-                Entry::Fragment
-            } else {
-                Entry::Compute
-            };
-            write_with(&m, &info, target, as_entry, settings)
+            write_library_with_main(module, target, settings)
         }
         Target::Wgsl => back::wgsl::write_string(module, info, back::wgsl::WriterFlags::empty())
             .map(Output::Text)
@@ -292,30 +269,7 @@ pub fn write_with(
                 .map(Output::Binary)
                 .map_err(|e| err(&e))
         }
-        Target::Glsl => {
-            let options = back::glsl::Options {
-                version: settings.glsl_version.naga(),
-                binding_map: glsl_bindings(module),
-                ..Default::default()
-            };
-            let pipeline = back::glsl::PipelineOptions {
-                shader_stage: stage,
-                entry_point: "main".into(),
-                multiview: None,
-            };
-            let mut s = String::new();
-            back::glsl::Writer::new(
-                &mut s,
-                module,
-                info,
-                &options,
-                &pipeline,
-                naga::proc::BoundsCheckPolicies::default(),
-            )
-            .and_then(|mut w| w.write().map(|_| ()))
-            .map_err(|e| err(&e))?;
-            Ok(Output::Text(s))
-        }
+        Target::Glsl => write_glsl(module, info, stage, settings).map_err(|e| err(&e)),
         Target::Msl => {
             let options = back::msl::Options {
                 per_entry_point_map: msl_bindings(module),
@@ -336,4 +290,68 @@ pub fn write_with(
             Ok(Output::Text(s))
         }
     }
+}
+
+/// A library for SPIR-V or GLSL, which need an entry point: written with an empty compute
+/// `main` (an empty fragment one for GLSL ES 3.00, which has no compute) touching every global;
+/// the library functions are written beside it.
+fn write_library_with_main(
+    module: &naga::Module,
+    target: Target,
+    settings: &Settings,
+) -> Result<Output, InternalError> {
+    let mut m = module.clone();
+    let fragment = target == Target::Glsl && !settings.glsl_version.has_compute();
+    m.entry_points.push(naga::EntryPoint {
+        name: "main".into(),
+        stage: if fragment {
+            naga::ShaderStage::Fragment
+        } else {
+            naga::ShaderStage::Compute
+        },
+        early_depth_test: None,
+        workgroup_size: if fragment { [0, 0, 0] } else { [1, 1, 1] },
+        workgroup_size_overrides: None,
+        function: touching_globals(&m),
+        mesh_info: None,
+        task_payload: None,
+        incoming_ray_payload: None,
+    });
+    let info = validate(&m)?;
+    let as_entry = if fragment {
+        Entry::Fragment
+    } else {
+        Entry::Compute
+    };
+    write_with(&m, &info, target, as_entry, settings)
+}
+
+/// GLSL of the dialect `settings` asks for, its one entry point `main` of `stage`.
+fn write_glsl(
+    module: &naga::Module,
+    info: &ModuleInfo,
+    stage: naga::ShaderStage,
+    settings: &Settings,
+) -> Result<Output, back::glsl::Error> {
+    let options = back::glsl::Options {
+        version: settings.glsl_version.naga(),
+        binding_map: glsl_bindings(module),
+        ..Default::default()
+    };
+    let pipeline = back::glsl::PipelineOptions {
+        shader_stage: stage,
+        entry_point: "main".into(),
+        multiview: None,
+    };
+    let mut s = String::new();
+    back::glsl::Writer::new(
+        &mut s,
+        module,
+        info,
+        &options,
+        &pipeline,
+        naga::proc::BoundsCheckPolicies::default(),
+    )
+    .and_then(|mut w| w.write().map(|_| ()))?;
+    Ok(Output::Text(s))
 }

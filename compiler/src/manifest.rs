@@ -28,15 +28,49 @@ pub struct Origin<'a> {
 
 /// The manifest of `module` (already prefixed, if it is) compiled from `scene`.
 pub fn manifest(scene: &Scene, module: &Module, origin: &Origin) -> Value {
-    let entry = match origin.entry {
+    let (offsets, size) = crate::lower::params::layout(&scene.params);
+    let params = params(scene, &offsets);
+    let c = &scene.camera;
+    json!({
+        "format": FORMAT,
+        "sdfc": env!("CARGO_PKG_VERSION"),
+        "scene": origin.scene,
+        "target": origin.target,
+        "entry": entry_name(origin.entry),
+        "prefix": origin.prefix,
+        "entry_points": entry_points(module),
+        "functions": functions(module, origin),
+        "bindings": bindings(module),
+        "structs": structs(module),
+        "params": params_section(module, origin.prefix, params, size),
+        "materials": materials(scene, origin),
+        "camera": {
+            "eye": c.eye.to_array(),
+            "target": c.target.to_array(),
+            "up": c.up.to_array(),
+            "fov_degrees": c.fov.to_degrees(),
+        },
+        "lights": lights(scene),
+        "background": scene.background.to_array(),
+        "colors": "sRGB components in 0..1; shaders compute in linear light",
+    })
+}
+
+/// The entry kind's name as `--entry` spells it.
+fn entry_name(entry: Entry) -> &'static str {
+    match entry {
         Entry::Compute => "compute",
         Entry::Fragment => "fragment",
         Entry::Library => "library",
         Entry::Trace => "trace",
         Entry::Rays => "rays",
         Entry::Field => "field",
-    };
-    let entry_points: Vec<Value> = module
+    }
+}
+
+/// The module's entry points: name, stage and workgroup size.
+fn entry_points(module: &Module) -> Vec<Value> {
+    module
         .entry_points
         .iter()
         .map(|e| {
@@ -46,45 +80,60 @@ pub fn manifest(scene: &Scene, module: &Module, origin: &Origin) -> Value {
                 "workgroup_size": e.workgroup_size,
             })
         })
-        .collect();
+        .collect()
+}
+
+/// Every bound global, sorted by group and binding.
+fn bindings(module: &Module) -> Vec<Value> {
     let mut bindings: Vec<(u32, u32, Value)> = module
         .global_variables
         .iter()
         .filter_map(|(_, g)| {
             let b = g.binding.as_ref()?;
-            let (space, access) = match g.space {
-                AddressSpace::Uniform => ("uniform", None),
-                AddressSpace::Storage { access } => (
-                    "storage",
-                    Some(if access.contains(naga::StorageAccess::STORE) {
-                        "read_write"
-                    } else {
-                        "read"
-                    }),
-                ),
-                _ => ("other", None),
-            };
-            let mut v = json!({
-                "group": b.group,
-                "binding": b.binding,
-                "name": g.name,
-                "space": space,
-                "type": type_name(module, g.ty),
-            });
-            if let Some(a) = access {
-                v["access"] = json!(a);
-            }
-            if let TypeInner::Struct { span, .. } = module.types[g.ty].inner {
-                v["size"] = json!(span);
-            }
-            if let TypeInner::Array { stride, .. } = module.types[g.ty].inner {
-                v["stride"] = json!(stride);
-            }
-            Some((b.group, b.binding, v))
+            Some((b.group, b.binding, binding(module, g, b)))
         })
         .collect();
     bindings.sort_by_key(|(g, b, _)| (*g, *b));
-    let structs: Vec<Value> = module
+    bindings.into_iter().map(|(_, _, v)| v).collect()
+}
+
+/// One bound global: where, its address space and access, its type, and its struct's size or
+/// its array's stride.
+fn binding(module: &Module, g: &naga::GlobalVariable, b: &naga::ResourceBinding) -> Value {
+    let (space, access) = match g.space {
+        AddressSpace::Uniform => ("uniform", None),
+        AddressSpace::Storage { access } => (
+            "storage",
+            Some(if access.contains(naga::StorageAccess::STORE) {
+                "read_write"
+            } else {
+                "read"
+            }),
+        ),
+        _ => ("other", None),
+    };
+    let mut v = json!({
+        "group": b.group,
+        "binding": b.binding,
+        "name": g.name,
+        "space": space,
+        "type": type_name(module, g.ty),
+    });
+    if let Some(a) = access {
+        v["access"] = json!(a);
+    }
+    if let TypeInner::Struct { span, .. } = module.types[g.ty].inner {
+        v["size"] = json!(span);
+    }
+    if let TypeInner::Array { stride, .. } = module.types[g.ty].inner {
+        v["stride"] = json!(stride);
+    }
+    v
+}
+
+/// Every struct type of the module with its size and members' offsets.
+fn structs(module: &Module) -> Vec<Value> {
+    module
         .types
         .iter()
         .filter_map(|(_, t)| {
@@ -97,33 +146,39 @@ pub fn manifest(scene: &Scene, module: &Module, origin: &Origin) -> Value {
                 .collect();
             Some(json!({"name": t.name, "size": span, "members": members}))
         })
-        .collect();
-    let functions: Vec<Value> = if origin.entry == Entry::Library {
-        LIBRARY_FUNCTIONS
-            .iter()
-            .filter_map(|name| {
-                let full = prefixed(origin.prefix, name);
-                let (_, f) = module
-                    .functions
-                    .iter()
-                    .find(|(_, f)| f.name.as_deref() == Some(full.as_str()))?;
-                let args: Vec<Value> = f
-                    .arguments
-                    .iter()
-                    .map(|a| json!({"name": a.name, "type": type_name(module, a.ty)}))
-                    .collect();
-                let result = f.result.as_ref().map(|r| type_name(module, r.ty));
-                Some(json!({"name": full, "arguments": args, "result": result}))
-            })
-            .collect()
-    } else {
-        Vec::new()
-    };
-    let (offsets, size) = crate::lower::params::layout(&scene.params);
-    let params: Vec<Value> = scene
+        .collect()
+}
+
+/// The library's documented functions with their signatures (none for other entries).
+fn functions(module: &Module, origin: &Origin) -> Vec<Value> {
+    if origin.entry != Entry::Library {
+        return Vec::new();
+    }
+    LIBRARY_FUNCTIONS
+        .iter()
+        .filter_map(|name| {
+            let full = prefixed(origin.prefix, name);
+            let (_, f) = module
+                .functions
+                .iter()
+                .find(|(_, f)| f.name.as_deref() == Some(full.as_str()))?;
+            let args: Vec<Value> = f
+                .arguments
+                .iter()
+                .map(|a| json!({"name": a.name, "type": type_name(module, a.ty)}))
+                .collect();
+            let result = f.result.as_ref().map(|r| type_name(module, r.ty));
+            Some(json!({"name": full, "arguments": args, "result": result}))
+        })
+        .collect()
+}
+
+/// The scene's parameters, each at its offset in the `Params` struct.
+fn params(scene: &Scene, offsets: &[u32]) -> Vec<Value> {
+    scene
         .params
         .iter()
-        .zip(&offsets)
+        .zip(offsets)
         .map(|(p, &offset)| {
             let n = p.kind.components();
             let comps = |v: glam::DVec3| v.to_array()[..n].to_vec();
@@ -145,7 +200,11 @@ pub fn manifest(scene: &Scene, module: &Module, origin: &Origin) -> Value {
             }
             v
         })
-        .collect();
+        .collect()
+}
+
+/// The default material (id 0) and the scene's, by id.
+fn materials(scene: &Scene, origin: &Origin) -> Vec<Value> {
     let mut materials = vec![json!({
         "id": 0,
         "name": "default",
@@ -181,7 +240,12 @@ pub fn manifest(scene: &Scene, module: &Module, origin: &Origin) -> Value {
         }
         materials.push(v);
     }
-    let lights: Vec<Value> = scene
+    materials
+}
+
+/// The scene's lights: kind, direction or position, colour, intensity, shadow.
+fn lights(scene: &Scene) -> Vec<Value> {
+    scene
         .lights
         .iter()
         .map(|l| {
@@ -202,31 +266,7 @@ pub fn manifest(scene: &Scene, module: &Module, origin: &Origin) -> Value {
                 "shadow": shadow,
             })
         })
-        .collect();
-    let c = &scene.camera;
-    json!({
-        "format": FORMAT,
-        "sdfc": env!("CARGO_PKG_VERSION"),
-        "scene": origin.scene,
-        "target": origin.target,
-        "entry": entry,
-        "prefix": origin.prefix,
-        "entry_points": entry_points,
-        "functions": functions,
-        "bindings": bindings.into_iter().map(|(_, _, v)| v).collect::<Vec<_>>(),
-        "structs": structs,
-        "params": params_section(module, origin.prefix, params, size),
-        "materials": materials,
-        "camera": {
-            "eye": c.eye.to_array(),
-            "target": c.target.to_array(),
-            "up": c.up.to_array(),
-            "fov_degrees": c.fov.to_degrees(),
-        },
-        "lights": lights,
-        "background": scene.background.to_array(),
-        "colors": "sRGB components in 0..1; shaders compute in linear light",
-    })
+        .collect()
 }
 
 /// The `params` section from the module itself: its `Params` global's binding (null when it

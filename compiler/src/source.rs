@@ -1,5 +1,40 @@
 //! The source files of a scene — the main file and what it imports — each placed at its own
-//! offset in one span space, so a [`crate::diag::Span`] alone says which file it points into.
+//! offset in one span space, so a [`Span`] (defined here; `crate::diag` re-exports it) alone
+//! says which file it points into.
+
+/// A byte range in the source text.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub struct Span {
+    /// First byte.
+    pub start: usize,
+    /// One past the last byte.
+    pub end: usize,
+}
+
+impl Span {
+    /// The span from `start` to `end`.
+    pub fn new(start: usize, end: usize) -> Span {
+        Span { start, end }
+    }
+
+    /// Whether `other` lies within this span.
+    pub fn contains(self, other: Span) -> bool {
+        self.start <= other.start && other.end <= self.end
+    }
+
+    /// The smallest span covering both.
+    pub fn to(self, other: Span) -> Span {
+        Span::new(self.start.min(other.start), self.end.max(other.end))
+    }
+}
+
+impl From<pest::Span<'_>> for Span {
+    /// pest spans of rules ending in an optional part include the whitespace before it; trim it.
+    fn from(s: pest::Span<'_>) -> Span {
+        let text = s.as_str();
+        Span::new(s.start(), s.start() + text.trim_end().len())
+    }
+}
 
 /// One file's text and where its spans begin.
 #[derive(Clone, Debug, PartialEq)]
@@ -11,8 +46,6 @@ pub struct SourceFile {
     /// The offset of its first byte in the span space.
     pub base: usize,
 }
-
-use crate::diag::Span;
 
 /// The files of a scene; the first is the main file, at offset 0.
 #[derive(Clone, Debug, PartialEq, Default)]

@@ -405,7 +405,7 @@ fn gpu_field_equals_the_cpu_reference_within_f32() {
                     .collect()
             };
             let mut source = format!("{}({})", prim.name, args.join(", "));
-            if sdfc_compiler::catalog::planar::is_planar_primitive(prim.name) {
+            if prim.planar {
                 source = format!("extrude(height = 1.5) {{ {source} }}");
             }
             primitive_case(&gpu, &mut row, &source, &mut r);

@@ -23,26 +23,6 @@ pub fn primitives_2d() -> impl Iterator<Item = &'static str> {
         .map(|p| p.name)
 }
 
-/// Whether a primitive is 2D.
-pub fn is_planar_primitive(name: &str) -> bool {
-    super::primitive(name).is_some_and(|p| p.planar)
-}
-
-/// Whether an operator of 2D shapes gives a 2D shape (`extrude` and `revolve` give solids).
-pub fn keeps_planar(name: &str) -> bool {
-    super::operator(name).is_some_and(|o| {
-        matches!(
-            o.traits.plane,
-            super::traits::Plane::Keeps | super::traits::Plane::KeepsIf(_)
-        )
-    })
-}
-
-/// Whether an operator takes 2D shapes only.
-pub fn takes_planar(name: &str) -> bool {
-    super::operator(name).is_some_and(|o| matches!(o.traits.plane, super::traits::Plane::Makes))
-}
-
 /// The bound of a 2D shape within `lo..hi` of the plane: every z.
 fn planar(lo: DVec2, hi: DVec2) -> Bound {
     Bound {

@@ -3,6 +3,7 @@
 
 use super::{Checker, MAX_NODES};
 use crate::catalog::absorb::{comps, times3, to_arg};
+use crate::catalog::traits::Motion;
 use crate::catalog::{self, ArgSyms, Val};
 use crate::diag::Span;
 use crate::scene::Field;
@@ -10,6 +11,10 @@ use crate::scene::{Node, NodeId, NodeKind};
 
 /// A node's arguments: values where the scene is checked, and parameter expressions.
 type Args = (Vec<Val>, ArgSyms);
+
+/// A step between the scale and the primitive: its operator, its arguments once scaled, its
+/// node.
+type Step = (&'static str, Args, NodeId);
 
 impl Checker<'_> {
     /// `scale(v)` of `child` rewritten as the primitive with scaled arguments under the same
@@ -31,6 +36,25 @@ impl Checker<'_> {
         child: NodeId,
         span: Span,
     ) -> Option<NodeId> {
+        let (steps, id) = self.scale_steps(v, child)?;
+        let NodeKind::Primitive { prim, ctx } = &self.nodes[id].kind else {
+            return None;
+        };
+        let args = to_args(catalog::absorb::scaled(prim, ctx, v)?);
+        // Each new node is built at the end and moved into the slot of the node it
+        // replaces (no one else refers to an unnamed plain node), so the scene
+        // does not grow: one node more only for that moment.
+        if !fits(&args.0) || self.nodes.len() + 1 > MAX_NODES {
+            return None;
+        }
+        let prim = *prim;
+        self.rebuild_scaled(prim, args, id, steps, span)
+    }
+
+    /// The steps from the scale down to a primitive, each as (operator, arguments once scaled,
+    /// its node), and the primitive's node; `None` where a step is not plain or does not
+    /// commute with the scale `v`.
+    fn scale_steps(&self, v: &[Field; 3], child: NodeId) -> Option<(Vec<Step>, NodeId)> {
         // (A uniform scale is exact already; taken in all the same, it leaves one node fewer
         // and lets an outer non-uniform scale reach the box.)
         let uniform = v[0] == v[1] && v[1] == v[2];
@@ -38,15 +62,7 @@ impl Checker<'_> {
         let plain = |n: &Node| {
             n.material.is_none() && n.name.is_none() && n.lambda == n.inferred_lambda && n.exact
         };
-        let fits = |args: &[Val]| args.iter().all(|a| a.fits_gpu());
-        // Arguments from expressions: values where the scene is checked, and expressions where
-        // any reads a parameter.
-        let to_args = |comps: Vec<Vec<Field>>| -> Args {
-            let (vals, syms): Args = comps.iter().map(|c| to_arg(c)).unzip();
-            (vals, catalog::arg_syms(syms))
-        };
-        // The steps from the scale down, each as (operator, arguments once scaled, its node).
-        let mut steps: Vec<(&'static str, Args, NodeId)> = Vec::new();
+        let mut steps: Vec<Step> = Vec::new();
         let mut id = child;
         loop {
             let node = &self.nodes[id];
@@ -55,10 +71,10 @@ impl Checker<'_> {
             }
             match &node.kind {
                 NodeKind::Operator { op, ctx, children } => {
-                    let args = match op.name {
+                    let args = match op.traits.motion {
                         // A uniform scale commutes with every turn.
-                        "rotate" if uniform => (ctx.args.clone(), ctx.sym.clone()),
-                        "rotate" if ctx.sym(0).is_none() => {
+                        Motion::Turn if uniform => (ctx.args.clone(), ctx.sym.clone()),
+                        Motion::Turn if ctx.sym(0).is_none() => {
                             let axis = ctx.vec(0);
                             let on: Vec<usize> = (0..3).filter(|&k| axis[k] != 0.0).collect();
                             let &[k] = on.as_slice() else {
@@ -69,7 +85,7 @@ impl Checker<'_> {
                             }
                             (ctx.args.clone(), ctx.sym.clone())
                         }
-                        "translate" => to_args(vec![times3(&comps(ctx, 0), v)]),
+                        Motion::Move => to_args(vec![times3(&comps(ctx, 0), v)]),
                         _ => return None,
                     };
                     if !fits(&args.0) {
@@ -78,53 +94,52 @@ impl Checker<'_> {
                     steps.push((op.name, args, id));
                     id = children[0];
                 }
-                NodeKind::Primitive { prim, ctx } => {
-                    let args = to_args(catalog::absorb::scaled(prim, ctx, v)?);
-                    // Each new node is built at the end and moved into the slot of the node it
-                    // replaces (no one else refers to an unnamed plain node), so the scene
-                    // does not grow: one node more only for that moment.
-                    if !fits(&args.0) || self.nodes.len() + 1 > MAX_NODES {
-                        return None;
-                    }
-                    let prim = *prim;
-                    // Each node keeps its span; the outermost takes the scale's (it stands for
-                    // the whole expression now).
-                    let span_of = |c: &Self, n: NodeId, outermost: bool| {
-                        if outermost { span } else { c.nodes[n].span }
-                    };
-                    let before = self.diags.len();
-                    // The nodes replaced, put back if a step cannot be built after all.
-                    let mut saved = Vec::new();
-                    let at = span_of(self, id, steps.is_empty());
-                    let mut built = self.primitive_node(prim, args, at);
-                    let mut top = id;
-                    let mut rest = steps.into_iter().enumerate().rev();
-                    while let Some(new) = built {
-                        saved.push((top, self.nodes[top].clone()));
-                        self.move_node(new, top);
-                        let Some((i, (name, args, old))) = rest.next() else {
-                            // With constant arguments that fit and room for a node, building
-                            // them reports nothing (each step's were given where written).
-                            debug_assert_eq!(
-                                self.diags.len(),
-                                before,
-                                "{:?}",
-                                &self.diags[before..]
-                            );
-                            return Some(top);
-                        };
-                        let at = span_of(self, old, i == 0);
-                        built = self.operator_node(name, args, vec![top], at);
-                        top = old;
-                    }
-                    for (slot, node) in saved {
-                        self.nodes[slot] = node;
-                    }
-                    return None;
-                }
+                NodeKind::Primitive { .. } => return Some((steps, id)),
                 _ => return None,
             }
         }
+    }
+
+    /// The primitive at `id` rebuilt with the scaled `args`, then each of `steps` (outermost
+    /// first) rebuilt over it, each new node moved into the slot of the node it replaces;
+    /// `None`, with the replaced nodes put back, if a step cannot be built after all.
+    fn rebuild_scaled(
+        &mut self,
+        prim: &'static catalog::Primitive,
+        args: Args,
+        id: NodeId,
+        steps: Vec<Step>,
+        span: Span,
+    ) -> Option<NodeId> {
+        // Each node keeps its span; the outermost takes the scale's (it stands for
+        // the whole expression now).
+        let span_of = |c: &Self, n: NodeId, outermost: bool| {
+            if outermost { span } else { c.nodes[n].span }
+        };
+        let before = self.diags.len();
+        // The nodes replaced, put back if a step cannot be built after all.
+        let mut saved = Vec::new();
+        let at = span_of(self, id, steps.is_empty());
+        let mut built = self.primitive_node(prim, args, at);
+        let mut top = id;
+        let mut rest = steps.into_iter().enumerate().rev();
+        while let Some(new) = built {
+            saved.push((top, self.nodes[top].clone()));
+            self.move_node(new, top);
+            let Some((i, (name, args, old))) = rest.next() else {
+                // With constant arguments that fit and room for a node, building
+                // them reports nothing (each step's were given where written).
+                debug_assert_eq!(self.diags.len(), before, "{:?}", &self.diags[before..]);
+                return Some(top);
+            };
+            let at = span_of(self, old, i == 0);
+            built = self.operator_node(name, args, vec![top], at);
+            top = old;
+        }
+        for (slot, node) in saved {
+            self.nodes[slot] = node;
+        }
+        None
     }
 
     /// Moves the node just built (`new`, the last) into the slot `old`.
@@ -136,4 +151,16 @@ impl Checker<'_> {
         // lattice form; were one numbered, its number would now be stale.)
         self.forms.forget(old);
     }
+}
+
+/// Whether every argument made stays within [`catalog::GPU_RANGE`].
+fn fits(args: &[Val]) -> bool {
+    args.iter().all(|a| a.fits_gpu())
+}
+
+/// Arguments from expressions: values where the scene is checked, and expressions where any
+/// reads a parameter.
+fn to_args(comps: Vec<Vec<Field>>) -> Args {
+    let (vals, syms): Args = comps.iter().map(|c| to_arg(c)).unzip();
+    (vals, catalog::arg_syms(syms))
 }

@@ -1,11 +1,9 @@
 //! Binding call arguments and settings to catalog parameters, with type and range checks.
 
-use super::{Checker, Dim, Value};
+use super::Checker;
 use crate::catalog::{self, Param, Ty, Val};
 use crate::diag::{Diagnostic, Span, did_you_mean};
-use crate::scene::Field;
-use crate::syntax::{Arg, Expr, ExprKind};
-use glam::DVec3;
+use crate::syntax::{Arg, ExprKind};
 
 /// Which arguments of a call or settings block may be computed from parameters.
 #[derive(Clone, Copy)]
@@ -133,65 +131,10 @@ impl Checker<'_> {
         let mut ok = true;
         let mut seen_named = false;
         for (i, arg) in args.iter().enumerate() {
-            let index = match &arg.name {
-                Some(name) => {
-                    seen_named = true;
-                    match params.iter().position(|p| p.name == name.name) {
-                        Some(k) => k,
-                        None => {
-                            let mut d = Diagnostic::error(
-                                name.span,
-                                format!("`{what}` has no parameter `{}`", name.name),
-                            )
-                            .label("unknown parameter");
-                            d = match did_you_mean(&name.name, params.iter().map(|p| p.name)) {
-                                Some(s) => d.help(format!("did you mean `{s}`?")),
-                                None => d.help(format!(
-                                    "the parameters are: {}",
-                                    Self::shape_of(what, params)
-                                )),
-                            };
-                            self.diags.push(d);
-                            ok = false;
-                            continue;
-                        }
-                    }
-                }
-                None if seen_named => {
-                    self.diags.push(
-                        Diagnostic::error(arg.value.span, "positional argument after a named one")
-                            .label("give this one a name too")
-                            .help(Self::shape_of(what, params)),
-                    );
-                    ok = false;
-                    continue;
-                }
-                None if i >= params.len() && i > params.len() => {
-                    // Reported once, with the first extra argument.
-                    ok = false;
-                    continue;
-                }
-                None if i >= params.len() => {
-                    let n = params.len();
-                    let s = if n == 1 { "" } else { "s" };
-                    let mut d = Diagnostic::error(
-                        arg.value.span,
-                        format!("`{what}` takes {n} argument{s}, but more were given"),
-                    )
-                    .label("unexpected argument")
-                    .help(Self::shape_of(what, params));
-                    if matches!(arg.value.kind, ExprKind::Number { .. })
-                        && params
-                            .iter()
-                            .any(|p| matches!(p.ty, Ty::Size | Ty::Vec3 | Ty::Scale))
-                    {
-                        d = d.help("a vector is written in its own parentheses: `box((1, 2, 3))`");
-                    }
-                    self.diags.push(d);
-                    ok = false;
-                    continue;
-                }
-                None => i,
+            seen_named |= arg.name.is_some();
+            let Some(index) = self.param_index(what, params, i, arg, seen_named) else {
+                ok = false;
+                continue;
             };
             let param = params[index];
             if let Some((_, first)) = slots[index] {
@@ -222,208 +165,108 @@ impl Checker<'_> {
                 None => ok = false,
             }
         }
+        let out = self.with_defaults(what, params, &slots, call_span, &mut ok);
+        ok.then_some((out, catalog::arg_syms(syms)))
+    }
+
+    /// The parameter the `i`th argument binds to: by its name, or by its place; `None`, with
+    /// the problem reported, for an unknown name, a positional argument after a named one
+    /// (`seen_named`: this one or one before was named), or one too many (reported once, at
+    /// the first extra).
+    fn param_index(
+        &mut self,
+        what: &str,
+        params: &[Param],
+        i: usize,
+        arg: &Arg,
+        seen_named: bool,
+    ) -> Option<usize> {
+        match &arg.name {
+            Some(name) => {
+                let found = params.iter().position(|p| p.name == name.name);
+                if found.is_none() {
+                    let mut d = Diagnostic::error(
+                        name.span,
+                        format!("`{what}` has no parameter `{}`", name.name),
+                    )
+                    .label("unknown parameter");
+                    d = match did_you_mean(&name.name, params.iter().map(|p| p.name)) {
+                        Some(s) => d.help(format!("did you mean `{s}`?")),
+                        None => d.help(format!(
+                            "the parameters are: {}",
+                            Self::shape_of(what, params)
+                        )),
+                    };
+                    self.diags.push(d);
+                }
+                found
+            }
+            None if seen_named => {
+                self.diags.push(
+                    Diagnostic::error(arg.value.span, "positional argument after a named one")
+                        .label("give this one a name too")
+                        .help(Self::shape_of(what, params)),
+                );
+                None
+            }
+            // Reported once, with the first extra argument.
+            None if i > params.len() => None,
+            None if i == params.len() => {
+                self.diags.push(too_many(what, params, arg));
+                None
+            }
+            None => Some(i),
+        }
+    }
+
+    /// The values by parameter: each given one, else its default; a missing argument without
+    /// a default reported (when nothing else was) and `ok` cleared.
+    fn with_defaults(
+        &mut self,
+        what: &str,
+        params: &[Param],
+        slots: &[Option<(Val, Span)>],
+        call_span: Span,
+        ok: &mut bool,
+    ) -> Vec<Val> {
         let mut out = Vec::with_capacity(params.len());
         for (slot, p) in slots.iter().zip(params) {
             match (slot, p.default) {
                 (Some((v, _)), _) => out.push(*v),
                 (None, Some(d)) => out.push(d),
                 (None, None) => {
-                    if ok {
+                    if *ok {
                         self.diags.push(
                             Diagnostic::error(call_span, format!("missing argument `{}`", p.name))
                                 .label(format!("`{what}` needs `{}`", p.name))
                                 .help(Self::shape_of(what, params)),
                         );
                     }
-                    ok = false;
+                    *ok = false;
                 }
             }
         }
-        ok.then_some((out, catalog::arg_syms(syms)))
+        out
     }
+}
 
-    /// Converts an expression to a value of type `ty`, checking its range.
-    pub(super) fn convert(&mut self, e: &Expr, ty: Ty, param: &str) -> Option<Val> {
-        self.convert_full(e, ty, param, None).map(|(v, _)| v)
+/// "takes n arguments, but more were given", at the first extra argument (with a hint when a
+/// vector's components were written as arguments).
+fn too_many(what: &str, params: &[Param], arg: &Arg) -> Diagnostic {
+    let n = params.len();
+    let s = if n == 1 { "" } else { "s" };
+    let mut d = Diagnostic::error(
+        arg.value.span,
+        format!("`{what}` takes {n} argument{s}, but more were given"),
+    )
+    .label("unexpected argument")
+    .help(Checker::shape_of(what, params));
+    if matches!(arg.value.kind, ExprKind::Number { .. })
+        && params
+            .iter()
+            .any(|p| matches!(p.ty, Ty::Size | Ty::Vec3 | Ty::Scale))
+    {
+        d = d.help("a vector is written in its own parentheses: `box((1, 2, 3))`");
     }
-
-    /// As [`Self::convert`], where the value may be computed from parameters when `call` names
-    /// the primitive or operator it is an argument of: then also its components as
-    /// expressions for the shader.
-    pub(super) fn convert_arg(
-        &mut self,
-        e: &Expr,
-        ty: Ty,
-        param: &str,
-        call: &str,
-    ) -> Option<(Val, Option<Vec<Field>>)> {
-        self.convert_full(e, ty, param, Some(call))
-    }
-
-    fn convert_full(
-        &mut self,
-        e: &Expr,
-        ty: Ty,
-        param: &str,
-        call: Option<&str>,
-    ) -> Option<(Val, Option<Vec<Field>>)> {
-        // Words that are not names of bindings: axes and enumerations.
-        if let ExprKind::Name(id) = &e.kind
-            && !self.lets.contains_key(&id.name)
-        {
-            match ty {
-                Ty::Axis => {
-                    if let Some(i) = ["x", "y", "z"].iter().position(|a| *a == id.name) {
-                        return Some((Val::Vec3(DVec3::AXES[i]), None));
-                    }
-                    if !self.declared.contains_key(&id.name) {
-                        let d = Diagnostic::error(id.span, format!("unknown axis `{}`", id.name))
-                            .label("not an axis")
-                            .help("the axes are `x`, `y` and `z` (lower case), or any vector `(x, y, z)`");
-                        self.diags.push(d);
-                        return None;
-                    }
-                }
-                Ty::PositiveOr(words) | Ty::Word(words) => {
-                    if let Some(i) = words.iter().position(|w| *w == id.name) {
-                        return Some((Val::Word(i), None));
-                    }
-                    if !self.declared.contains_key(&id.name) {
-                        let mut d = Diagnostic::error(
-                            id.span,
-                            format!("`{param}` must be {}", ty.describe()),
-                        )
-                        .label(format!("`{}` is not a word it knows", id.name));
-                        if let Some(w) = did_you_mean(&id.name, words.iter().copied()) {
-                            d = d.help(format!("did you mean `{w}`?"));
-                        }
-                        self.diags.push(d);
-                        return None;
-                    }
-                }
-                _ => {}
-            }
-        }
-        if let (Ty::Axis, ExprKind::Neg(inner)) = (ty, &e.kind)
-            && let ExprKind::Name(id) = &inner.kind
-            && !self.lets.contains_key(&id.name)
-            && let Some(i) = ["x", "y", "z"].iter().position(|a| *a == id.name)
-        {
-            return Some((Val::Vec3(-DVec3::AXES[i]), None));
-        }
-        let value = self.value(e)?;
-        if let (Value::Param(s), Some(call)) = (&value, call) {
-            if let Some(op) = catalog::operator(call)
-                && op.fixed_args
-            {
-                self.diags.push(
-                    Diagnostic::error(e.span, format!("the arguments of `{call}` cannot be parameters"))
-                        .label("computed from parameters")
-                        .note(format!("`{call}` shapes the shader's code by its arguments' values, and the shader is compiled once")),
-                );
-                return None;
-            }
-            let (v, comps) = self.param_arg(e, ty, param, s.clone())?;
-            return Some((v, Some(comps)));
-        }
-        if let Value::Param(_) = &value {
-            self.diags.push(
-                Diagnostic::error(e.span, format!("`{param}` cannot be a parameter"))
-                    .label(format!("this is {}", value.describe()))
-                    .note(format!("the shader is compiled with `{param}` in it; what can change at run time: shapes' and operators' arguments, a material's `color` and `specular`, a light's direction or position, `color` and `intensity`")),
-            );
-            return None;
-        }
-        self.convert_checked(e, ty, param, value).map(|v| (v, None))
-    }
-
-    /// [`Self::convert_value`] and the check that the value fits f32.
-    fn convert_checked(&mut self, e: &Expr, ty: Ty, param: &str, value: Value) -> Option<Val> {
-        let v = self.convert_value(e, ty, param, value)?;
-        if !v.fits_gpu() {
-            self.diags.push(
-                Diagnostic::error(e.span, format!("`{param}` is beyond what the GPU's f32 arithmetic can use"))
-                    .label("out of range")
-                    .note(format!(
-                        "numbers in a scene must be 0 or between {:e} and {:e} in size: the shader computes in f32, and squares or reciprocals of larger (or smaller) values overflow",
-                        catalog::GPU_RANGE.0,
-                        catalog::GPU_RANGE.1
-                    )),
-            );
-            return None;
-        }
-        Some(v)
-    }
-
-    /// The value of an argument as its parameter's type, or an error.
-    pub(super) fn convert_value(
-        &mut self,
-        e: &Expr,
-        ty: Ty,
-        param: &str,
-        value: Value,
-    ) -> Option<Val> {
-        // Described only for an error (a string per argument was 2% of checking 10 000 nodes).
-        let shown = value.clone();
-        let found = || shown.describe();
-        let bad = |this: &mut Self, why: String| {
-            this.diags.push(
-                Diagnostic::error(e.span, format!("`{param}` must be {}", ty.describe()))
-                    .label(why),
-            );
-            None
-        };
-        match (ty, value) {
-            (Ty::Angle, Value::Num(x, Dim::Angle)) => Some(Val::Num(x)),
-            (Ty::Angle, Value::Num(x, Dim::None)) => {
-                let help = if matches!(e.kind, ExprKind::Number { .. }) {
-                    format!("write `{x}deg` or `{x}rad`")
-                } else {
-                    // A computed number (`pi / 4`): its unit is a factor.
-                    "multiply it by a unit: `(…) * 1rad` for radians, `* 1deg` for degrees".into()
-                };
-                self.diags.push(
-                    Diagnostic::error(e.span, format!("`{param}` is an angle and needs a unit"))
-                        .label("no unit")
-                        .help(help),
-                );
-                None
-            }
-            (_, Value::Num(_, Dim::Angle)) if !matches!(ty, Ty::Angle) => {
-                bad(self, "found an angle".into())
-            }
-            (ty, Value::Num(x, _)) if ty.accepts_number(x) => Some(Val::Num(x)),
-            (Ty::Size, Value::Num(x, _)) if x >= 0.0 => Some(Val::Vec3(DVec3::splat(x))),
-            (Ty::Size, Value::Vec3(v)) if v.min_element() >= 0.0 => Some(Val::Vec3(v)),
-            (Ty::Counts, Value::Num(x, _)) if x >= 0.0 && x.fract() == 0.0 => {
-                Some(Val::Vec3(DVec3::splat(x)))
-            }
-            (Ty::Counts, Value::Vec3(v)) if v.min_element() >= 0.0 && v.fract() == DVec3::ZERO => {
-                Some(Val::Vec3(v))
-            }
-            (Ty::Scale, Value::Num(x, _)) if x > 0.0 => Some(Val::Vec3(DVec3::splat(x))),
-            (Ty::Scale, Value::Vec3(v)) if v.min_element() > 0.0 => Some(Val::Vec3(v)),
-            (Ty::Vec3, Value::Vec3(v)) => Some(Val::Vec3(v)),
-            (Ty::Axis, Value::Vec3(v)) if v.length() > 1e-12 => Some(Val::Vec3(v.normalize())),
-            (Ty::Color, Value::Color(c)) => Some(Val::Vec3(c)),
-            (Ty::Color, Value::Vec3(v)) if v.min_element() >= 0.0 && v.max_element() <= 1.0 => {
-                Some(Val::Vec3(v))
-            }
-            (Ty::Scale, Value::Num(..) | Value::Vec3(_)) => {
-                let d = Diagnostic::error(e.span, format!("`{param}` must be {}", ty.describe()))
-                    .label(format!("found {}", found()))
-                    .note("a zero or negative scale has no distance field; mirror with `mirror(axis)`");
-                self.diags.push(d);
-                None
-            }
-            (Ty::Axis, Value::Vec3(_)) => bad(self, "a zero vector has no direction".into()),
-            (_, Value::Num(..)) if !matches!(ty, Ty::Vec3 | Ty::Axis | Ty::Color) => {
-                bad(self, format!("found {}", found()))
-            }
-            (Ty::Size | Ty::Counts | Ty::Color, Value::Vec3(_)) => {
-                bad(self, format!("found {}", found()))
-            }
-            _ => bad(self, format!("found {}", found())),
-        }
-    }
+    d
 }

@@ -51,45 +51,73 @@ impl Checker<'_> {
             return self.fn_call(call, piped);
         }
         if let Some(prim) = catalog::primitive(name) {
-            if piped.is_some() {
-                self.diags.push(
-                    Diagnostic::error(
-                        call.name.span,
-                        format!("`{name}` is a primitive and takes no shape"),
-                    )
-                    .label("only operators can follow `|>`"),
-                );
-                return None;
-            }
-            if let Some(block) = &call.block {
-                let span = block.first().map_or(call.span, |e| e.span);
-                self.diags.push(
-                    Diagnostic::error(span, format!("`{name}` is a primitive and takes no block"))
-                        .label("unexpected block")
-                        .help(format!("write `{}`", signature_of_prim(prim))),
-                );
-                return None;
-            }
-            let args = self.bind_args(name, prim.params, &call.args, call.span, RunTime::All)?;
-            return self.primitive_node(prim, args, call.span).map(Value::Shape);
+            return self.primitive_call(prim, call, piped);
         }
         if let Some(op) = catalog::operator(name) {
-            let args = self.bind_args(name, op.params, &call.args, call.span, RunTime::All);
-            let children = self.children(call, piped, op.arity)?;
-            if children.len() == 1 && matches!(op.arity, Arity::AtLeast(_)) {
-                self.diags.push(
-                    Diagnostic::warning(call.span, format!("`{name}` of one shape is that shape"))
-                        .label("only one shape")
-                        .note(format!(
-                            "`{name}` combines the shapes in its block; `a |> {name}(…)` gives it only `a`"
-                        ))
-                        .help(format!("give it the others: `{name}(…) {{ a b }}`")),
-                );
-            }
-            return self
-                .operator_node(name, args?, children, call.span)
-                .map(Value::Shape);
+            return self.operator_call(op, call, piped);
         }
+        self.not_callable(call)
+    }
+
+    /// A primitive's call: no shape piped in, no block, its arguments bound.
+    fn primitive_call(
+        &mut self,
+        prim: &'static catalog::Primitive,
+        call: &Call,
+        piped: Option<NodeId>,
+    ) -> Option<Value> {
+        let name = call.name.name.as_str();
+        if piped.is_some() {
+            self.diags.push(
+                Diagnostic::error(
+                    call.name.span,
+                    format!("`{name}` is a primitive and takes no shape"),
+                )
+                .label("only operators can follow `|>`"),
+            );
+            return None;
+        }
+        if let Some(block) = &call.block {
+            let span = block.first().map_or(call.span, |e| e.span);
+            self.diags.push(
+                Diagnostic::error(span, format!("`{name}` is a primitive and takes no block"))
+                    .label("unexpected block")
+                    .help(format!("write `{}`", signature_of_prim(prim))),
+            );
+            return None;
+        }
+        let args = self.bind_args(name, prim.params, &call.args, call.span, RunTime::All)?;
+        self.primitive_node(prim, args, call.span).map(Value::Shape)
+    }
+
+    /// An operator's call: its arguments and children (a warning for a combination of one).
+    fn operator_call(
+        &mut self,
+        op: &'static catalog::Operator,
+        call: &Call,
+        piped: Option<NodeId>,
+    ) -> Option<Value> {
+        let name = call.name.name.as_str();
+        let args = self.bind_args(name, op.params, &call.args, call.span, RunTime::All);
+        let children = self.children(call, piped, op.arity)?;
+        if children.len() == 1 && matches!(op.arity, Arity::AtLeast(_)) {
+            self.diags.push(
+                Diagnostic::warning(call.span, format!("`{name}` of one shape is that shape"))
+                    .label("only one shape")
+                    .note(format!(
+                        "`{name}` combines the shapes in its block; `a |> {name}(…)` gives it only `a`"
+                    ))
+                    .help(format!("give it the others: `{name}(…) {{ a b }}`")),
+            );
+        }
+        self.operator_node(name, args?, children, call.span)
+            .map(Value::Shape)
+    }
+
+    /// A call of a name that is no function: a value, a pattern, something defined further
+    /// down, or an unknown name; each reported.
+    fn not_callable(&mut self, call: &Call) -> Option<Value> {
+        let name = call.name.name.as_str();
         if let Some((binding, def)) = self.lets.get(name) {
             let what = match binding {
                 Binding::Value(v) => v.describe(),
@@ -119,35 +147,49 @@ impl Checker<'_> {
             return self.defined_after_fn(&call.name);
         }
         if let Some(def) = self.declared.get(name).copied() {
-            // A function (or other definition) written further down.
-            let what = if self.fns.contains_key(name) || self.failed.contains(name) {
-                "a function defined later in the file"
-            } else {
-                "defined later in the file"
-            };
-            let d = if self.failed.contains(name) {
-                None
-            } else {
-                Some(
-                    Diagnostic::error(
-                        call.name.span,
-                        format!("`{name}` is used before its definition"),
-                    )
-                    .label(what)
-                    .also(def, "defined here")
-                    .help("move the definition above its first use"),
-                )
-            };
-            self.diags.extend(d);
-            for a in &call.args {
-                self.value(&a.value);
-            }
+            self.used_before_definition(call, def);
             return None;
         }
         if self.keyword_typo_line == Some(self.line_of(call.span.start)) && call.block.is_some() {
             // The rest of a misspelt block statement (reported at its keyword).
             return None;
         }
+        self.unknown_call(call);
+        None
+    }
+
+    /// A function (or other definition) written further down, at `def`: reported unless its
+    /// definition failed; its arguments checked anyway.
+    fn used_before_definition(&mut self, call: &Call, def: crate::diag::Span) {
+        let name = call.name.name.as_str();
+        let what = if self.fns.contains_key(name) || self.failed.contains(name) {
+            "a function defined later in the file"
+        } else {
+            "defined later in the file"
+        };
+        let d = if self.failed.contains(name) {
+            None
+        } else {
+            Some(
+                Diagnostic::error(
+                    call.name.span,
+                    format!("`{name}` is used before its definition"),
+                )
+                .label(what)
+                .also(def, "defined here")
+                .help("move the definition above its first use"),
+            )
+        };
+        self.diags.extend(d);
+        for a in &call.args {
+            self.value(&a.value);
+        }
+    }
+
+    /// A name neither in the catalog nor defined: reported with the nearest name, its
+    /// arguments checked anyway so their errors are reported too.
+    fn unknown_call(&mut self, call: &Call) {
+        let name = call.name.name.as_str();
         let mut d = Diagnostic::error(
             call.name.span,
             format!("unknown function or shape `{name}`"),
@@ -163,11 +205,9 @@ impl Checker<'_> {
             None => d.note("`sdfc check --list` prints the primitives and operators"),
         };
         self.diags.push(d);
-        // Check the arguments anyway so their errors are reported too.
         for a in &call.args {
             self.value(&a.value);
         }
-        None
     }
 
     pub(super) fn children(

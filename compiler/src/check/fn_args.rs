@@ -2,12 +2,32 @@
 //! default arguments, each typed by its declaration or its default's literal, every problem
 //! reported at the call with the definition beside it.
 
-use super::functions::TYPES;
 use super::params::SymKind;
 use super::{Checker, Dim, Value};
 use crate::diag::{Diagnostic, Span, did_you_mean};
 use crate::scene::NodeId;
-use crate::syntax::{Call, Expr, ExprKind, FnDef, FnParam};
+use crate::syntax::{Arg, Call, Expr, ExprKind, FnDef, FnParam};
+
+/// The types a parameter may declare.
+pub(super) const TYPES: &[&str] = &["number", "angle", "vector", "color", "shape"];
+
+/// The state of binding one call's arguments, argument by argument.
+struct Binding {
+    /// Each parameter's value and the span it came from.
+    slots: Vec<Option<(Value, Span)>>,
+    /// Each parameter given an argument, even one that failed (its error is reported).
+    given: Vec<bool>,
+    /// No problem reported so far.
+    ok: bool,
+    /// The next positional parameter.
+    next: usize,
+    /// A named argument came before.
+    seen_named: bool,
+    /// "More were given" is reported once.
+    extra_reported: bool,
+    /// A misspelt name is likely the missing argument: not reported twice.
+    unknown_named: bool,
+}
 
 impl Checker<'_> {
     /// The arguments of a call by parameter (none where the default applies), each checked in
@@ -18,140 +38,174 @@ impl Checker<'_> {
         call: &Call,
         piped: Option<NodeId>,
     ) -> Option<Vec<Option<Value>>> {
-        let name = &def.name.name;
         let n = def.params.len();
-        let mut slots: Vec<Option<(Value, Span)>> = vec![None; n];
-        let mut ok = true;
-        let mut next = 0;
+        let mut b = Binding {
+            slots: vec![None; n],
+            given: vec![false; n],
+            ok: true,
+            next: 0,
+            seen_named: false,
+            extra_reported: false,
+            unknown_named: false,
+        };
         if let Some(s) = piped {
             if n == 0 {
                 self.diags.push(
                     Diagnostic::error(
                         call.span,
-                        format!("`{name}` takes no arguments, so no shape from `|>`"),
+                        format!(
+                            "`{}` takes no arguments, so no shape from `|>`",
+                            def.name.name
+                        ),
                     )
                     .label("a shape piped in")
                     .also(def.name.span, "defined here"),
                 );
                 return None;
             }
-            slots[0] = Some((Value::Shape(s), call.span));
-            next = 1;
+            b.slots[0] = Some((Value::Shape(s), call.span));
+            b.next = 1;
         }
-        let mut seen_named = false;
-        let mut extra_reported = false;
-        // A misspelt name is likely the missing argument: not reported twice; neither is a
-        // parameter given an argument that failed (its error is reported).
-        let mut unknown_named = false;
-        let mut given = vec![false; n];
         for arg in &call.args {
             let value = self.value(&arg.value);
-            let index = match &arg.name {
-                Some(a) => {
-                    seen_named = true;
-                    match def.params.iter().position(|p| p.name.name == a.name) {
-                        Some(k) => k,
-                        None => {
-                            let mut d = Diagnostic::error(
-                                a.span,
-                                format!("`{name}` has no parameter `{}`", a.name),
-                            )
-                            .label("unknown parameter")
-                            .also(def.name.span, "defined here");
-                            let names = def.params.iter().map(|p| p.name.name.as_str());
-                            d = match did_you_mean(&a.name, names) {
-                                Some(s) => d.help(format!("did you mean `{s}`?")),
-                                None => d.help(format!("the parameters are: {}", signature(def))),
-                            };
-                            self.diags.push(d);
-                            ok = false;
-                            unknown_named = true;
-                            continue;
-                        }
-                    }
-                }
-                None if seen_named => {
-                    self.diags.push(
-                        Diagnostic::error(arg.value.span, "positional argument after a named one")
-                            .label("give this one a name too")
-                            .help(signature(def)),
-                    );
-                    ok = false;
-                    continue;
-                }
-                None if next >= n => {
-                    if !extra_reported {
-                        let s = if n == 1 { "" } else { "s" };
-                        self.diags.push(
-                            Diagnostic::error(
-                                arg.value.span,
-                                format!("`{name}` takes {n} argument{s}, but more were given"),
-                            )
-                            .label("unexpected argument")
-                            .also(def.name.span, "defined here")
-                            .help(signature(def)),
-                        );
-                        extra_reported = true;
-                    }
-                    ok = false;
-                    continue;
-                }
-                None => {
-                    next += 1;
-                    next - 1
-                }
-            };
-            let param = &def.params[index];
-            if let Some((_, first)) = &slots[index] {
-                self.diags.push(
-                    Diagnostic::error(
-                        arg.value.span,
-                        format!("`{}` is given twice", param.name.name),
-                    )
-                    .label("second value")
-                    .also(*first, "first value"),
-                );
-                ok = false;
-                continue;
+            if let Some(index) = self.arg_index(def, arg, &mut b) {
+                self.fill_slot(def, index, arg, value, &mut b);
             }
-            given[index] = true;
-            let Some(value) = value else {
-                ok = false;
-                continue;
-            };
-            if let Some(want) = self.param_type(param)
-                && !fits(want, &value)
-            {
-                self.diags.push(
-                    Diagnostic::error(
-                        arg.value.span,
-                        format!("`{}` of `{name}` takes {}", param.name.name, article(want)),
-                    )
-                    .label(format!("this is {}", value.describe()))
-                    .also(
-                        param.name.span,
-                        format!("declared {}", declared_how(param, want)),
-                    ),
-                );
-                ok = false;
-            }
-            slots[index] = Some((value, arg.value.span));
         }
-        for ((p, slot), given) in def.params.iter().zip(&slots).zip(&given) {
-            if slot.is_none() && !given && p.default.is_none() && !unknown_named && ok {
+        self.report_missing(def, call, &mut b);
+        b.ok.then(|| b.slots.into_iter().map(|s| s.map(|(v, _)| v)).collect())
+    }
+
+    /// The parameter `arg` binds to: by its name, or the next positional one; `None`, with the
+    /// problem reported, for an unknown name, a positional argument after a named one, or one
+    /// too many.
+    fn arg_index(&mut self, def: &FnDef, arg: &Arg, b: &mut Binding) -> Option<usize> {
+        let name = &def.name.name;
+        let n = def.params.len();
+        match &arg.name {
+            Some(a) => {
+                b.seen_named = true;
+                let found = def.params.iter().position(|p| p.name.name == a.name);
+                if found.is_none() {
+                    let mut d = Diagnostic::error(
+                        a.span,
+                        format!("`{name}` has no parameter `{}`", a.name),
+                    )
+                    .label("unknown parameter")
+                    .also(def.name.span, "defined here");
+                    let names = def.params.iter().map(|p| p.name.name.as_str());
+                    d = match did_you_mean(&a.name, names) {
+                        Some(s) => d.help(format!("did you mean `{s}`?")),
+                        None => d.help(format!("the parameters are: {}", signature(def))),
+                    };
+                    self.diags.push(d);
+                    b.ok = false;
+                    b.unknown_named = true;
+                }
+                found
+            }
+            None if b.seen_named => {
+                self.diags.push(
+                    Diagnostic::error(arg.value.span, "positional argument after a named one")
+                        .label("give this one a name too")
+                        .help(signature(def)),
+                );
+                b.ok = false;
+                None
+            }
+            None if b.next >= n => {
+                if !b.extra_reported {
+                    let s = if n == 1 { "" } else { "s" };
+                    self.diags.push(
+                        Diagnostic::error(
+                            arg.value.span,
+                            format!("`{name}` takes {n} argument{s}, but more were given"),
+                        )
+                        .label("unexpected argument")
+                        .also(def.name.span, "defined here")
+                        .help(signature(def)),
+                    );
+                    b.extra_reported = true;
+                }
+                b.ok = false;
+                None
+            }
+            None => {
+                b.next += 1;
+                Some(b.next - 1)
+            }
+        }
+    }
+
+    /// Puts an argument's value in its parameter's slot: refused if the slot is taken, or if
+    /// the value is not of the parameter's type.
+    fn fill_slot(
+        &mut self,
+        def: &FnDef,
+        index: usize,
+        arg: &Arg,
+        value: Option<Value>,
+        b: &mut Binding,
+    ) {
+        let param = &def.params[index];
+        if let Some((_, first)) = &b.slots[index] {
+            self.diags.push(
+                Diagnostic::error(
+                    arg.value.span,
+                    format!("`{}` is given twice", param.name.name),
+                )
+                .label("second value")
+                .also(*first, "first value"),
+            );
+            b.ok = false;
+            return;
+        }
+        b.given[index] = true;
+        let Some(value) = value else {
+            b.ok = false;
+            return;
+        };
+        if let Some(want) = self.param_type(param)
+            && !fits(want, &value)
+        {
+            self.diags.push(
+                Diagnostic::error(
+                    arg.value.span,
+                    format!(
+                        "`{}` of `{}` takes {}",
+                        param.name.name,
+                        def.name.name,
+                        article(want)
+                    ),
+                )
+                .label(format!("this is {}", value.describe()))
+                .also(
+                    param.name.span,
+                    format!("declared {}", declared_how(param, want)),
+                ),
+            );
+            b.ok = false;
+        }
+        b.slots[index] = Some((value, arg.value.span));
+    }
+
+    /// Reports each parameter without a default that got no argument (only when nothing else
+    /// went wrong: a failed or misspelt argument is likely the missing one).
+    fn report_missing(&mut self, def: &FnDef, call: &Call, b: &mut Binding) {
+        for ((p, slot), given) in def.params.iter().zip(&b.slots).zip(&b.given) {
+            if slot.is_none() && !given && p.default.is_none() && !b.unknown_named && b.ok {
                 self.diags.push(
                     Diagnostic::error(
                         call.span,
-                        format!("`{name}` needs its argument `{}`", p.name.name),
+                        format!("`{}` needs its argument `{}`", def.name.name, p.name.name),
                     )
                     .label("missing argument")
                     .also(p.name.span, "a parameter without a default")
                     .help(signature(def)),
                 );
-                ok = false;
+                b.ok = false;
             }
         }
-        ok.then(|| slots.into_iter().map(|s| s.map(|(v, _)| v)).collect())
     }
 
     /// A parameter's type: declared, or its default's when that is written as a literal.

@@ -4,6 +4,7 @@
 //! materials flow through a call exactly as through `let`. Errors in a body are shown at the
 //! body with the call beside them; recursion is refused.
 
+use super::fn_args::TYPES;
 use super::{Checker, Value};
 use crate::diag::{Diagnostic, Span, did_you_mean};
 use crate::scene::NodeId;
@@ -16,9 +17,6 @@ pub const MAX_CALLS: usize = 100_000;
 
 /// Most calls of a chain a diagnostic in a body shows.
 const MAX_CALL_LABELS: usize = 3;
-
-/// The types a parameter may declare.
-pub(super) const TYPES: &[&str] = &["number", "angle", "vector", "color", "shape"];
 
 /// A declared function.
 pub(super) struct FnEntry<'a> {
@@ -106,6 +104,36 @@ impl<'a> Checker<'a> {
             entry.used = true;
             (entry.def, entry.item)
         };
+        if !self.may_expand(call, def) {
+            return None;
+        }
+        let given = self.fn_args(def, call, piped)?;
+        // The body's scope: the arguments, then defaults in order (each sees the earlier ones).
+        let saved_defining = self.defining.take();
+        self.frames.push(Frame {
+            args: HashMap::new(),
+            horizon: item,
+            name: name.to_string(),
+            call_span: call.span,
+        });
+        let ok = self.bind_params(call, def, given);
+        let out = if ok {
+            self.in_body(call, |c| c.value(&def.body))
+        } else {
+            None
+        };
+        self.frames.pop();
+        self.defining = saved_defining;
+        if let Some(Value::Shape(n)) = out {
+            self.nodes[n].name.get_or_insert_with(|| name.to_string());
+        }
+        out
+    }
+
+    /// Whether the call of `def` may be expanded: not a recursive call, no block, and not one
+    /// call past [`MAX_CALLS`] (counted here); each refusal reported.
+    fn may_expand(&mut self, call: &Call, def: &FnDef) -> bool {
+        let name = call.name.name.as_str();
         if self.frames.iter().any(|f| f.name == name) {
             let chain: Vec<&str> = self
                 .frames
@@ -121,7 +149,7 @@ impl<'a> Checker<'a> {
                     .note(format!("the chain: {}", chain.join(" → ")))
                     .note("a call is expanded where it is written, so a function cannot recurse; write the levels out, or use `repeat`"),
             );
-            return None;
+            return false;
         }
         if let Some(block) = &call.block {
             let span = block.first().map_or(call.span, |e| e.span);
@@ -131,7 +159,7 @@ impl<'a> Checker<'a> {
                     .also(def.name.span, "defined here")
                     .help("pass shapes as arguments: `fn f(s: shape) = …` and `f(sphere(1))`"),
             );
-            return None;
+            return false;
         }
         self.calls += 1;
         if self.calls > MAX_CALLS {
@@ -142,17 +170,14 @@ impl<'a> Checker<'a> {
                         .note("each call is expanded where it is written; functions that call others several times grow exponentially"),
                 );
             }
-            return None;
+            return false;
         }
-        let given = self.fn_args(def, call, piped)?;
-        // The body's scope: the arguments, then defaults in order (each sees the earlier ones).
-        let saved_defining = self.defining.take();
-        self.frames.push(Frame {
-            args: HashMap::new(),
-            horizon: item,
-            name: name.to_string(),
-            call_span: call.span,
-        });
+        true
+    }
+
+    /// Puts each parameter's value in the innermost frame: the argument given, else its
+    /// default checked in the body's scope (seeing the earlier ones); whether all have one.
+    fn bind_params(&mut self, call: &Call, def: &FnDef, given: Vec<Option<Value>>) -> bool {
         let mut ok = true;
         for (p, g) in def.params.iter().zip(given) {
             let v = match g {
@@ -170,17 +195,7 @@ impl<'a> Checker<'a> {
                 None => ok = false,
             }
         }
-        let out = if ok {
-            self.in_body(call, |c| c.value(&def.body))
-        } else {
-            None
-        };
-        self.frames.pop();
-        self.defining = saved_defining;
-        if let Some(Value::Shape(n)) = out {
-            self.nodes[n].name.get_or_insert_with(|| name.to_string());
-        }
-        out
+        ok
     }
 
     /// Runs `f` (checking part of a body for the call `call`): its diagnostics point into the

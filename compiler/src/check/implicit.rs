@@ -95,7 +95,7 @@ impl Checker<'_> {
                 .collect();
             return self.finite((f.eval)(&xs), span).map(|r| Value::Num(r, out));
         }
-        let field = Field::Call(f, args.into_iter().map(super::expr::as_field).collect());
+        let field = Field::Call(f, args.into_iter().map(super::arith::as_field).collect());
         if !field.has_coords() {
             // Computed from parameters only: a number the shader computes at run time.
             return Some(Value::Param(Sym {

@@ -6,6 +6,7 @@
 use super::{Checker, MAX_NODES};
 use crate::catalog::Val;
 use crate::catalog::repeat::{MAX_COPIES, Plan};
+use crate::catalog::traits::Motion;
 use crate::diag::Span;
 use crate::scene::{NodeId, NodeKind};
 use glam::DVec3;
@@ -135,7 +136,7 @@ impl Checker<'_> {
                 continue;
             };
             // (A copy's own annotation, `(s at v) @lipschitz(3)`, is a λ of its own.)
-            if op.name != "translate"
+            if op.traits.motion != Motion::Move
                 || ctx.sym.iter().any(Option::is_some)
                 || node.material.is_some()
                 || node.name.is_some()

@@ -174,85 +174,19 @@ impl Checker<'_> {
             );
             return;
         }
-        // `color checker(#fff, #222, 0.5)`: a pattern; the material's colour is its first.
         let mut args = args.to_vec();
-        let mut pattern = None;
-        for a in &mut args {
-            let is_color = a.name.as_ref().is_some_and(|n| n.name == "color");
-            let crate::syntax::ExprKind::Call(call) = &a.value.kind else {
-                continue;
-            };
-            if !is_color {
-                continue;
-            }
-            let Some(&(pname, kind, _)) = PATTERNS.iter().find(|p| p.0 == call.name.name) else {
-                let names = PATTERNS.iter().map(|p| p.0);
-                let mut d = Diagnostic::error(
-                    call.name.span,
-                    format!("unknown pattern `{}`", call.name.name),
-                )
-                .label("not a pattern");
-                d = match did_you_mean(&call.name.name, names.clone()) {
-                    Some(n) => d.help(format!("did you mean `{n}`?")),
-                    None => d.note(format!(
-                        "a colour is `#rrggbb`, `(r, g, b)` or a pattern: {}",
-                        names.collect::<Vec<_>>().join(", ")
-                    )),
-                };
-                self.diags.push(d);
-                self.failed.insert(name.name.clone());
-                return;
-            };
-            if let Some(block) = &call.block {
-                let at = block.first().map_or(call.span, |e| e.span);
-                self.diags.push(
-                    Diagnostic::error(at, format!("the pattern `{pname}` takes no block"))
-                        .label("remove this block"),
-                );
-            }
-            let Some(v) = self.bind(pname, PATTERN, &call.args, call.span) else {
-                self.failed.insert(name.name.clone());
-                return;
-            };
-            pattern = Some(Pattern {
-                kind,
-                other: v[1].vec(),
-                scale: v[2].num(),
-                octaves: v[3].num() as u32,
-            });
-            let first = v[0].vec();
-            a.value.kind =
-                crate::syntax::ExprKind::Vector(Box::new([first.x, first.y, first.z].map(|c| {
-                    crate::syntax::Expr {
-                        kind: crate::syntax::ExprKind::Number {
-                            value: c,
-                            unit: None,
-                        },
-                        span: call.span,
-                    }
-                })));
-        }
+        let Some(pattern) = self.color_pattern(&mut args) else {
+            self.failed.insert(name.name.clone());
+            return;
+        };
         let what = format!("material {}", name.name);
         let run_time = RunTime::Only(&["color", "specular"]);
         let Some((a, sym)) = self.bind_args(&what, MATERIAL, &args, span, run_time) else {
             self.failed.insert(name.name.clone());
             return;
         };
-        if self.materials.len() == super::MAX_MATERIALS {
-            self.diags.push(
-                Diagnostic::error(name.span, "the scene has too many materials")
-                    .label("one material more than the limit")
-                    .note(format!("the limit is {} materials: each is a branch of the shading the GPU driver compiles", super::MAX_MATERIALS)),
-            );
-        }
         let (reflect, transparent) = (a[2].num(), a[3].num());
-        if reflect + transparent > 1.0 {
-            self.diags.push(
-                Diagnostic::error(span, format!("`reflect {reflect}` and `transparent {transparent}` add up to more than 1"))
-                    .label("more light leaves the surface than reaches it")
-                    .note("the surface's own shading gets 1 − reflect − transparent of the light; lower one of them"),
-            );
-        }
+        self.material_limits(name, reflect, transparent, span);
         self.material_item
             .entry(name.name.clone())
             .or_insert(self.item);
@@ -267,5 +201,88 @@ impl Checker<'_> {
             span: name.span,
             sym,
         });
+    }
+
+    /// `color checker(#fff, #222, 0.5)`: a pattern, the last one of a `color` argument; the
+    /// argument becomes the pattern's first colour. `None` (reported) for an unknown pattern
+    /// or its arguments' errors.
+    fn color_pattern(&mut self, args: &mut [Arg]) -> Option<Option<Pattern>> {
+        let mut pattern = None;
+        for a in args {
+            let is_color = a.name.as_ref().is_some_and(|n| n.name == "color");
+            let crate::syntax::ExprKind::Call(call) = &a.value.kind else {
+                continue;
+            };
+            if !is_color {
+                continue;
+            }
+            let (p, first) = self.pattern(call)?;
+            pattern = Some(p);
+            a.value.kind =
+                crate::syntax::ExprKind::Vector(Box::new([first.x, first.y, first.z].map(|c| {
+                    crate::syntax::Expr {
+                        kind: crate::syntax::ExprKind::Number {
+                            value: c,
+                            unit: None,
+                        },
+                        span: call.span,
+                    }
+                })));
+        }
+        Some(pattern)
+    }
+
+    /// A pattern's call, `checker(#fff, #222, 0.5)`: the pattern and its first colour.
+    fn pattern(&mut self, call: &crate::syntax::Call) -> Option<(Pattern, glam::DVec3)> {
+        let Some(&(pname, kind, _)) = PATTERNS.iter().find(|p| p.0 == call.name.name) else {
+            let names = PATTERNS.iter().map(|p| p.0);
+            let mut d = Diagnostic::error(
+                call.name.span,
+                format!("unknown pattern `{}`", call.name.name),
+            )
+            .label("not a pattern");
+            d = match did_you_mean(&call.name.name, names.clone()) {
+                Some(n) => d.help(format!("did you mean `{n}`?")),
+                None => d.note(format!(
+                    "a colour is `#rrggbb`, `(r, g, b)` or a pattern: {}",
+                    names.collect::<Vec<_>>().join(", ")
+                )),
+            };
+            self.diags.push(d);
+            return None;
+        };
+        if let Some(block) = &call.block {
+            let at = block.first().map_or(call.span, |e| e.span);
+            self.diags.push(
+                Diagnostic::error(at, format!("the pattern `{pname}` takes no block"))
+                    .label("remove this block"),
+            );
+        }
+        let v = self.bind(pname, PATTERN, &call.args, call.span)?;
+        let pattern = Pattern {
+            kind,
+            other: v[1].vec(),
+            scale: v[2].num(),
+            octaves: v[3].num() as u32,
+        };
+        Some((pattern, v[0].vec()))
+    }
+
+    /// A material past the scene's limit, or reflecting and transmitting more than 1.
+    fn material_limits(&mut self, name: &Ident, reflect: f64, transparent: f64, span: Span) {
+        if self.materials.len() == super::MAX_MATERIALS {
+            self.diags.push(
+                Diagnostic::error(name.span, "the scene has too many materials")
+                    .label("one material more than the limit")
+                    .note(format!("the limit is {} materials: each is a branch of the shading the GPU driver compiles", super::MAX_MATERIALS)),
+            );
+        }
+        if reflect + transparent > 1.0 {
+            self.diags.push(
+                Diagnostic::error(span, format!("`reflect {reflect}` and `transparent {transparent}` add up to more than 1"))
+                    .label("more light leaves the surface than reaches it")
+                    .note("the surface's own shading gets 1 − reflect − transparent of the light; lower one of them"),
+            );
+        }
     }
 }

@@ -3,21 +3,27 @@
 
 mod absorb;
 mod args;
+mod arith;
 mod call;
+mod convert;
 mod derived;
 mod expr;
+mod file;
 mod fn_args;
 mod functions;
 mod implicit;
 mod lattice;
 mod look;
+mod names;
 mod nodes;
 mod param_args;
+mod param_decl;
 mod params;
 mod planar;
 mod ranges;
 mod settings;
 pub mod tracer;
+mod whole;
 
 pub use args::signature;
 pub use look::LIGHT_KINDS;
@@ -86,7 +92,7 @@ pub fn compile_file(
     let loaded = syntax::load(name, source, loader);
     match loaded.file {
         Some(file) => {
-            let mut checked = check_with_lines(&file, &loaded.sources, values);
+            let mut checked = file::check_with_lines(&file, &loaded.sources, values);
             checked.sources = loaded.sources;
             checked
         }
@@ -118,107 +124,7 @@ pub fn unknown_params<'v>(
 
 /// Checks a parsed file.
 pub fn check(file: &syntax::File) -> Checked {
-    check_with_lines(file, &Sources::default(), &HashMap::new())
-}
-
-fn check_with_lines(
-    file: &syntax::File,
-    sources: &Sources,
-    values: &HashMap<String, Vec<f64>>,
-) -> Checked {
-    let mut c = Checker::new(file);
-    c.overrides = values.clone();
-    c.line_starts = sources.line_starts();
-    let mut roots = Vec::new();
-    for (index, item) in file.items.iter().enumerate() {
-        c.depth_reported = false;
-        c.item = index;
-        match item {
-            Item::Fn(def) => c.fn_definition(def, index),
-            // Spliced in by `syntax::load`; a file checked without loading has none to read.
-            Item::Import { .. } => {}
-            Item::Let { name, value } => c.let_binding(name, value),
-            Item::Param {
-                name,
-                value,
-                range,
-                span,
-            } => c.param_statement(name, value, range.as_deref(), *span),
-            Item::Block {
-                keyword,
-                kind,
-                settings,
-                span,
-            } => c.block(keyword, kind.as_ref(), settings, *span),
-            Item::Value { keyword, value } => c.value_statement(keyword, value),
-            Item::Scene(e) => {
-                if let Some(n) = c.shape(e) {
-                    roots.push(n);
-                }
-            }
-        }
-    }
-    let had_scene = file.items.iter().any(|i| matches!(i, Item::Scene(_)));
-    let root = match roots.len() {
-        0 => {
-            if !had_scene {
-                let end = file_end(file);
-                c.diags.push(
-                    Diagnostic::error(Span::new(end, end), "the file has no shape to render")
-                        .help("add a shape after the settings, e.g. `sphere(1)`"),
-                );
-            }
-            None
-        }
-        1 => Some(roots[0]),
-        _ => {
-            let span = c.nodes[roots[0]]
-                .span
-                .to(c.nodes[*roots.last().unwrap()].span);
-            c.operator_node("union", (Vec::new(), Vec::new()), roots, span)
-        }
-    };
-    c.unused_params();
-    c.unused_fns(sources.files.first().map_or(usize::MAX, |f| f.text.len()));
-    if let Some(root) = root {
-        c.check_root_not_planar(root);
-        c.check_bounded(root);
-        c.check_bound(root);
-        c.check_epsilon();
-        c.check_f32_range(root);
-    }
-    c.diags.sort_by_key(|d| (d.span.start, d.span.end));
-    // A body's mistake is found at every call: shown once, with the first call.
-    let mut seen = std::collections::HashSet::new();
-    c.diags
-        .retain(|d| seen.insert((d.span, d.message.clone(), d.label.clone())));
-    let ok = !c.diags.iter().any(Diagnostic::is_error);
-    let diagnostics = std::mem::take(&mut c.diags);
-    let scene = match (ok, root) {
-        (true, Some(root)) => Some(c.finish(root)),
-        _ => None,
-    };
-    Checked {
-        scene,
-        diagnostics,
-        sources: Sources::default(),
-    }
-}
-
-fn file_end(file: &syntax::File) -> usize {
-    file.items
-        .iter()
-        .map(|i| match i {
-            Item::Let { value, .. } | Item::Value { value, .. } | Item::Scene(value) => {
-                value.span.end
-            }
-            Item::Block { span, .. } | Item::Param { span, .. } | Item::Import { span, .. } => {
-                span.end
-            }
-            Item::Fn(def) => def.span.end,
-        })
-        .max()
-        .unwrap_or(0)
+    file::check_with_lines(file, &Sources::default(), &HashMap::new())
 }
 
 /// The dimension of a number: plain, or an angle (from a `deg`/`rad` unit).

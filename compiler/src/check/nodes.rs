@@ -3,7 +3,8 @@
 //! graph (every reachable node bounded, `repeat`'s copies within the limit).
 
 use super::{Checker, MAX_EVALUATIONS, MAX_NODES, MIN_LAMBDA, ranges};
-use crate::catalog::{Bound, Ctx};
+use crate::catalog::traits::{Motion, Plane};
+use crate::catalog::{Bound, Ctx, Operator};
 use crate::diag::{Diagnostic, Span};
 use crate::scene::{Node, NodeId, NodeKind};
 
@@ -99,7 +100,7 @@ impl Checker<'_> {
         span: Span,
     ) -> Option<NodeId> {
         let op = crate::catalog::operator(name).expect("operator in the catalog");
-        if name == "scale"
+        if op.traits.motion == Motion::Scale
             && let ([arg], [child]) = (args.as_slice(), children.as_slice())
         {
             use crate::catalog::absorb::{comps_of, spread};
@@ -108,53 +109,59 @@ impl Checker<'_> {
                 return Some(id);
             }
         }
-        // The first argument of the operators that move a 2D shape out of its plane (a turn's
-        // or mirror's axis, a repeat's spacing), and whether the host may change it.
-        let axis = matches!(name, "rotate" | "mirror" | "repeat").then(|| {
+        // The first argument of the operators that may move a 2D shape out of its plane (a
+        // turn's or mirror's axis, a repeat's spacing), and whether the host may change it.
+        let axis = matches!(op.traits.plane, Plane::KeepsIf(_)).then(|| {
             let v = match args.first() {
                 Some(crate::catalog::Val::Vec3(v)) => *v,
                 _ => glam::DVec3::ZERO,
             };
             (v, sym.first().is_some_and(Option::is_some))
         });
-        if self.check_planar(name, axis, &children, span).is_err() {
+        if self.check_planar(op, axis, &children, span).is_err() {
             return None;
         }
-        let children = if name == "union" {
+        let children = if op.traits.groups {
             self.lattices(children)
         } else {
             children
         };
         let mut ctx = self.ctx_over((args, sym), &children);
-        if name == "union" {
+        if op.traits.groups {
             ctx.prune = crate::catalog::prune::Tree::build(&ctx).map(std::sync::Arc::new);
         }
         let rules =
             self.rules_over_ranges(&ctx, span, name, &|c| ranges::Rules::operator(op, c))?;
         let (lambda, bound) = (rules.lambda, rules.bound);
-        let copies = match name {
-            "repeat" => {
-                let copies = crate::catalog::repeat::Plan::new(&ctx).copies();
-                self.check_repeat_copies(&ctx, copies, span);
-                copies
-            }
-            "repeat_polar" => {
-                let copies = crate::catalog::repeat::polar_copies(&ctx);
-                self.check_polar_copies(copies, span);
-                if copies > 4.0 && !ctx.child_bound[0].is_finite() {
-                    self.diags.push(
-                        Diagnostic::warning(span, format!("every one of the {copies:.0} copies is evaluated at every point"))
-                            .label("the shape's bound is not known")
-                            .note("with a bounded shape only the own sector, or the few copies that can be nearest, are evaluated; a smooth blend, `round` or `onion` of a shape whose field is not a distance has no bound")
-                            .help("use `union` instead of a smooth blend inside the repeated shape"),
-                    );
-                }
-                copies
-            }
-            _ => 1.0,
-        };
+        let copies = self.copies_of(op, &ctx, span);
         let each: f64 = children.iter().map(|&c| self.nodes[c].evaluations).sum();
         let evaluations = each * copies;
+        self.check_evaluations(&children, evaluations, span);
+        let id = self.push_node(
+            NodeKind::Operator { op, ctx, children },
+            lambda,
+            bound,
+            span,
+        )?;
+        self.nodes[id].evaluations = evaluations;
+        self.narrow_rules(id, &rules);
+        Some(id)
+    }
+
+    /// How many copies of its child an operator evaluates at a point (1 but for the repeats,
+    /// whose copies are checked against their limits).
+    fn copies_of(&mut self, op: &Operator, ctx: &Ctx, span: Span) -> f64 {
+        let Some(c) = op.traits.copies else {
+            return 1.0;
+        };
+        let copies = (c.count)(ctx);
+        self.diags.extend((c.diagnose)(ctx, copies, span));
+        copies
+    }
+
+    /// An error when a node of `evaluations` primitive evaluations goes past
+    /// [`MAX_EVALUATIONS`] (once: at the node whose children are all within it).
+    fn check_evaluations(&mut self, children: &[NodeId], evaluations: f64, span: Span) {
         if evaluations > MAX_EVALUATIONS
             && children
                 .iter()
@@ -171,15 +178,6 @@ impl Checker<'_> {
                     .help("use a shape fewer times, or fewer copies"),
             );
         }
-        let id = self.push_node(
-            NodeKind::Operator { op, ctx, children },
-            lambda,
-            bound,
-            span,
-        )?;
-        self.nodes[id].evaluations = evaluations;
-        self.narrow_rules(id, &rules);
-        Some(id)
     }
 
     /// A node's symmetries, exactness and gradient as every value of its parameters has them.
@@ -191,38 +189,6 @@ impl Checker<'_> {
         }
         n.unit_gradient &= rules.unit;
         n.exact &= rules.exact;
-    }
-
-    /// A `repeat` evaluates the copies that can be nearest (see `catalog::repeat`); a shape
-    /// spanning many cells would need too many of them per evaluation: an error.
-    fn check_repeat_copies(&mut self, ctx: &Ctx, copies: f64, span: Span) {
-        if copies > crate::catalog::repeat::MAX_COPIES as f64 {
-            let b = ctx.child_bound[0];
-            let size = b.hi - b.lo;
-            self.diags.push(
-                Diagnostic::error(span, "the repeated shape spans too many cells")
-                    .label(format!(
-                        "each evaluation would look at {copies:.0} copies (the shape is {:.3} × {:.3} × {:.3}, the spacing {} × {} × {})",
-                        size.x, size.y, size.z, ctx.vec(0).x, ctx.vec(0).y, ctx.vec(0).z
-                    ))
-                    .note(format!("at most {} copies are evaluated per point", crate::catalog::repeat::MAX_COPIES))
-                    .help("use a larger spacing, or a smaller shape"),
-            );
-        }
-    }
-
-    /// A `repeat_polar` whose shape spans too many sectors, or surrounds the axis with more
-    /// copies than one evaluation may look at: an error.
-    fn check_polar_copies(&mut self, copies: f64, span: Span) {
-        let most = crate::catalog::repeat::MAX_COPIES;
-        if copies > most as f64 {
-            self.diags.push(
-                Diagnostic::error(span, "the turned shape spans too many sectors")
-                    .label(format!("each evaluation would look at {copies:.0} copies"))
-                    .note(format!("at most {most} copies are evaluated per point; a shape around the y axis needs every copy"))
-                    .help("use fewer copies, or move the shape away from the axis (`at (r, 0, 0)`)"),
-            );
-        }
     }
 
     /// Every reachable node needs a finite λ; report those that have none.
@@ -269,13 +235,10 @@ impl Checker<'_> {
                 {
                     d = d.note("`atan2(a, b)` jumps by 2π where a crosses 0 while b < 0; only a field that is periodic in the angle (e.g. `sin(n * atan2(a, b))` with a whole n) stays continuous there, and then an annotation is right");
                 }
-                if what == "repeat" {
-                    d = d.note("`repeat` can only be bounded when its shape is bounded along the repeated axes");
-                }
-                if what == "twist" || what == "bend" {
-                    d = d.note(format!(
-                        "`{what}` can only be bounded when its shape is bounded"
-                    ));
+                if let NodeKind::Operator { op, .. } = &node.kind
+                    && let Some(note) = op.traits.unbounded
+                {
+                    d = d.note(note);
                 }
                 let d = self.with_call_site(d, n);
                 self.diags.push(d);

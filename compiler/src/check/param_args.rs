@@ -44,6 +44,14 @@ impl Checker<'_> {
             return None;
         }
         let val = self.convert_value(e, ty, param, s.value())?;
+        self.check_over_ranges(e, ty, param, &s)?;
+        let comps = self.shader_comps(e, ty, param, s, &val)?;
+        Some((val, comps))
+    }
+
+    /// Every value the parameters `s` reads may take gives a defined value of `ty`: checked per
+    /// component by interval arithmetic over their ranges.
+    fn check_over_ranges(&mut self, e: &Expr, ty: Ty, param: &str, s: &Sym) -> Option<()> {
         for c in &s.comps {
             let (range, undefined) = range_of(c);
             if let Some(why) = undefined {
@@ -52,11 +60,11 @@ impl Checker<'_> {
                         e.span,
                         format!(
                             "`{param}` is not defined for every value of {}",
-                            self.reads_text(&s)
+                            self.reads_text(s)
                         ),
                     )
                     .label(why)
-                    .help(self.range_help(&s)),
+                    .help(self.range_help(s)),
                 );
                 return None;
             }
@@ -67,7 +75,7 @@ impl Checker<'_> {
                         format!(
                             "`{param}` must be {} for every value of {}",
                             ty.describe(),
-                            self.reads_text(&s)
+                            self.reads_text(s)
                         ),
                     )
                     .label(if range.lo.is_finite() && range.hi.is_finite() {
@@ -75,12 +83,25 @@ impl Checker<'_> {
                     } else {
                         "it may be any value".to_string()
                     })
-                    .help(self.range_help(&s)),
+                    .help(self.range_help(s)),
                 );
                 return None;
             }
         }
-        let comps = match (ty, s.kind) {
+        Some(())
+    }
+
+    /// The argument's components as expressions for the shader: an axis normalised (refused
+    /// where it may be zero), a number broadcast where the value is a vector.
+    fn shader_comps(
+        &mut self,
+        e: &Expr,
+        ty: Ty,
+        param: &str,
+        s: Sym,
+        val: &Val,
+    ) -> Option<Vec<Field>> {
+        Some(match (ty, s.kind) {
             (Ty::Axis, SymKind::Vec3) => {
                 let len = Field::Call(catalog::math_fn("length").expect("length"), s.comps.clone());
                 if range_of(&len).0.lo <= 1e-12 {
@@ -101,8 +122,7 @@ impl Checker<'_> {
             }
             (_, SymKind::Num(_)) if matches!(val, Val::Vec3(_)) => s.three().to_vec(),
             _ => s.comps,
-        };
-        Some((val, comps))
+        })
     }
 
     /// "`r`" or "`a` and `b`": the parameters a value reads.

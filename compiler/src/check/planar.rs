@@ -3,7 +3,9 @@
 //! plane, and is never a shape of the scene by itself.
 
 use super::Checker;
-use crate::catalog::planar::{is_planar_primitive, keeps_planar, primitives_2d, takes_planar};
+use crate::catalog::Operator;
+use crate::catalog::planar::primitives_2d;
+use crate::catalog::traits::{Plane, PlaneRule};
 use crate::diag::{Diagnostic, Span};
 use crate::scene::{NodeId, NodeKind};
 
@@ -16,9 +18,10 @@ impl Checker<'_> {
     /// Records whether the node just pushed is 2D.
     pub(super) fn note_planar(&mut self, kind: &NodeKind) {
         let planar = match kind {
-            NodeKind::Primitive { prim, .. } => is_planar_primitive(prim.name),
+            NodeKind::Primitive { prim, .. } => prim.planar,
             NodeKind::Operator { op, children, .. } => {
-                keeps_planar(op.name) && children.iter().any(|&c| self.is_planar(c))
+                matches!(op.traits.plane, Plane::Keeps | Plane::KeepsIf(_))
+                    && children.iter().any(|&c| self.is_planar(c))
             }
             NodeKind::Implicit { .. } => false,
         };
@@ -27,48 +30,38 @@ impl Checker<'_> {
 
     /// The errors of an operator over its children: `extrude`/`revolve` of a solid, a solid
     /// and a 2D shape combined, a 2D shape turned out of its plane or given to an operator
-    /// of solids. `Err` when reported.
+    /// of solids. `axis`: the first argument, when the operator's plane rule reads it, and
+    /// whether it is set at run time. `Err` when reported.
     pub(super) fn check_planar(
         &mut self,
-        name: &str,
+        op: &Operator,
         axis: Option<(glam::DVec3, bool)>,
         children: &[NodeId],
         span: Span,
     ) -> Result<(), ()> {
+        let name = op.name;
         let flat: Vec<bool> = children.iter().map(|&c| self.is_planar(c)).collect();
-        if takes_planar(name) {
-            if let Some(i) = flat.iter().position(|f| !f) {
-                let c = self.nodes[children[i]].span;
-                let shapes_2d = primitives_2d()
-                    .map(|n| format!("`{n}`"))
-                    .collect::<Vec<_>>()
-                    .join(", ");
-                self.diags.push(
-                    Diagnostic::error(c, format!("`{name}` makes a solid of a 2D shape"))
-                        .label("this is already a solid")
-                        .also(span, format!("`{name}` here"))
-                        .note(format!(
-                            "the 2D shapes are {shapes_2d}, and what operators make of them"
-                        )),
-                );
-                return Err(());
-            }
-            return Ok(());
+        if let Plane::Makes = op.traits.plane {
+            return self.check_takes_planar(name, &flat, children, span);
         }
         if !flat.iter().any(|&f| f) {
             return Ok(());
         }
         let first = flat.iter().position(|&f| f).expect("one is 2D");
         let c = self.nodes[children[first]].span;
-        if !keeps_planar(name) {
-            self.diags.push(
-                Diagnostic::error(c, format!("`{name}` works on solids, and this is a 2D shape"))
-                    .label("a 2D shape")
-                    .also(span, format!("`{name}` here"))
-                    .help(format!("make a solid of it first: `extrude(1) {{ … }}` or `revolve(0.5) {{ … }}`, then `{name}`")),
-            );
-            return Err(());
-        }
+        let rule = match op.traits.plane {
+            Plane::Keeps => None,
+            Plane::KeepsIf(rule) => Some(rule),
+            Plane::Solids | Plane::Makes => {
+                self.diags.push(
+                    Diagnostic::error(c, format!("`{name}` works on solids, and this is a 2D shape"))
+                        .label("a 2D shape")
+                        .also(span, format!("`{name}` here"))
+                        .help(format!("make a solid of it first: `extrude(1) {{ … }}` or `revolve(0.5) {{ … }}`, then `{name}`")),
+                );
+                return Err(());
+            }
+        };
         if let Some(solid) = flat.iter().position(|f| !f) {
             let s = self.nodes[children[solid]].span;
             self.diags.push(
@@ -80,35 +73,57 @@ impl Checker<'_> {
             );
             return Err(());
         }
+        match (rule, axis) {
+            (Some(rule), Some(axis)) => self.check_in_plane(name, rule, axis, (c, span)),
+            _ => Ok(()),
+        }
+    }
+
+    /// `extrude`/`revolve` (`name`) of children (`flat`: which are 2D): an error for a solid.
+    fn check_takes_planar(
+        &mut self,
+        name: &str,
+        flat: &[bool],
+        children: &[NodeId],
+        span: Span,
+    ) -> Result<(), ()> {
+        if let Some(i) = flat.iter().position(|f| !f) {
+            let c = self.nodes[children[i]].span;
+            let shapes_2d = primitives_2d()
+                .map(|n| format!("`{n}`"))
+                .collect::<Vec<_>>()
+                .join(", ");
+            self.diags.push(
+                Diagnostic::error(c, format!("`{name}` makes a solid of a 2D shape"))
+                    .label("this is already a solid")
+                    .also(span, format!("`{name}` here"))
+                    .note(format!(
+                        "the 2D shapes are {shapes_2d}, and what operators make of them"
+                    )),
+            );
+            return Err(());
+        }
+        Ok(())
+    }
+
+    /// A 2D shape (at `c`) turned, mirrored or repeated by `name` about or along `a` (and
+    /// whether that is set at run time): an error unless `rule` keeps it in its plane.
+    fn check_in_plane(
+        &mut self,
+        name: &str,
+        rule: PlaneRule,
+        (a, run_time): (glam::DVec3, bool),
+        (c, span): (Span, Span),
+    ) -> Result<(), ()> {
         // A 2D shape must stay the same at every z (extrude's λ = 1 rests on it): turns only
         // about z, mirrors only across planes that contain z or are across it, repeats only in
         // its plane — and none of these set at run time.
-        let Some((a, run_time)) = axis else {
-            return Ok(());
-        };
-        let (ok, what, help) = match name {
-            "rotate" => (
-                (a.z.abs() - 1.0).abs() <= 1e-12,
-                "a 2D shape turns only in its plane",
-                "turn it about `z`, or turn the solid after `extrude` or `revolve`",
-            ),
-            "mirror" => (
-                a.z == 0.0 || (a.z.abs() - 1.0).abs() <= 1e-12,
-                "a 2D shape mirrors only within its plane",
-                "mirror it across a plane through the z axis (a normal `(x, y, 0)`), or mirror the solid",
-            ),
-            _ => (
-                a.z == 0.0,
-                "a 2D shape repeats only in its plane",
-                "give the spacing 0 along z: `repeat((sx, sy, 0)) { … }`",
-            ),
-        };
-        if !ok {
+        if !(rule.keeps)(a) {
             self.diags.push(
-                Diagnostic::error(span, what)
+                Diagnostic::error(span, rule.message)
                     .label("out of the xy plane")
                     .also(c, "a 2D shape, in the xy plane")
-                    .help(help),
+                    .help(rule.help),
             );
             return Err(());
         }

@@ -183,78 +183,99 @@ impl Checker<'_> {
         }
         let some_side = (0..3).any(|i| out.bound.lo[i].is_finite() || out.bound.hi[i].is_finite());
         if (out.bound.is_finite() || some_side) && samples.len() > 1 {
-            // How far a bound moves between neighbouring samples: its centre, and each side
-            // of its box (a shape turned about its own centre moves its box, not its centre);
-            // the finite sides only (a 2D shape's box is finite in x and y).
-            let step = |a: &Rules, b: &Rules| {
-                let moved = |x: f64, y: f64| {
-                    if x.is_finite() && y.is_finite() {
-                        (x - y).abs()
-                    } else {
-                        0.0
-                    }
-                };
-                let sides = (0..3)
-                    .map(|i| {
-                        moved(a.bound.lo[i], b.bound.lo[i]).max(moved(a.bound.hi[i], b.bound.hi[i]))
-                    })
-                    .fold(0.0, f64::max);
-                let centre = if a.bound.is_finite() && b.bound.is_finite() {
-                    (a.bound.center - b.bound.center).length()
-                } else {
-                    0.0
-                };
-                centre.max(sides)
-            };
-            let gap = samples
-                .iter()
-                .map(|a| {
-                    samples
-                        .iter()
-                        .map(|b| step(a, b))
-                        .filter(|&d| d > 0.0)
-                        .fold(0.0_f64, |m, d| if m == 0.0 { d } else { m.min(d) })
-                })
-                .fold(0.0, f64::max);
-            out.bound = out.bound.grown(gap / 2.0);
+            out.bound = out.bound.grown(sample_gap(&samples) / 2.0);
         }
-        for d in free {
-            for x in perturbed(d.value) {
-                let value = |r: &ParamRef| {
-                    if r.index == d.index && r.comp == d.comp {
-                        x
-                    } else {
-                        r.value
-                    }
-                };
-                let s = rules(&ctx.at_values(&value));
-                if (s.lambda - here.lambda).abs() > 1e-9 * here.lambda.abs().max(1.0)
-                    || !s.lambda.is_finite()
-                {
-                    let name = self.params[d.index].name.clone();
-                    self.diags.push(
-                        Diagnostic::error(
-                            span,
-                            format!("the Lipschitz bound of this `{what}` depends on `{name}`, which has no range"),
-                        )
-                        .label(format!("λ changes with `{name}`"))
-                        .note("λ must hold for every value the host may set")
-                        .help(format!(
-                            "give `{name}` a range: `param {name} = … in low..high` (λ is then the largest over it)"
-                        )),
-                    );
-                    return None;
-                }
-                if s.bound != here.bound {
-                    out.bound = Bound::INFINITE;
-                }
-                combine(&mut out, &s);
-            }
+        if let Err(d) = over_free_params(ctx, rules, &free, &here, &mut out) {
+            let name = self.params[d.index].name.clone();
+            self.diags.push(
+                Diagnostic::error(
+                    span,
+                    format!("the Lipschitz bound of this `{what}` depends on `{name}`, which has no range"),
+                )
+                .label(format!("λ changes with `{name}`"))
+                .note("λ must hold for every value the host may set")
+                .help(format!(
+                    "give `{name}` a range: `param {name} = … in low..high` (λ is then the largest over it)"
+                )),
+            );
+            return None;
         }
         Some(out)
     }
 }
 
+/// Each parameter without a range, perturbed: the bound becomes infinite if it changes, and
+/// symmetries and exactness must hold throughout; `Err` with the first parameter that
+/// changes λ (which must not).
+fn over_free_params(
+    ctx: &Ctx,
+    rules: &dyn Fn(&Ctx) -> Rules,
+    free: &[ParamRef],
+    here: &Rules,
+    out: &mut Rules,
+) -> Result<(), ParamRef> {
+    for d in free.iter().copied() {
+        for x in perturbed(d.value) {
+            let value = |r: &ParamRef| {
+                if r.index == d.index && r.comp == d.comp {
+                    x
+                } else {
+                    r.value
+                }
+            };
+            let s = rules(&ctx.at_values(&value));
+            if (s.lambda - here.lambda).abs() > 1e-9 * here.lambda.abs().max(1.0)
+                || !s.lambda.is_finite()
+            {
+                return Err(d);
+            }
+            if s.bound != here.bound {
+                out.bound = Bound::INFINITE;
+            }
+            combine(out, &s);
+        }
+    }
+    Ok(())
+}
+
+/// Half of this is how far the bound may move between a point of the ranges and its nearest
+/// sample: the largest, over the samples, of the distance to the nearest other sample whose
+/// bound differs.
+fn sample_gap(samples: &[Rules]) -> f64 {
+    // How far a bound moves between neighbouring samples: its centre, and each side
+    // of its box (a shape turned about its own centre moves its box, not its centre);
+    // the finite sides only (a 2D shape's box is finite in x and y).
+    let step = |a: &Rules, b: &Rules| {
+        let moved = |x: f64, y: f64| {
+            if x.is_finite() && y.is_finite() {
+                (x - y).abs()
+            } else {
+                0.0
+            }
+        };
+        let sides = (0..3)
+            .map(|i| moved(a.bound.lo[i], b.bound.lo[i]).max(moved(a.bound.hi[i], b.bound.hi[i])))
+            .fold(0.0, f64::max);
+        let centre = if a.bound.is_finite() && b.bound.is_finite() {
+            (a.bound.center - b.bound.center).length()
+        } else {
+            0.0
+        };
+        centre.max(sides)
+    };
+    samples
+        .iter()
+        .map(|a| {
+            samples
+                .iter()
+                .map(|b| step(a, b))
+                .filter(|&d| d > 0.0)
+                .fold(0.0_f64, |m, d| if m == 0.0 { d } else { m.min(d) })
+        })
+        .fold(0.0, f64::max)
+}
+
+/// Keeps only the symmetries and exactness both `out` and `s` have.
 fn combine(out: &mut Rules, s: &Rules) {
     for i in 0..3 {
         out.mirror[i] &= s.mirror[i];

@@ -54,29 +54,25 @@ pub(super) use crate::syntax::BLOCK_KEYWORDS;
 const DEFAULT_BACKGROUND: DVec3 = DVec3::new(0.08, 0.09, 0.12);
 
 /// Relative spacing of f32 numbers (2⁻²³).
-const F32_RESOLUTION: f64 = 1.0 / 8_388_608.0;
-/// Image height the resolution warning assumes for a pixel's footprint.
-const NOMINAL_LINES: f64 = 1080.0;
-/// Coordinates above this overflow f32 when squared and summed (√(f32::MAX / 3) ≈ 1.06e19).
-const F32_SQUARE_LIMIT: f64 = 1e19;
+pub(super) const F32_RESOLUTION: f64 = 1.0 / 8_388_608.0;
 
 /// Settings collected while checking, with where each was first given.
 #[derive(Default)]
 pub(super) struct Settings {
-    camera: Option<(Camera, Span)>,
+    pub(super) camera: Option<(Camera, Span)>,
     pub(super) lights: Vec<Light>,
-    trace: Option<(Trace, Span)>,
+    pub(super) trace: Option<(Trace, Span)>,
     background: Option<(DVec3, Span)>,
     pub(super) occlusion: Option<(Occlusion, Span)>,
     /// The fog, its colour `None` for the background's.
     pub(super) fog: Option<((Option<DVec3>, f64), Span)>,
     /// The declared bound; `None` inside for `bound auto`, resolved once the root is known.
-    bound: Option<((Option<Convex>, bool), Span)>,
+    pub(super) bound: Option<((Option<Convex>, bool), Span)>,
 }
 
 impl Settings {
     /// The declared camera, or the default one.
-    fn camera(&self) -> Camera {
+    pub(super) fn camera(&self) -> Camera {
         self.camera.map(|c| c.0).unwrap_or(Camera {
             eye: DVec3::new(0.0, 1.0, -5.0),
             target: DVec3::ZERO,
@@ -146,71 +142,85 @@ impl Checker<'_> {
             })
             .collect();
         match keyword.name.as_str() {
-            "camera" => {
-                self.no_kind(keyword, kind);
-                let Some(a) = self.bind("camera", CAMERA, &args, span) else {
-                    return;
-                };
-                let camera = Camera {
-                    eye: a[0].vec(),
-                    target: a[1].vec(),
-                    up: a[2].vec(),
-                    fov: a[3].num(),
-                };
-                if !(0.01..=3.1).contains(&camera.fov) {
-                    self.diags.push(
-                        Diagnostic::error(
-                            setting_span(settings, "fov", span),
-                            "the field of view must be between 0.6deg and 177deg",
-                        )
-                        .label("out of range"),
-                    );
-                } else if (camera.eye - camera.target).length()
-                    <= F32_RESOLUTION * camera.eye.length().max(camera.target.length())
-                {
-                    self.diags.push(
-                        Diagnostic::error(span, "the camera's eye and target coincide")
-                            .label("no view direction"),
-                    );
-                } else if (camera.eye - camera.target)
-                    .normalize()
-                    .cross(camera.up)
-                    .length()
-                    < 1e-6
-                {
-                    self.diags.push(
-                        Diagnostic::error(span, "the camera looks along its `up` direction")
-                            .label("choose another `up`"),
-                    );
-                }
-                self.once(|s| &mut s.camera, camera, span, "camera");
-            }
+            "camera" => self.camera(keyword, kind, settings, &args, span),
             "light" => self.light(kind, &args, span),
             "occlusion" => self.occlusion(keyword, kind, &args, span),
             "fog" => self.fog(keyword, kind, &args, span),
-            "trace" => {
-                let methods = super::tracer::TRACE_METHODS
-                    .iter()
-                    .map(|(n, _, p)| (*n, *p));
-                let Some((name, params)) = self.kind_of(methods, kind, "trace") else {
-                    return;
-                };
-                let method = super::tracer::TRACE_METHODS
-                    .iter()
-                    .find(|m| m.0 == name)
-                    .map(|m| m.1)
-                    .unwrap_or(Method::Basic);
-                let Some(a) = self.bind(&format!("trace {name}"), params, &args, span) else {
-                    return;
-                };
-                let trace = super::tracer::build(method, |n| {
-                    params.iter().position(|p| p.name == n).map(|i| a[i])
-                });
-                self.once(|s| &mut s.trace, trace, span, "trace");
-            }
+            "trace" => self.trace(kind, &args, span),
             "bound" => self.bound(kind, &args, span),
             _ => self.material(kind, &args, span),
         }
+    }
+
+    /// `camera { eye  target  up  fov }`: the field of view within range, a view direction,
+    /// and an `up` off it.
+    fn camera(
+        &mut self,
+        keyword: &Ident,
+        kind: Option<&Ident>,
+        settings: &[Setting],
+        args: &[Arg],
+        span: Span,
+    ) {
+        self.no_kind(keyword, kind);
+        let Some(a) = self.bind("camera", CAMERA, args, span) else {
+            return;
+        };
+        let camera = Camera {
+            eye: a[0].vec(),
+            target: a[1].vec(),
+            up: a[2].vec(),
+            fov: a[3].num(),
+        };
+        if !(0.01..=3.1).contains(&camera.fov) {
+            self.diags.push(
+                Diagnostic::error(
+                    setting_span(settings, "fov", span),
+                    "the field of view must be between 0.6deg and 177deg",
+                )
+                .label("out of range"),
+            );
+        } else if (camera.eye - camera.target).length()
+            <= F32_RESOLUTION * camera.eye.length().max(camera.target.length())
+        {
+            self.diags.push(
+                Diagnostic::error(span, "the camera's eye and target coincide")
+                    .label("no view direction"),
+            );
+        } else if (camera.eye - camera.target)
+            .normalize()
+            .cross(camera.up)
+            .length()
+            < 1e-6
+        {
+            self.diags.push(
+                Diagnostic::error(span, "the camera looks along its `up` direction")
+                    .label("choose another `up`"),
+            );
+        }
+        self.once(|s| &mut s.camera, camera, span, "camera");
+    }
+
+    /// `trace method { .. }`: the tracer and its settings.
+    fn trace(&mut self, kind: Option<&Ident>, args: &[Arg], span: Span) {
+        let methods = super::tracer::TRACE_METHODS
+            .iter()
+            .map(|(n, _, p)| (*n, *p));
+        let Some((name, params)) = self.kind_of(methods, kind, "trace") else {
+            return;
+        };
+        let method = super::tracer::TRACE_METHODS
+            .iter()
+            .find(|m| m.0 == name)
+            .map(|m| m.1)
+            .unwrap_or(Method::Basic);
+        let Some(a) = self.bind(&format!("trace {name}"), params, args, span) else {
+            return;
+        };
+        let trace = super::tracer::build(method, |n| {
+            params.iter().position(|p| p.name == n).map(|i| a[i])
+        });
+        self.once(|s| &mut s.trace, trace, span, "trace");
     }
 
     /// `bound sphere { center (0, 1, 0) radius 2 }`, `bound box { size 4 }`, `bound auto {}`.
@@ -249,82 +259,6 @@ impl Checker<'_> {
         };
         let declared = shape.map(|shape| Convex { shape, convex });
         self.once(|s| &mut s.bound, (declared, convex), span, "bound");
-    }
-
-    /// Warns when an absolute ε is below what f32 positions resolve at the camera's distance
-    /// (the tracers then use that floor, `EPSILON_FLOOR`·|eye − target|).
-    pub(super) fn check_epsilon(&mut self) {
-        let Some((trace, span)) = &self.settings.trace else {
-            return;
-        };
-        let crate::scene::Epsilon::Absolute(e) = trace.epsilon else {
-            return;
-        };
-        let floor = self.settings.camera().epsilon_floor();
-        if e < floor {
-            self.diags.push(
-                Diagnostic::warning(*span, format!("ε = {e} is below what f32 positions resolve at this camera distance"))
-                    .label(format!("the tracers use ε = {floor:.3e} instead"))
-                    .note("a hit threshold under about 1e-5 of the camera's distance to its target cannot be met in f32: rays would spend their budget at the surface"),
-            );
-        }
-    }
-
-    /// Warns when the scene's coordinates are larger than f32 resolves at its pixel footprint
-    /// (positions round to more than a pixel of a 1080-line image at the camera's distance to
-    /// its target), or so large that squared lengths overflow f32.
-    pub(super) fn check_f32_range(&mut self, root: NodeId) {
-        let camera = self.settings.camera();
-        let b = self.nodes[root].bound;
-        let scene_size = if b.radius.is_finite() {
-            b.center.length() + b.radius
-        } else {
-            0.0
-        };
-        let camera_size = camera.eye.length().max(camera.target.length());
-        let size = scene_size.max(camera_size);
-        let ulp = size * F32_RESOLUTION;
-        let footprint =
-            (camera.eye - camera.target).length() * 2.0 * (camera.fov / 2.0).tan() / NOMINAL_LINES;
-        let overflow = size > F32_SQUARE_LIMIT;
-        // (No footprint: the camera is invalid, which is reported on its own.)
-        if (ulp <= footprint || footprint <= 0.0) && !overflow {
-            return;
-        }
-        let span = match self.settings.camera {
-            Some((_, span)) if camera_size >= scene_size => span,
-            _ => self.nodes[root].span,
-        };
-        let mut d = Diagnostic::warning(
-            span,
-            format!("coordinates reach {size:.3e}, beyond what f32 resolves here"),
-        );
-        d = if overflow {
-            d.label(format!(
-                "above {F32_SQUARE_LIMIT:.0e}, squared lengths overflow f32 on the GPU"
-            ))
-        } else {
-            d.label(format!(
-                "f32 rounds positions there to {ulp:.3e}, more than a pixel ({footprint:.3e}) at this camera distance"
-            ))
-        };
-        self.diags.push(
-            d.note("the GPU computes in f32: surfaces will be placed wrongly or missed")
-                .help("model the scene near the origin, at a scale between about 1e-4 and 1e4"),
-        );
-    }
-
-    /// Checks that `bound auto` has a finite sphere to use.
-    pub(super) fn check_bound(&mut self, root: NodeId) {
-        if let Some(((None, _), span)) = self.settings.bound
-            && !self.nodes[root].bound.radius.is_finite()
-        {
-            self.diags.push(
-                Diagnostic::error(span, "`bound auto` needs a bounded scene")
-                    .label("the scene reaches infinity")
-                    .note("an infinite surface (a plane, an infinite repetition) has no bounding sphere; give `bound sphere { .. }` or `bound box { .. }` to enclose the part to trace"),
-            );
-        }
     }
 
     /// `background #202030`

@@ -75,6 +75,7 @@ fn grad(
     r
 }
 
+/// [`grad`] of one node, its parts' by [`grad`].
 fn grad_inner(
     f: &Field,
     region: &[Interval; 3],
@@ -96,95 +97,133 @@ fn grad_inner(
             let (v, g) = grad(a, region, undefined, cut);
             (v.neg(), g.map(Interval::neg))
         }
-        Field::Binary(op, a, b) => {
-            let ((va, ga), (vb, gb)) = (
-                grad(a, region, undefined, cut),
-                grad(b, region, undefined, cut),
-            );
-            let each =
-                |f: &dyn Fn(Interval, Interval) -> Interval| [0, 1, 2].map(|i| f(ga[i], gb[i]));
-            match op {
-                BinOp::Add => (va.add(vb), each(&|x, y| x.add(y))),
-                BinOp::Sub => (va.sub(vb), each(&|x, y| x.sub(y))),
-                // a·a is a square: ≥ 0, which plain interval products cannot see.
-                BinOp::Mul if a == b => (
-                    va.powi(2),
-                    each(&|x, _| x.mul(va).mul(Interval::point(2.0))),
-                ),
-                BinOp::Mul => (va.mul(vb), each(&|x, y| x.mul(vb).add(va.mul(y)))),
-                BinOp::Div => {
-                    // A divisor that may be 0 makes the field infinite or NaN (0/0) there.
-                    if vb.has_zero() {
-                        undefined.get_or_insert_with(|| {
-                            format!(
-                                "`/` may divide by zero (the divisor ranges over [{}, {}])",
-                                vb.lo, vb.hi
-                            )
-                        });
-                    }
-                    let q = va.div(vb);
-                    (q, each(&|x, y| x.sub(q.mul(y)).div(vb)))
-                }
-                BinOp::Pow => match **b {
-                    // xⁿ with a whole exponent: n·xⁿ⁻¹·x'.
-                    Field::Const(n) if n.fract() == 0.0 && (0.0..=64.0).contains(&n) => {
-                        let n = n as i32;
-                        let d = if n == 0 {
-                            zero
-                        } else {
-                            va.powi(n - 1).mul(Interval::point(n as f64))
-                        };
-                        (va.powi(n), ga.map(|x| d.mul(x)))
-                    }
-                    Field::Const(n) if n < 0.0 && va.has_zero() => {
-                        undefined.get_or_insert_with(|| {
-                            format!(
-                                "`^ {n}` may divide by zero (the base ranges over [{}, {}])",
-                                va.lo, va.hi
-                            )
-                        });
-                        (Interval::ALL, [Interval::ALL; 3])
-                    }
-                    _ => {
-                        // A negative base is defined only for the whole exponents the
-                        // lowering multiplies out (|n| ≤ 64); `pow` is NaN or undefined there.
-                        let whole = matches!(**b, Field::Const(n) if n.fract() == 0.0 && n.abs() <= MAX_WHOLE_POWER);
-                        if va.lo < 0.0 && !whole {
-                            undefined.get_or_insert_with(|| {
-                                format!("`^` may raise a negative base (as low as {}) to a power that is not a whole number from -64 to 64", va.lo)
-                            });
-                        }
-                        (Interval::ALL, [Interval::ALL; 3])
-                    }
-                },
-            }
-        }
-        Field::Call(func, args) => {
-            let parts: Vec<(Interval, [Interval; 3])> = args
-                .iter()
-                .map(|a| grad(a, region, undefined, cut))
-                .collect();
-            let vals: Vec<Interval> = parts.iter().map(|p| p.0).collect();
-            if func.name == "atan2" && vals[0].has_zero() && vals[1].lo < 0.0 {
-                *cut = true;
-            }
-            if !(func.defined)(&vals) {
-                let range: Vec<String> = vals
-                    .iter()
-                    .map(|v| format!("[{}, {}]", v.lo, v.hi))
-                    .collect();
+        Field::Binary(op, a, b) => binary_grad(*op, a, b, region, undefined, cut),
+        Field::Call(func, args) => call_grad(func, args, region, undefined, cut),
+    }
+}
+
+/// [`grad`] of `a op b`.
+fn binary_grad(
+    op: BinOp,
+    a: &Field,
+    b: &Field,
+    region: &[Interval; 3],
+    undefined: &mut Option<String>,
+    cut: &mut bool,
+) -> (Interval, [Interval; 3]) {
+    let ((va, ga), (vb, gb)) = (
+        grad(a, region, undefined, cut),
+        grad(b, region, undefined, cut),
+    );
+    let each = |f: &dyn Fn(Interval, Interval) -> Interval| [0, 1, 2].map(|i| f(ga[i], gb[i]));
+    match op {
+        BinOp::Add => (va.add(vb), each(&|x, y| x.add(y))),
+        BinOp::Sub => (va.sub(vb), each(&|x, y| x.sub(y))),
+        // a·a is a square: ≥ 0, which plain interval products cannot see.
+        BinOp::Mul if a == b => (
+            va.powi(2),
+            each(&|x, _| x.mul(va).mul(Interval::point(2.0))),
+        ),
+        BinOp::Mul => (va.mul(vb), each(&|x, y| x.mul(vb).add(va.mul(y)))),
+        BinOp::Div => {
+            // A divisor that may be 0 makes the field infinite or NaN (0/0) there.
+            if vb.has_zero() {
                 undefined.get_or_insert_with(|| {
-                    format!("`{}` may be given a value outside its domain (its argument ranges over {})", func.name, range.join(", "))
+                    format!(
+                        "`/` may divide by zero (the divisor ranges over [{}, {}])",
+                        vb.lo, vb.hi
+                    )
                 });
             }
-            let partials = (func.partials)(&vals);
-            let mut g = [zero; 3];
-            for (k, (_, ga)) in parts.iter().enumerate() {
-                for i in 0..3 {
-                    g[i] = g[i].add(partials[k].mul(ga[i]));
-                }
+            let q = va.div(vb);
+            (q, each(&|x, y| x.sub(q.mul(y)).div(vb)))
+        }
+        BinOp::Pow => pow_grad(b, va, ga, undefined),
+    }
+}
+
+/// [`grad`] of `a ^ b` from a's value range `va` and gradient `ga`: a whole constant exponent
+/// is differentiated; any other power has no bound, and is undefined for a base that may be
+/// negative (or zero, for a negative exponent).
+fn pow_grad(
+    b: &Field,
+    va: Interval,
+    ga: [Interval; 3],
+    undefined: &mut Option<String>,
+) -> (Interval, [Interval; 3]) {
+    let zero = Interval::point(0.0);
+    match *b {
+        // xⁿ with a whole exponent: n·xⁿ⁻¹·x'.
+        Field::Const(n) if n.fract() == 0.0 && (0.0..=64.0).contains(&n) => {
+            let n = n as i32;
+            let d = if n == 0 {
+                zero
+            } else {
+                va.powi(n - 1).mul(Interval::point(n as f64))
+            };
+            (va.powi(n), ga.map(|x| d.mul(x)))
+        }
+        Field::Const(n) if n < 0.0 && va.has_zero() => {
+            undefined.get_or_insert_with(|| {
+                format!(
+                    "`^ {n}` may divide by zero (the base ranges over [{}, {}])",
+                    va.lo, va.hi
+                )
+            });
+            (Interval::ALL, [Interval::ALL; 3])
+        }
+        _ => {
+            // A negative base is defined only for the whole exponents the
+            // lowering multiplies out (|n| ≤ 64); `pow` is NaN or undefined there.
+            let whole =
+                matches!(*b, Field::Const(n) if n.fract() == 0.0 && n.abs() <= MAX_WHOLE_POWER);
+            if va.lo < 0.0 && !whole {
+                undefined.get_or_insert_with(|| {
+                    format!("`^` may raise a negative base (as low as {}) to a power that is not a whole number from -64 to 64", va.lo)
+                });
             }
-            ((func.range)(&vals), g)
+            (Interval::ALL, [Interval::ALL; 3])
         }
     }
+}
+
+/// [`grad`] of a math function's call, by the chain rule over its partial derivatives;
+/// undefined where an argument may leave its domain.
+fn call_grad(
+    func: &crate::catalog::MathFn,
+    args: &[Field],
+    region: &[Interval; 3],
+    undefined: &mut Option<String>,
+    cut: &mut bool,
+) -> (Interval, [Interval; 3]) {
+    let zero = Interval::point(0.0);
+    let parts: Vec<(Interval, [Interval; 3])> = args
+        .iter()
+        .map(|a| grad(a, region, undefined, cut))
+        .collect();
+    let vals: Vec<Interval> = parts.iter().map(|p| p.0).collect();
+    if func.name == "atan2" && vals[0].has_zero() && vals[1].lo < 0.0 {
+        *cut = true;
+    }
+    if !(func.defined)(&vals) {
+        let range: Vec<String> = vals
+            .iter()
+            .map(|v| format!("[{}, {}]", v.lo, v.hi))
+            .collect();
+        undefined.get_or_insert_with(|| {
+            format!(
+                "`{}` may be given a value outside its domain (its argument ranges over {})",
+                func.name,
+                range.join(", ")
+            )
+        });
+    }
+    let partials = (func.partials)(&vals);
+    let mut g = [zero; 3];
+    for (k, (_, ga)) in parts.iter().enumerate() {
+        for i in 0..3 {
+            g[i] = g[i].add(partials[k].mul(ga[i]));
+        }
+    }
+    ((func.range)(&vals), g)
 }

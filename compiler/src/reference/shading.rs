@@ -264,15 +264,7 @@ pub fn path_counted(
     let (mut inside, mut solid_ior) = (false, 1.0);
     loop {
         // The surface seen from outside: its own shading's share, and what goes on.
-        let (r, t, ior, tint) = match material_of(scene, m).filter(|_| !inside) {
-            Some(mat) => (
-                mat.reflect,
-                mat.transparent,
-                mat.ior,
-                crate::color::linear(mat.color),
-            ),
-            None => (0.0, 0.0, 1.0, DVec3::ONE),
-        };
+        let (r, t, ior, tint) = surface_of(scene, m, inside);
         if !inside {
             acc += w * (1.0 - r - t) * local;
             if r + t == 0.0 {
@@ -288,47 +280,16 @@ pub fn path_counted(
         // The normal on the ray's side (`faceForward`), so that a silhouette's normal facing
         // away from the ray does not send a reflection into the solid.
         let facing = if rd.dot(n) < 0.0 { n } else { -n };
-        let (reflected, refracted, dir_t);
-        if inside {
-            dir_t = refract(rd, facing, solid_ior);
-            let f = if dir_t == DVec3::ZERO {
-                1.0
-            } else {
-                schlick(-dir_t.dot(facing), solid_ior)
-            };
-            reflected = f;
-            refracted = DVec3::splat(1.0 - f);
+        let (reflected, refracted, dir_t) = if inside {
+            lobes_inside(rd, facing, solid_ior)
         } else {
-            dir_t = refract(rd, facing, 1.0 / ior);
-            let f = if t > 0.0 {
-                schlick(-rd.dot(facing), ior)
-            } else {
-                0.0
-            };
-            reflected = r + t * f;
-            refracted = if dir_t == DVec3::ZERO {
-                DVec3::ZERO
-            } else {
-                t * (1.0 - f) * tint
-            };
-        }
+            lobes_outside(rd, facing, r, t, ior, tint)
+        };
         let mean = refracted.element_sum() / 3.0;
         let through = mean >= reflected && mean > 0.0;
-        // A way through or within a solid spends a refraction, a mirror a reflection.
-        let budget = if through || inside {
-            &mut count.refractions
-        } else {
-            &mut count.reflections
-        };
-        let limit = if through || inside {
-            REFRACTIONS
-        } else {
-            REFLECTIONS
-        };
-        if *budget >= limit {
+        if !spend(&mut count, through, inside) {
             return (acc + w * (refracted + DVec3::splat(reflected)) * bg, count);
         }
-        *budget += 1;
         let dir = if through {
             acc += w * reflected * bg;
             w *= refracted;
@@ -362,6 +323,78 @@ pub fn path_counted(
             local = shade(scene, p, n, rd, m, h);
         }
     }
+}
+
+/// The reflectance, transmittance, index and linear tint of the surface of material `m` seen
+/// from outside; nothing (no lobes) from inside a solid or for the default material.
+fn surface_of(scene: &Scene, m: u32, inside: bool) -> (f64, f64, f64, DVec3) {
+    match material_of(scene, m).filter(|_| !inside) {
+        Some(mat) => (
+            mat.reflect,
+            mat.transparent,
+            mat.ior,
+            crate::color::linear(mat.color),
+        ),
+        None => (0.0, 0.0, 1.0, DVec3::ONE),
+    }
+}
+
+/// Inside a solid of index `solid_ior`: the internal reflection's weight F (1 at total
+/// internal reflection), the leaving lobe's 1 − F, and the leaving direction (zero at total
+/// internal reflection).
+fn lobes_inside(rd: DVec3, facing: DVec3, solid_ior: f64) -> (f64, DVec3, DVec3) {
+    let dir_t = refract(rd, facing, solid_ior);
+    let f = if dir_t == DVec3::ZERO {
+        1.0
+    } else {
+        schlick(-dir_t.dot(facing), solid_ior)
+    };
+    (f, DVec3::splat(1.0 - f), dir_t)
+}
+
+/// At a surface seen from outside (reflectance `r`, transmittance `t`, index `ior`): the
+/// reflected lobe's weight R + T·F, the refracted one's T·(1 − F) tinted, and the refracted
+/// direction.
+fn lobes_outside(
+    rd: DVec3,
+    facing: DVec3,
+    r: f64,
+    t: f64,
+    ior: f64,
+    tint: DVec3,
+) -> (f64, DVec3, DVec3) {
+    let dir_t = refract(rd, facing, 1.0 / ior);
+    let f = if t > 0.0 {
+        schlick(-rd.dot(facing), ior)
+    } else {
+        0.0
+    };
+    let refracted = if dir_t == DVec3::ZERO {
+        DVec3::ZERO
+    } else {
+        t * (1.0 - f) * tint
+    };
+    (r + t * f, refracted, dir_t)
+}
+
+/// Spends one bounce of the path's budget: a way through or within a solid spends a
+/// refraction, a mirror a reflection; `false` when that budget has run out.
+fn spend(count: &mut Bounces, through: bool, inside: bool) -> bool {
+    let budget = if through || inside {
+        &mut count.refractions
+    } else {
+        &mut count.reflections
+    };
+    let limit = if through || inside {
+        REFRACTIONS
+    } else {
+        REFLECTIONS
+    };
+    if *budget >= limit {
+        return false;
+    }
+    *budget += 1;
+    true
 }
 
 /// The linear colour of image point (x, y) of `view` (pixel centres at +0.5), as the compute

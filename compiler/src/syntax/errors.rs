@@ -53,7 +53,7 @@ pub(super) fn syntax_error(source: &str, e: pest::error::Error<Rule>) -> Diagnos
 /// A statement that ends with an operator (`let a = 1 +`), so that the parser stopped at the
 /// next statement's keyword: the error belongs after the operator, not on the next line.
 fn ended_early(source: &str, at: usize) -> Option<Diagnostic> {
-    if !super::recover::statement_at(source, at) {
+    if !super::scan::statement_at(source, at) {
         return None;
     }
     // The last character of code before it (comments skipped).
@@ -80,7 +80,7 @@ fn ended_early(source: &str, at: usize) -> Option<Diagnostic> {
 /// at its start).
 fn inside_statement(source: &str, at: usize) -> Option<Diagnostic> {
     let rest = &source[at..];
-    let keyword = super::recover::keyword_at(rest, DEFINITION_KEYWORDS.iter());
+    let keyword = super::scan::keyword_at(rest, DEFINITION_KEYWORDS.iter());
     // Only a keyword that begins its line begins a statement (`let let = 1` is a name missing).
     let line_start = source[..at]
         .rsplit('\n')

@@ -194,6 +194,9 @@ impl Load<'_> {
         out
     }
 
+    /// The items of the file `import "path"` names (at `path_span`, the statement at `span`),
+    /// read relative to `dir` unless it is the standard library's, spliced in turn; nothing
+    /// when it cannot or need not be read (read already), each problem reported.
     fn import(
         &mut self,
         path: &str,
@@ -203,66 +206,15 @@ impl Load<'_> {
         chain: &mut Vec<(PathBuf, String)>,
     ) -> Vec<Item> {
         let std_text = STD.iter().find(|(n, _)| *n == path).map(|(_, t)| *t);
-        let (resolved, shown) = match std_text {
-            // Keyed apart from a file on disk of the same name.
-            Some(_) => (PathBuf::from("<std>").join(path), path.to_string()),
-            None => {
-                let p = normalize(&dir.join(path));
-                let shown = match p.display().to_string() {
-                    s if s.is_empty() => ".".to_string(),
-                    s => s,
-                };
-                (p, shown)
-            }
-        };
-        if path.is_empty() || path.ends_with('/') {
-            self.diagnostics.push(
-                Diagnostic::error(path_span, "an import names a file")
-                    .label("no file name")
-                    .help("write `import \"lib/furniture.sdf\"`, relative to this file"),
-            );
-            return Vec::new();
-        }
-        if path.starts_with("std/") && std_text.is_none() {
-            let names = STD.iter().map(|(n, _)| *n);
-            let mut d =
-                Diagnostic::error(path_span, format!("the standard library has no `{path}`"))
-                    .label("not in the standard library");
-            d = match crate::diag::did_you_mean(path, names) {
-                Some(s) => d.help(format!("did you mean `{s}`?")),
-                None => d.note(format!(
-                    "it has {}",
-                    STD.iter()
-                        .map(|(n, _)| format!("`{n}`"))
-                        .collect::<Vec<_>>()
-                        .join(", ")
-                )),
-            };
-            self.diagnostics.push(d);
-            return Vec::new();
-        }
-        if let Some(start) = chain.iter().position(|(p, _)| *p == resolved) {
-            let names: Vec<&str> = chain[start..]
-                .iter()
-                .map(|(_, n)| n.as_str())
-                .chain([shown.as_str()])
-                .collect();
-            self.diagnostics.push(
-                Diagnostic::error(path_span, "import cycle")
-                    .label(format!("`{shown}` is already being imported"))
-                    .note(format!("the chain: {}", names.join(" → ")))
-                    .help("move what both files need into a third file that both import"),
-            );
-            return Vec::new();
-        }
-        if !self.included.insert(resolved.clone()) {
-            return Vec::new();
-        }
-        if self.sources.files.len() >= MAX_FILES {
-            self.diagnostics.push(
-                Diagnostic::error(path_span, "too many imported files")
-                    .label(format!("more than {MAX_FILES} files in one scene")),
-            );
+        let (resolved, shown) = resolve(path, std_text.is_some(), dir);
+        if !self.admit(
+            path,
+            path_span,
+            std_text.is_some(),
+            &resolved,
+            &shown,
+            chain,
+        ) {
             return Vec::new();
         }
         let text = match std_text {
@@ -297,6 +249,89 @@ impl Load<'_> {
         let items = self.splice(file.items, &dir, chain, Some(span));
         chain.pop();
         items
+    }
+
+    /// Whether the import of `path` (resolved to `resolved`, shown as `shown`) is to be read:
+    /// not when it names no file, a file the standard library lacks (`in_std`: it has it), one
+    /// already being imported along `chain` (a cycle), one read already, or one file more
+    /// than [`MAX_FILES`]; each but the one read already reported.
+    fn admit(
+        &mut self,
+        path: &str,
+        path_span: Span,
+        in_std: bool,
+        resolved: &Path,
+        shown: &str,
+        chain: &[(PathBuf, String)],
+    ) -> bool {
+        if path.is_empty() || path.ends_with('/') {
+            self.diagnostics.push(
+                Diagnostic::error(path_span, "an import names a file")
+                    .label("no file name")
+                    .help("write `import \"lib/furniture.sdf\"`, relative to this file"),
+            );
+            return false;
+        }
+        if path.starts_with("std/") && !in_std {
+            self.diagnostics.push(not_in_std(path, path_span));
+            return false;
+        }
+        if let Some(start) = chain.iter().position(|(p, _)| *p == resolved) {
+            let names: Vec<&str> = chain[start..]
+                .iter()
+                .map(|(_, n)| n.as_str())
+                .chain([shown])
+                .collect();
+            self.diagnostics.push(
+                Diagnostic::error(path_span, "import cycle")
+                    .label(format!("`{shown}` is already being imported"))
+                    .note(format!("the chain: {}", names.join(" → ")))
+                    .help("move what both files need into a third file that both import"),
+            );
+            return false;
+        }
+        if !self.included.insert(resolved.to_path_buf()) {
+            return false;
+        }
+        if self.sources.files.len() >= MAX_FILES {
+            self.diagnostics.push(
+                Diagnostic::error(path_span, "too many imported files")
+                    .label(format!("more than {MAX_FILES} files in one scene")),
+            );
+            return false;
+        }
+        true
+    }
+}
+
+/// Where `import "path"` in a file of `dir` points (`in_std`: the standard library's file,
+/// keyed apart from a file on disk of the same name), and the name shown for it.
+fn resolve(path: &str, in_std: bool, dir: &Path) -> (PathBuf, String) {
+    if in_std {
+        return (PathBuf::from("<std>").join(path), path.to_string());
+    }
+    let p = normalize(&dir.join(path));
+    let shown = match p.display().to_string() {
+        s if s.is_empty() => ".".to_string(),
+        s => s,
+    };
+    (p, shown)
+}
+
+/// `import "std/NAME.sdf"` of a file the standard library does not have.
+fn not_in_std(path: &str, path_span: Span) -> Diagnostic {
+    let names = STD.iter().map(|(n, _)| *n);
+    let d = Diagnostic::error(path_span, format!("the standard library has no `{path}`"))
+        .label("not in the standard library");
+    match crate::diag::did_you_mean(path, names) {
+        Some(s) => d.help(format!("did you mean `{s}`?")),
+        None => d.note(format!(
+            "it has {}",
+            STD.iter()
+                .map(|(n, _)| format!("`{n}`"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        )),
     }
 }
 

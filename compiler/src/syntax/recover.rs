@@ -2,10 +2,8 @@
 //! and, after a syntax error, parsing again with the failed statement blanked out (its text
 //! replaced by spaces, line breaks kept, so positions stay the file's).
 
-use super::scan::code_bytes;
-use super::{
-    BLOCK_KEYWORDS, DEFINITION_KEYWORDS, Rule, SdfParser, VALUE_KEYWORDS, errors::syntax_error,
-};
+use super::scan::{code_bytes, statement_at};
+use super::{Rule, SdfParser, errors::syntax_error};
 use crate::diag::{Diagnostic, Span};
 use pest::Parser as _;
 
@@ -14,29 +12,6 @@ pub const RECOVERY_BYTES: usize = 256 << 10;
 
 /// Most syntax errors one file reports.
 pub const MAX_SYNTAX_ERRORS: usize = 20;
-
-/// Whether a statement keyword (a block's, or `let`, `param`, `fn`, `import`, `background`)
-/// begins the text at `at`, at the start of its line; one inside brackets means the brackets
-/// before it were never closed.
-pub(super) fn statement_at(source: &str, at: usize) -> bool {
-    if !source.is_char_boundary(at) {
-        return false;
-    }
-    let line_start = at == 0 || source.as_bytes()[at - 1] == b'\n';
-    let words = BLOCK_KEYWORDS
-        .iter()
-        .chain(DEFINITION_KEYWORDS)
-        .chain(VALUE_KEYWORDS);
-    line_start && keyword_at(&source[at..], words)
-}
-
-/// Whether `rest` begins with one of `words` as a whole word.
-pub(super) fn keyword_at<'w>(rest: &str, mut words: impl Iterator<Item = &'w &'w str>) -> bool {
-    words.any(|w| {
-        rest.strip_prefix(w)
-            .is_some_and(|r| !r.starts_with(|c: char| c.is_ascii_alphanumeric() || c == '_'))
-    })
-}
 
 /// Brackets still open where a statement keyword begins a line: each reported at its opening,
 /// with the place it should have closed by (the outermost open one; the scan goes on as if it

@@ -1,7 +1,8 @@
 //! Scans of the source before and beside the parser: control characters, unclosed comments,
-//! nesting past the limit, and clearer messages for unbalanced brackets.
+//! nesting past the limit, clearer messages for unbalanced brackets, and where a statement
+//! keyword begins.
 
-use super::MAX_NESTING;
+use super::{BLOCK_KEYWORDS, DEFINITION_KEYWORDS, MAX_NESTING, VALUE_KEYWORDS};
 use crate::diag::{Diagnostic, Span};
 
 /// The length of the comment `rest` starts with, if it starts with one: `Some(None)` for a
@@ -187,4 +188,27 @@ pub(super) fn bracket_error(source: &str, at: usize) -> Option<Diagnostic> {
         }
         _ => None,
     }
+}
+
+/// Whether a statement keyword (a block's, or `let`, `param`, `fn`, `import`, `background`)
+/// begins the text at `at`, at the start of its line; one inside brackets means the brackets
+/// before it were never closed.
+pub(super) fn statement_at(source: &str, at: usize) -> bool {
+    if !source.is_char_boundary(at) {
+        return false;
+    }
+    let line_start = at == 0 || source.as_bytes()[at - 1] == b'\n';
+    let words = BLOCK_KEYWORDS
+        .iter()
+        .chain(DEFINITION_KEYWORDS)
+        .chain(VALUE_KEYWORDS);
+    line_start && keyword_at(&source[at..], words)
+}
+
+/// Whether `rest` begins with one of `words` as a whole word.
+pub(super) fn keyword_at<'w>(rest: &str, mut words: impl Iterator<Item = &'w &'w str>) -> bool {
+    words.any(|w| {
+        rest.strip_prefix(w)
+            .is_some_and(|r| !r.starts_with(|c: char| c.is_ascii_alphanumeric() || c == '_'))
+    })
 }
