@@ -3,6 +3,17 @@
 
 use crate::gpu::Frame;
 
+/// Why a picture could not be encoded.
+#[derive(Debug, thiserror::Error)]
+pub enum Error {
+    /// The pixels are not width × height × 4 bytes (a bug in sdfc).
+    #[error("internal error: image size mismatch")]
+    SizeMismatch,
+    /// The PNG encoder failed.
+    #[error("cannot encode PNG: {0}")]
+    Png(image::ImageError),
+}
+
 /// What `--output` writes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 pub enum Channel {
@@ -163,12 +174,11 @@ pub fn sample_points(n: u32) -> Vec<[f64; 2]> {
 }
 
 /// Encodes RGBA8 pixels as PNG bytes.
-pub fn png(pixels: Vec<u8>, width: u32, height: u32) -> Result<Vec<u8>, String> {
-    let img = image::RgbaImage::from_raw(width, height, pixels)
-        .ok_or("internal error: image size mismatch")?;
+pub fn png(pixels: Vec<u8>, width: u32, height: u32) -> Result<Vec<u8>, Error> {
+    let img = image::RgbaImage::from_raw(width, height, pixels).ok_or(Error::SizeMismatch)?;
     let mut out = std::io::Cursor::new(Vec::new());
     img.write_to(&mut out, image::ImageFormat::Png)
-        .map_err(|e| format!("cannot encode PNG: {e}"))?;
+        .map_err(Error::Png)?;
     Ok(out.into_inner())
 }
 

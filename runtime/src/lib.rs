@@ -1,10 +1,8 @@
-//! sdfc's runtime: the headless wgpu renderer and the pictures it writes.
+//! sdfc's runtime: the headless wgpu renderer (`gpu`), the pictures it writes (`images`,
+//! `files`) and the tracers' benchmark (`bench`). The command line (`main.rs`: `cli`, `cmd`,
+//! `view`) is built on it.
 
 pub mod bench;
 pub mod files;
-pub mod frames;
 pub mod gpu;
 pub mod images;
-pub mod orbit;
-pub mod plot;
-pub mod present;

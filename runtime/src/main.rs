@@ -1,4 +1,6 @@
-//! The `sdfc` command line: check, emit, render and bench scene files.
+//! The `sdfc` command line: check, emit, render, view and bench scene files. Its layers, each
+//! using only those below: `cmd` (one module per subcommand) over `view` (the live window) over
+//! `cli` (the arguments, messages and scene input), all on the runtime library (`sdfc`).
 
 /// `eprintln!` that never panics: a full or closed standard error (`2>/dev/full`) drops the
 /// message instead of ending the command with a panic.
@@ -17,20 +19,9 @@ macro_rules! say_raw {
     }};
 }
 
-mod animate;
-mod bench_cmd;
 mod cli;
-mod cli_values;
-mod emit_cmd;
-mod input;
-mod live;
-mod messages;
-mod render_cmd;
-mod shell;
-mod tracer_args;
-mod view_cmd;
-mod view_events;
-mod view_window;
+mod cmd;
+mod view;
 
 /// mimalloc instead of the C library's allocator: it maps memory in large pieces (transparent
 /// huge pages where the kernel allows them), so a large scene's compile is not paced by
@@ -50,7 +41,7 @@ fn main() {
     // it rejects past its nesting limits) from overflowing before it is rejected.
     let code = std::thread::Builder::new()
         .stack_size(256 << 20)
-        .spawn(cli::run)
+        .spawn(cmd::run)
         .map(|h| h.join().unwrap_or(2))
         .unwrap_or(2);
     std::process::exit(code);

@@ -12,8 +12,8 @@
 //! The recorded frames are re-written with `SDFC_GOLDEN=write cargo test --release --test
 //! golden`, which is only right *before* a change that must not alter pictures.
 
-use sdfc::frames::{Layout, Source, TILE};
 use sdfc::gpu::Frame;
+use sdfc::gpu::{Layout, Source, TILE};
 use sdfc_compiler::lower::{
     Entry,
     tracer::{BoundingVolumes, Options},

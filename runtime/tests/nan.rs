@@ -6,7 +6,7 @@
 mod common;
 
 use common::{compile, every_feature_scene, gpu};
-use sdfc::frames::{Layout, Source, TILE};
+use sdfc::gpu::{Layout, Source, TILE};
 use sdfc_compiler::emit::{self, Output, Target};
 use sdfc_compiler::lower::{Entry, tracer::Options};
 use sdfc_compiler::scene::Scene;

@@ -4,8 +4,8 @@
 mod common;
 
 use common::{compile, gpu, off_by, srgb8};
-use sdfc::frames::{Layout, Source};
 use sdfc::gpu::TILE;
+use sdfc::gpu::{Layout, Source};
 use sdfc_compiler::emit;
 use sdfc_compiler::lower::params::bytes;
 use sdfc_compiler::lower::{Entry, tracer::Options};

@@ -1,17 +1,12 @@
 //! Opening the device: the first backend with an adapter (headless, or able to present to a
 //! window), and the error and loss handlers every command relies on.
 
-use super::{BackendChoice, Gpu, Trouble, lock};
+use super::{BackendChoice, Error, Gpu, Trouble, lock};
 use std::sync::{Arc, Mutex};
-
-const NO_ADAPTER: &str = "no GPU adapter was found (tried Vulkan and GL).\n\
-     help: on a machine without a GPU, install Mesa's software drivers: \
-     `apt-get install mesa-vulkan-drivers` (Vulkan through lavapipe) or \
-     `apt-get install libegl1 libegl-mesa0 libgl1-mesa-dri` (GL through llvmpipe)";
 
 impl Gpu {
     /// Opens a device on the first backend that has an adapter.
-    pub fn new(choice: BackendChoice) -> Result<Gpu, String> {
+    pub fn new(choice: BackendChoice) -> Result<Gpu, Error> {
         for backends in order(choice) {
             let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
             desc.backends = backends;
@@ -20,11 +15,7 @@ impl Gpu {
                 return Gpu::open(&adapter);
             }
         }
-        Err(match choice {
-            BackendChoice::Auto => NO_ADAPTER.to_string(),
-            BackendChoice::Vulkan => "no Vulkan adapter was found.\nhelp: `apt-get install mesa-vulkan-drivers` gives lavapipe".into(),
-            BackendChoice::Gl => "no GL adapter was found.\nhelp: `apt-get install libegl1 libegl-mesa0 libgl1-mesa-dri` gives llvmpipe over EGL".into(),
-        })
+        Err(Error::NoAdapter(choice))
     }
 
     /// Opens a device that can present to `window` (`sdfc view`), on the first backend with
@@ -32,7 +23,7 @@ impl Gpu {
     pub fn for_window<W>(
         choice: BackendChoice,
         window: Arc<W>,
-    ) -> Result<(Gpu, wgpu::Surface<'static>), String>
+    ) -> Result<(Gpu, wgpu::Surface<'static>), Error>
     where
         W: wgpu::WindowHandle + wgpu::rwh::HasDisplayHandle + std::fmt::Debug + 'static,
     {
@@ -51,11 +42,11 @@ impl Gpu {
                 return Ok((gpu, surface));
             }
         }
-        Err("no GPU adapter can draw to this window (tried Vulkan and GL).\nhelp: `apt-get install mesa-vulkan-drivers` gives lavapipe".into())
+        Err(Error::NoWindowAdapter)
     }
 
     /// A device on `adapter`, with the error and loss handlers every command relies on.
-    fn open(adapter: &wgpu::Adapter) -> Result<Gpu, String> {
+    fn open(adapter: &wgpu::Adapter) -> Result<Gpu, Error> {
         let limits = adapter.limits();
         // Timestamps where the adapter has them: `bench` times frames on the GPU with them.
         let features =
@@ -67,14 +58,12 @@ impl Gpu {
             ..Default::default()
         };
         let (device, queue) = pollster::block_on(adapter.request_device(&desc))
-            .map_err(|e| format!("the GPU adapter refused a device: {e}"))?;
+            .map_err(|e| Error::DeviceRefused(e.to_string()))?;
         // wgpu's default for an error outside a scope is a panic; keep the first instead.
         let trouble = Arc::new(Mutex::new(Trouble::default()));
         let keep = trouble.clone();
         device.on_uncaptured_error(Arc::new(move |e: wgpu::Error| {
-            lock(&keep)
-                .error
-                .get_or_insert(format!("the GPU reported an error: {e}"));
+            lock(&keep).error.get_or_insert(e.to_string());
         }));
         let keep = trouble.clone();
         device.set_device_lost_callback(move |reason, message| {
@@ -82,9 +71,7 @@ impl Gpu {
                 true => format!("{reason:?}"),
                 false => format!("{reason:?}: {message}"),
             };
-            lock(&keep)
-                .lost
-                .get_or_insert(format!("the GPU device was lost ({why})"));
+            lock(&keep).lost.get_or_insert(why);
         });
         Ok(Gpu {
             device,
@@ -93,7 +80,7 @@ impl Gpu {
             limits,
             features,
             trouble,
-            params: Mutex::new(Vec::new()),
+            params: Arc::default(),
             adapter: adapter.clone(),
         })
     }

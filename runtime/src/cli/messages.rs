@@ -1,7 +1,7 @@
 //! How diagnostics reach the user: codespan's report, coloured on a terminal (`--color`,
 //! honouring `NO_COLOR`), or one JSON object per diagnostic (`--message-format json`) for
 //! editors and CI. (Only the scene's diagnostics: other errors — a file that cannot be read,
-//! a bad flag — stay `error: …` lines.)
+//! a bad flag — stay `error: …` lines.) And the one line of success, unless `--quiet`.
 
 use sdfc_compiler::diag::{self, Diagnostic, Severity, Span};
 use sdfc_compiler::source::Sources;
@@ -30,8 +30,20 @@ pub enum Color {
 
 static STYLE: OnceLock<(Format, bool)> = OnceLock::new();
 
-/// Chooses the format and whether to colour, once, from the flags and the environment.
-pub fn configure(format: Format, color: Color) {
+/// Whether `-q/--quiet` was given.
+static QUIET: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+
+/// Prints a command's one line of success to standard error, unless `--quiet`.
+pub fn done(line: &str) {
+    if !QUIET.load(std::sync::atomic::Ordering::Relaxed) {
+        say!("{line}");
+    }
+}
+
+/// Chooses the format, whether to colour (once, from the flags and the environment) and
+/// whether to be quiet.
+pub fn configure(format: Format, color: Color, quiet: bool) {
+    QUIET.store(quiet, std::sync::atomic::Ordering::Relaxed);
     let colored = match color {
         Color::Always => true,
         Color::Never => false,

@@ -1,20 +1,21 @@
 //! Reading a scene file (or standard input) and reporting what the checker says of it; the
 //! exit codes and standard output the commands share.
 
+use super::Error;
 use sdfc_compiler::check::{self, Checked};
-use sdfc_compiler::diag::Diagnostic;
 use sdfc_compiler::lipschitz::{self, Effort};
 use sdfc_compiler::source::Sources;
 use std::path::Path;
 
 /// The exit code of a command: 0, or 1 after printing its error (empty when the diagnostics
 /// were printed already).
-pub fn exit_code(result: Result<(), String>) -> i32 {
+pub fn exit_code(result: Result<(), Error>) -> i32 {
     match result {
         Ok(()) => 0,
+        Err(Error::Reported) => 1,
         Err(e) => {
             // Every error says so first (messages from the GPU layers do not).
-            match e.as_str() {
+            match e.to_string().as_str() {
                 "" => {}
                 e if e.starts_with("error") => say!("{e}"),
                 e => say!("error: {e}"),
@@ -65,7 +66,7 @@ pub fn load_scene_with(
     } else {
         scene
     };
-    say_raw!("{}", crate::messages::report(&diagnostics, &sources));
+    say_raw!("{}", super::messages::report(&diagnostics, &sources));
     let scene = scene?;
     let unknown = check::unknown_params(&scene, values);
     if let Some((bad, near)) = unknown.first() {
@@ -123,7 +124,7 @@ pub fn compile(
 pub fn param_values(
     params: &[String],
     time: Option<f64>,
-) -> Result<std::collections::HashMap<String, Vec<f64>>, String> {
+) -> Result<std::collections::HashMap<String, Vec<f64>>, Error> {
     let mut out = std::collections::HashMap::new();
     for p in params {
         let bad = |why: &str| {
@@ -141,7 +142,7 @@ pub fn param_values(
                     .map(|i| f64::from(d[i] * 16 + d[i + 1]) / 255.0)
                     .to_vec(),
                 (Some(d), 3) => [0, 1, 2].map(|i| f64::from(d[i] * 17) / 255.0).to_vec(),
-                _ => return Err(bad("not a colour `#rrggbb`")),
+                _ => return Err(bad("not a colour `#rrggbb`").into()),
             }
         } else {
             value
@@ -162,14 +163,12 @@ pub fn param_values(
                 .collect::<Result<_, _>>()?
         };
         if out.insert(name.to_string(), parsed).is_some() {
-            return Err(format!("error: `--param {name}` is given twice"));
+            return Err(format!("error: `--param {name}` is given twice").into());
         }
     }
     if let Some(t) = time {
         if !t.is_finite() {
-            return Err(format!(
-                "error: `--time {t}` is not a finite number of seconds"
-            ));
+            return Err(format!("error: `--time {t}` is not a finite number of seconds").into());
         }
         if out
             .insert(sdfc_compiler::check::TIME.to_string(), vec![t])
@@ -184,7 +183,7 @@ pub fn param_values(
 /// Reads a scene file or standard input; the error is a message for the user. At most the
 /// source limit and one byte more are read (`/dev/zero` is refused, not read until memory runs
 /// out), and a UTF-8 byte-order mark, which Windows editors write, is dropped.
-pub fn read_source(path: &Path) -> Result<(String, String), String> {
+pub fn read_source(path: &Path) -> Result<(String, String), Error> {
     use std::io::Read;
     let limit = sdfc_compiler::syntax::MAX_SOURCE_BYTES;
     let (name, reader): (String, Box<dyn Read>) = if path == Path::new("-") {
@@ -221,30 +220,4 @@ pub fn print_out(text: &str) -> Result<(), i32> {
             Err(1)
         }
     }
-}
-
-pub fn check_command(path: &Path, effort: Effort) -> i32 {
-    let (name, source) = match read_source(path) {
-        Ok(x) => x,
-        Err(e) => {
-            say!("{e}");
-            return 1;
-        }
-    };
-    let Checked {
-        scene,
-        mut diagnostics,
-        sources,
-    } = compile(&name, &source, &std::collections::HashMap::new());
-    if let Some(scene) = &scene {
-        diagnostics.extend(lipschitz::verify_annotations(scene, effort));
-    }
-    say_raw!("{}", crate::messages::report(&diagnostics, &sources));
-    let Some(scene) = scene else { return 1 };
-    let warnings = diagnostics
-        .iter()
-        .filter(|d| !Diagnostic::is_error(d))
-        .count();
-    let summary = sdfc_compiler::docs::summary(&name, &scene, warnings);
-    print_out(&format!("{summary}\n")).err().unwrap_or(0)
 }

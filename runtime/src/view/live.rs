@@ -2,10 +2,10 @@
 //! at the window's size (and a quarter of it for moving), the orbit camera, the channel,
 //! parameters and anti-aliasing samples accumulated while nothing moves.
 
-use sdfc::frames::{Layout, Prepared, Source};
-use sdfc::gpu::{Gpu, MAX_SIDE};
+use super::orbit::Orbit;
+use crate::cli::Error;
+use sdfc::gpu::{Gpu, Layout, MAX_SIDE, Prepared, Source};
 use sdfc::images::{self, Accumulator, Channel};
-use sdfc::orbit::Orbit;
 use sdfc_compiler::check::TIME;
 use sdfc_compiler::emit;
 use sdfc_compiler::lower::{Entry, params::bytes, tracer::Options};
@@ -40,12 +40,12 @@ pub struct Picture {
 
 /// The viewer's state.
 pub struct Live {
-    gpu: &'static Gpu,
+    gpu: Gpu,
     /// The last scene that checked, at the current parameter values.
     pub scene: Scene,
     options: Options,
-    full: Prepared<'static>,
-    coarse: Prepared<'static>,
+    full: Prepared,
+    coarse: Prepared,
     size: (u32, u32),
     /// The camera.
     pub orbit: Orbit,
@@ -72,14 +72,9 @@ pub struct Live {
 
 impl Live {
     /// Compiles and prepares `scene` for a window of `size`.
-    pub fn new(
-        gpu: &'static Gpu,
-        scene: Scene,
-        options: Options,
-        size: (u32, u32),
-    ) -> Result<Live, String> {
+    pub fn new(gpu: Gpu, scene: Scene, options: Options, size: (u32, u32)) -> Result<Live, Error> {
         let orbit = Orbit::new(&scene.camera);
-        let (full, coarse) = prepare(gpu, &scene, &options, size)?;
+        let (full, coarse) = prepare(&gpu, &scene, &options, size)?;
         Ok(Live {
             gpu,
             scene,
@@ -103,8 +98,8 @@ impl Live {
 
     /// A new scene (a reload that checked): compiled and prepared; the camera stays where the
     /// user turned it.
-    pub fn replace(&mut self, scene: Scene, options: Options) -> Result<(), String> {
-        let (full, coarse) = prepare(self.gpu, &scene, &options, self.size)?;
+    pub fn replace(&mut self, scene: Scene, options: Options) -> Result<(), Error> {
+        let (full, coarse) = prepare(&self.gpu, &scene, &options, self.size)?;
         // Values set with the keys stay only where the new scene still has the parameter,
         // of the same size, and within its range.
         self.values.retain(|name, v| {
@@ -126,16 +121,16 @@ impl Live {
     }
 
     /// The window's new size.
-    pub fn resize(&mut self, size: (u32, u32)) -> Result<(), String> {
+    pub fn resize(&mut self, size: (u32, u32)) -> Result<(), Error> {
         let size = (size.0.clamp(1, MAX_SIDE), size.1.clamp(1, MAX_SIDE));
-        (self.full, self.coarse) = prepare(self.gpu, &self.scene, &self.options, size)?;
+        (self.full, self.coarse) = prepare(&self.gpu, &self.scene, &self.options, size)?;
         self.size = size;
         self.restart();
         Ok(())
     }
 
     /// Another tracer: the module compiled again.
-    pub fn cycle_method(&mut self) -> Result<Method, String> {
+    pub fn cycle_method(&mut self) -> Result<Method, Error> {
         let now = METHODS
             .iter()
             .position(|m| *m == self.options.trace.method)
@@ -246,7 +241,7 @@ impl Live {
     }
 
     /// Renders the next frame: coarse while moving, else the next sample of the full picture.
-    pub fn step(&mut self) -> Result<Picture, String> {
+    pub fn step(&mut self) -> Result<Picture, Error> {
         let camera = self.orbit.camera();
         let params = self.params();
         if Instant::now() < self.moving_until {
@@ -306,8 +301,8 @@ impl Live {
     }
 
     /// The device.
-    pub fn gpu(&self) -> &'static Gpu {
-        self.gpu
+    pub fn gpu(&self) -> &Gpu {
+        &self.gpu
     }
 
     /// The last finished picture (black before the first).
@@ -341,13 +336,13 @@ fn coarse_size((w, h): (u32, u32)) -> (u32, u32) {
 /// The compute module of `scene`, prepared at `size` and at a quarter of it (one dispatch
 /// each: a frame is one submission).
 fn prepare(
-    gpu: &'static Gpu,
+    gpu: &Gpu,
     scene: &Scene,
     options: &Options,
     size: (u32, u32),
-) -> Result<(Prepared<'static>, Prepared<'static>), String> {
-    let (module, _) = emit::module(scene, Entry::Compute, options)
-        .map_err(|e| format!("internal compiler error: {}", e.0))?;
+) -> Result<(Prepared, Prepared), Error> {
+    let (module, _) =
+        emit::module(scene, Entry::Compute, options).map_err(|e| Error::Compiler(e.0))?;
     gpu.set_params(&bytes(&scene.params));
     let layout = Layout::Full { passes: false };
     let full = View::new(&scene.camera, size.0, size.1);

@@ -2,14 +2,16 @@
 //! compiled and prepared once and only its `Params` uniform changed between frames, written as
 //! an animated GIF or a numbered PNG sequence.
 
-use sdfc::images;
+use super::{Job, progress_bar};
+use crate::cli::{Error, RenderArgs, messages::done, write_file};
+use sdfc::images::{self, Channel};
 use sdfc_compiler::scene::ParamDecl;
 use std::cell::RefCell;
 use std::path::{Path, PathBuf};
 use std::rc::Rc;
 
 /// Most frames one command renders.
-pub const MAX_FRAMES: u32 = 10_000;
+const MAX_FRAMES: u32 = 10_000;
 
 /// Where the frames go.
 pub enum Sink {
@@ -21,7 +23,7 @@ pub enum Sink {
 }
 
 /// `--frames START..END` (END excluded) as the frame numbers.
-pub fn parse_frames(text: &str) -> Result<std::ops::Range<u32>, String> {
+pub fn parse_frames(text: &str) -> Result<std::ops::Range<u32>, Error> {
     let bad = || {
         format!(
             "error: `--frames {text}` is not START..END (whole frame numbers, END excluded), e.g. `--frames 0..60`"
@@ -33,21 +35,22 @@ pub fn parse_frames(text: &str) -> Result<std::ops::Range<u32>, String> {
         b.trim().parse().map_err(|_| bad())?,
     );
     if b <= a {
-        return Err(format!(
-            "error: `--frames {text}` has no frame: END must be above START"
-        ));
+        return Err(
+            format!("error: `--frames {text}` has no frame: END must be above START").into(),
+        );
     }
     if b - a > MAX_FRAMES {
         return Err(format!(
             "error: `--frames {text}` is {} frames; at most {MAX_FRAMES} in one command",
             b - a
-        ));
+        )
+        .into());
     }
     Ok(a..b)
 }
 
 /// Where `--frames` writes, from the output path: `.gif`, or `.png` with a run of `#`.
-pub fn sink(output: &Path) -> Result<Sink, String> {
+pub fn sink(output: &Path) -> Result<Sink, Error> {
     let text = output.to_string_lossy().to_string();
     let ext = output
         .extension()
@@ -57,7 +60,8 @@ pub fn sink(output: &Path) -> Result<Sink, String> {
         Some("png") if text.contains('#') => Ok(Sink::Pngs(text)),
         _ => Err(format!(
             "error: `{text}`: `--frames` writes an animated GIF (`-o anim.gif`) or numbered PNGs (`-o frames/out_###.png`, `#`s becoming the frame's number)"
-        )),
+        )
+        .into()),
     }
 }
 
@@ -84,7 +88,7 @@ pub fn settings(
     frames: std::ops::Range<u32>,
     fps: f64,
     start: f64,
-) -> Result<Vec<Vec<u8>>, String> {
+) -> Result<Vec<Vec<u8>>, Error> {
     frames
         .map(|k| {
             let mut p = params.to_vec();
@@ -97,7 +101,8 @@ pub fn settings(
                         return Err(format!(
                             "error: frame {k} is at time {t} s, outside the range {}..{} the scene declares for `time`",
                             lo.x, hi.x
-                        ));
+                        )
+                        .into());
                     }
                     d.value.x = t;
                 }
@@ -134,13 +139,13 @@ impl std::io::Write for Shared {
 
 impl Writer {
     /// A writer of `size` frames numbered from `first`.
-    pub fn new(sink: Sink, first: u32, fps: f64, size: (u32, u32)) -> Result<Writer, String> {
+    pub fn new(sink: Sink, first: u32, fps: f64, size: (u32, u32)) -> Result<Writer, Error> {
         let gif = match &sink {
             Sink::Gif(_) => {
                 let bytes = Shared::default();
                 let mut e = image::codecs::gif::GifEncoder::new_with_speed(bytes.clone(), 10);
                 e.set_repeat(image::codecs::gif::Repeat::Infinite)
-                    .map_err(|e| format!("error: cannot start the GIF: {e}"))?;
+                    .map_err(|e| Error::Usage(format!("error: cannot start the GIF: {e}")))?;
                 Some((e, bytes))
             }
             Sink::Pngs(_) => None,
@@ -156,7 +161,7 @@ impl Writer {
     }
 
     /// Adds the next frame (sRGB RGBA8).
-    pub fn add(&mut self, rgba: Vec<u8>) -> Result<(), String> {
+    pub fn add(&mut self, rgba: Vec<u8>) -> Result<(), Error> {
         let (w, h) = self.size;
         let k = self.first + self.written;
         self.written += 1;
@@ -166,28 +171,24 @@ impl Writer {
                 let delay =
                     image::Delay::from_numer_denom_ms(1000, self.fps.round().max(1.0) as u32);
                 e.encode_frame(image::Frame::from_parts(img, 0, 0, delay))
-                    .map_err(|e| format!("error: cannot encode frame {k}: {e}"))
+                    .map_err(|e| Error::Usage(format!("error: cannot encode frame {k}: {e}")))
             }
             (Sink::Pngs(pattern), _) => {
                 let path = Sink::numbered(pattern, k);
                 let bytes = images::png(rgba, w, h)?;
-                match sdfc::files::write_file(&path, &bytes) {
-                    Ok(()) => Ok(()),
-                    Err(e) => Err(format!("error: cannot write `{}`: {e}", path.display())),
-                }
+                write_file(&path, &bytes)
             }
             _ => unreachable!("a GIF has its encoder"),
         }
     }
 
     /// Finishes the animation; what was written, for the success line.
-    pub fn finish(self) -> Result<String, String> {
+    pub fn finish(self) -> Result<String, Error> {
         match (self.sink, self.gif) {
             (Sink::Gif(path), Some((e, bytes))) => {
                 drop(e);
                 let bytes = bytes.0.borrow().clone();
-                sdfc::files::write_file(&path, &bytes)
-                    .map_err(|e| format!("error: cannot write `{}`: {e}", path.display()))?;
+                write_file(&path, &bytes)?;
                 Ok(path.display().to_string())
             }
             (Sink::Pngs(pattern), _) => Ok(format!(
@@ -198,4 +199,70 @@ impl Writer {
             _ => unreachable!("a GIF has its encoder"),
         }
     }
+}
+
+/// Renders frames `range` of the animation (each with all its samples), writes them to
+/// `sink` and says so.
+pub fn render(
+    args: &RenderArgs,
+    job: &Job,
+    range: std::ops::Range<u32>,
+    sink: Sink,
+) -> Result<(), Error> {
+    let (w, h) = (job.view.width, job.view.height);
+    let first = range.start;
+    let fps = f64::from(args.fps);
+    let settings = settings(&job.valued.params, range, fps, args.time.unwrap_or(0.0))?;
+    let count = settings.len();
+    let mut writer = Writer::new(sink, first, fps, (w, h))?;
+    let mut sum = images::Accumulator::new((w * h) as usize, true);
+    let mut taken = 0;
+    let bar = progress_bar("rendering tiles");
+    job.gpu.render_sequence(
+        &job.module,
+        (&job.view, job.plan.as_deref()),
+        &job.points,
+        &settings,
+        |done, total| {
+            if let Some(b) = &bar {
+                b.set_length(total as u64);
+                b.set_position(done as u64);
+            }
+        },
+        |_, frame| {
+            sum.add(&images::rgba(&frame, Channel::Color, job.scene.trace.steps));
+            taken += 1;
+            if taken == job.points.len() {
+                let done =
+                    std::mem::replace(&mut sum, images::Accumulator::new((w * h) as usize, true));
+                taken = 0;
+                writer.add(done.finish())?;
+            }
+            Ok(())
+        },
+    )?;
+    if let Some(b) = bar {
+        b.finish_and_clear();
+    }
+    let place = writer.finish()?;
+    let still = if job
+        .scene
+        .params
+        .iter()
+        .any(|p| p.name == sdfc_compiler::check::TIME)
+    {
+        ""
+    } else {
+        " (the scene does not read `time`: every frame is the same)"
+    };
+    let samples = job.samples;
+    done(&format!(
+        "wrote {place} — {count} frames of {w}×{h} at {} fps, {samples} {} per pixel, {:.1} s, {} ({}){still}",
+        args.fps,
+        if samples == 1 { "sample" } else { "samples" },
+        job.started.elapsed().as_secs_f64(),
+        job.gpu.info.name,
+        job.gpu.backend()
+    ));
+    Ok(())
 }

@@ -3,7 +3,7 @@
 //! Valasek's Figure 3. PNG text uses DejaVu Sans, embedded (`runtime/assets/`, its licence
 //! beside it), so no system fonts are needed.
 
-use crate::bench::Cell;
+use super::Cell;
 use plotters::prelude::*;
 use std::path::Path;
 
@@ -12,11 +12,35 @@ const FLOOR: f64 = 1e-12;
 
 const SIZE: (u32, u32) = (1200, 480);
 
-static FONT: &[u8] = include_bytes!("../assets/DejaVuSans.ttf");
+/// Why a plot was not written.
+#[derive(Debug, thiserror::Error)]
+pub enum PlotError {
+    /// Drawing failed.
+    #[error("error: cannot draw `{}`: {message}", path.display())]
+    Draw {
+        /// The plot's file.
+        path: std::path::PathBuf,
+        /// What went wrong.
+        message: String,
+    },
+    /// Writing the file failed.
+    #[error("error: cannot write `{}`: {source}", path.display())]
+    Write {
+        /// The plot's file.
+        path: std::path::PathBuf,
+        /// The I/O error.
+        source: std::io::Error,
+    },
+}
+
+static FONT: &[u8] = include_bytes!("../../assets/DejaVuSans.ttf");
 
 /// Draws the cells to `path` (SVG for `.svg`, PNG for `.png`).
-pub fn write(path: &Path, title: &str, cells: &[Cell]) -> Result<(), String> {
-    let fail = |e: String| format!("error: cannot draw `{}`: {e}", path.display());
+pub fn write(path: &Path, title: &str, cells: &[Cell]) -> Result<(), PlotError> {
+    let fail = |message: String| PlotError::Draw {
+        path: path.to_path_buf(),
+        message,
+    };
     // Text is laid out with the embedded font for both formats.
     plotters::style::register_font("sans-serif", FontStyle::Normal, FONT)
         .map_err(|_| fail("the embedded font does not load".into()))?;
@@ -31,8 +55,10 @@ pub fn write(path: &Path, title: &str, cells: &[Cell]) -> Result<(), String> {
             let root = SVGBackend::with_string(&mut svg, SIZE).into_drawing_area();
             draw(&root, title, cells).map_err(|e| fail(e.to_string()))?;
         }
-        crate::files::write_file(path, svg.as_bytes())
-            .map_err(|e| format!("error: cannot write `{}`: {e}", path.display()))
+        crate::files::write_file(path, svg.as_bytes()).map_err(|source| PlotError::Write {
+            path: path.to_path_buf(),
+            source,
+        })
     }
 }
 

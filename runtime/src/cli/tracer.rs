@@ -1,6 +1,7 @@
 //! The tracer flags `emit` and `render` share (`--tracer`, `--steps`, …, `--passes`, `--bvh`,
 //! `--no-bvh`), and how they settle a scene's settings.
 
+use super::Error;
 use clap::Args;
 use sdfc_compiler::check;
 use sdfc_compiler::lower::tracer::BoundingVolumes;
@@ -70,7 +71,7 @@ impl TracerArgs {
     pub fn apply(
         &self,
         scene: sdfc_compiler::scene::Trace,
-    ) -> Result<sdfc_compiler::scene::Trace, String> {
+    ) -> Result<sdfc_compiler::scene::Trace, Error> {
         let values: Vec<(&str, &str)> = [
             ("steps", &self.steps),
             ("epsilon", &self.epsilon),
@@ -87,7 +88,7 @@ impl TracerArgs {
         .filter_map(|(k, v)| v.as_deref().map(|v| (*k, v)))
         .collect();
         check::tracer::with_overrides(scene, self.tracer.as_deref(), &values)
-            .map_err(|e| format!("error: {e}"))
+            .map_err(|e| Error::Usage(format!("error: {e}")))
     }
 
     /// Applies the overrides to a scene and returns the lowering options, or an error for the
@@ -95,7 +96,7 @@ impl TracerArgs {
     pub fn settle(
         &self,
         scene: &mut sdfc_compiler::scene::Scene,
-    ) -> Result<sdfc_compiler::lower::tracer::Options, String> {
+    ) -> Result<sdfc_compiler::lower::tracer::Options, Error> {
         scene.trace = self.apply(scene.trace)?;
         if self.no_bound {
             scene.bound = None;
@@ -110,16 +111,16 @@ impl TracerArgs {
 }
 
 /// `--passes N` of `render`, `emit` and `bench`: a number of passes there is a schedule for.
-pub fn check_passes(passes: u32) -> Result<(), String> {
+pub fn check_passes(passes: u32) -> Result<(), Error> {
     let counts = sdfc_compiler::passes::counts();
     if counts.contains(&(passes as usize)) {
         return Ok(());
     }
     let list: Vec<String> = counts.iter().map(|c| c.to_string()).collect();
-    Err(format!(
+    Err(Error::Usage(format!(
         "error: `--passes {passes}`: there are schedules for {} passes",
         list.join(", ")
-    ))
+    )))
 }
 
 /// The trees `--bvh` (every union's) or `--no-bvh` (none) ask for; by default those of large

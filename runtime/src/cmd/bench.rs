@@ -1,54 +1,19 @@
 //! `sdfc bench`: the speed/accuracy table of the tracers on a scene, as text, JSON, CSV and a
 //! plot.
 
-use crate::cli::load_scene;
-use crate::render_cmd::{parse_size, progress_bar};
+use super::common::{check_driver_size, progress_bar};
+use crate::cli::input::{exit_code, load_scene, print_out};
+use crate::cli::tracer::{bounding_volumes, check_passes};
+use crate::cli::values::parse_size;
+use crate::cli::{BenchArgs, Error};
 use sdfc::bench::{self, Cell, Truth};
-use sdfc::gpu::{BackendChoice, Gpu};
+use sdfc::gpu::Gpu;
 use sdfc_compiler::check::tracer::with_overrides;
 use sdfc_compiler::lower::tracer::BoundingVolumes;
+use sdfc_compiler::scene::{Scene, Trace};
 use sdfc_compiler::truth;
 use sdfc_compiler::view::View;
 use serde::Serialize;
-use std::path::Path;
-
-/// What `sdfc bench` was asked for.
-pub struct BenchArgs<'a> {
-    /// Scene file.
-    pub file: &'a Path,
-    /// Comma-separated tracer names.
-    pub tracers: &'a str,
-    /// Comma-separated step budgets.
-    pub steps: &'a str,
-    /// Hit threshold for every cell instead of the scene's (a distance or `pixel`).
-    pub epsilon: Option<&'a str>,
-    /// `WxH`.
-    pub size: &'a str,
-    /// Renders per cell (the median time is reported).
-    pub repeat: u32,
-    /// The error the user wants: report the fastest cell below it.
-    pub target_error: Option<f64>,
-    /// Largest share of pixels whose hit/miss may differ for a cell to meet the target.
-    pub max_mismatch: f64,
-    /// Print JSON instead of the table.
-    pub json: bool,
-    /// Print CSV instead of the table.
-    pub csv: bool,
-    /// Write the plot here (`.svg`).
-    pub plot: Option<&'a Path>,
-    /// Backend.
-    pub backend: BackendChoice,
-    /// Multi-resolution passes: each cell is also measured with this many (1: not).
-    pub passes: u32,
-    /// A hand-written WGSL reference tracer to time alternately with each cell's trace.
-    pub reference: Option<&'a Path>,
-    /// Which unions' bounding-volume trees `map` tests.
-    pub bvh: BoundingVolumes,
-    /// Start secondary rays a fixed 2·ε_floor off the surface.
-    pub fixed_offset: bool,
-    /// Go on with a shader above `render_cmd::MAX_DRIVER_CALLS`.
-    pub allow_slow_compile: bool,
-}
 
 /// Everything a run measured.
 #[derive(Serialize)]
@@ -83,31 +48,16 @@ fn timing(gpu: &Gpu) -> String {
 
 /// Runs `sdfc bench`; returns the exit code.
 pub fn run(args: &BenchArgs) -> i32 {
-    crate::cli::exit_code(bench(args))
+    exit_code(bench(args))
 }
 
-fn bench(args: &BenchArgs) -> Result<(), String> {
-    let (w, h) = parse_size(args.size)?;
-    if args.repeat == 0 {
-        return Err("error: `--repeat` must be at least 1".into());
-    }
-    if let Some(e) = args.target_error
-        && !(e > 0.0 && e.is_finite())
-    {
-        return Err(format!("error: `--target-error {e}` must be a number > 0"));
-    }
-    if !(0.0..=1.0).contains(&args.max_mismatch) {
-        return Err("error: `--max-mismatch` must be a share in [0, 1]".into());
-    }
-    if let Some(p) = args.plot
-        && p.extension().is_none_or(|e| e != "svg" && e != "png")
-    {
-        return Err(format!(
-            "error: `--plot {}`: plots are written as SVG or PNG; give a `.svg` or `.png` file",
-            p.display()
-        ));
-    }
-    let reference = match args.reference {
+/// A cell to measure: tracer name, its settings, passes.
+type Planned<'a> = (&'a str, Trace, u32);
+
+fn bench(args: &BenchArgs) -> Result<(), Error> {
+    let (w, h) = parse_size(&args.size)?;
+    check_flags(args)?;
+    let reference = match args.reference.as_deref() {
         Some(p) => Some((
             std::fs::read_to_string(p)
                 .map_err(|e| format!("error: cannot read the reference `{}`: {e}", p.display()))?,
@@ -115,50 +65,120 @@ fn bench(args: &BenchArgs) -> Result<(), String> {
         )),
         None => None,
     };
-    crate::tracer_args::check_passes(args.passes)?;
-    let Some((sources, scene)) = load_scene(args.file) else {
-        return Err(String::new());
+    check_passes(args.passes)?;
+    let Some((sources, scene)) = load_scene(&args.file) else {
+        return Err(Error::Reported);
     };
     let name = sources.main_name().to_string();
     let mut options = sdfc_compiler::lower::tracer::Options::from_scene(&scene);
-    options.bounding_volumes = args.bvh;
+    options.bounding_volumes = bvh(args);
     options.fixed_offset = args.fixed_offset;
     let (module, _) =
         sdfc_compiler::emit::module(&scene, sdfc_compiler::lower::Entry::Compute, &options)
-            .map_err(|e| format!("internal compiler error: {}", e.0))?;
-    crate::render_cmd::check_driver_size(&module, (&sources, &scene), args.allow_slow_compile)?;
-    let tracers: Vec<&str> = split(args.tracers);
-    let budgets: Vec<&str> = split(args.steps);
+            .map_err(|e| Error::Compiler(e.0))?;
+    check_driver_size(&module, (&sources, &scene), args.allow_slow_compile)?;
+    let cells = plan(args, &scene)?;
+    let gpu = Gpu::new(args.backend.into())?;
+    // A scene with parameters is measured at their defaults, as its ground truth is.
+    gpu.set_params(&sdfc_compiler::lower::params::bytes(&scene.params));
+    let view = View::new(&scene.camera, w, h);
+    let reference = reference.as_ref().map(|(t, p)| (t.as_str(), p.as_str()));
+    let (truth, measured) = measure(args, &gpu, (&scene, &view), &cells, reference)?;
+    let fastest = args.target_error.and_then(|e| {
+        measured
+            .iter()
+            .filter(|c| c.mse <= e && c.mismatch <= args.max_mismatch)
+            .min_by(|a, b| a.seconds.total_cmp(&b.seconds))
+            .cloned()
+    });
+    let report = Report {
+        scene: name,
+        width: w,
+        height: h,
+        adapter: gpu.info.name.clone(),
+        driver: gpu.info.driver_info.clone(),
+        backend: gpu.backend(),
+        timing: timing(&gpu),
+        repeat: args.repeat,
+        truth,
+        cells: measured,
+        target_error: args.target_error,
+        max_mismatch: args.max_mismatch,
+        fastest,
+    };
+    print(args, &report)
+}
+
+/// Refuses flags out of their ranges.
+fn check_flags(args: &BenchArgs) -> Result<(), Error> {
+    if args.repeat == 0 {
+        return Err("error: `--repeat` must be at least 1".into());
+    }
+    if let Some(e) = args.target_error
+        && !(e > 0.0 && e.is_finite())
+    {
+        return Err(format!("error: `--target-error {e}` must be a number > 0").into());
+    }
+    if !(0.0..=1.0).contains(&args.max_mismatch) {
+        return Err("error: `--max-mismatch` must be a share in [0, 1]".into());
+    }
+    if let Some(p) = args.plot.as_deref()
+        && p.extension().is_none_or(|e| e != "svg" && e != "png")
+    {
+        return Err(format!(
+            "error: `--plot {}`: plots are written as SVG or PNG; give a `.svg` or `.png` file",
+            p.display()
+        )
+        .into());
+    }
+    Ok(())
+}
+
+/// The trees `--bvh` or `--no-bvh` ask for.
+fn bvh(args: &BenchArgs) -> BoundingVolumes {
+    bounding_volumes(args.bvh, args.no_bvh)
+}
+
+/// Every tracer × budget (× passes), each checked before the long part.
+fn plan<'a>(args: &'a BenchArgs, scene: &Scene) -> Result<Vec<Planned<'a>>, Error> {
+    let tracers: Vec<&str> = split(&args.tracers);
+    let budgets: Vec<&str> = split(&args.steps);
     if tracers.is_empty() || budgets.is_empty() {
         return Err("error: give at least one tracer and one step budget".into());
     }
-    // Check every combination before the long part.
     let mut cells = Vec::new();
     for t in &tracers {
         for s in &budgets {
             let mut values = vec![("steps", *s)];
-            if let Some(e) = args.epsilon {
+            if let Some(e) = args.epsilon.as_deref() {
                 values.push(("epsilon", e));
             }
-            let trace =
-                with_overrides(scene.trace, Some(t), &values).map_err(|e| format!("error: {e}"))?;
+            let trace = with_overrides(scene.trace, Some(t), &values)
+                .map_err(|e| Error::Usage(format!("error: {e}")))?;
             cells.push((*t, trace, 1));
             if args.passes > 1 {
                 cells.push((*t, trace, args.passes));
             }
         }
     }
-    let gpu = Gpu::new(args.backend)?;
-    // A scene with parameters is measured at their defaults, as its ground truth is.
-    gpu.set_params(&sdfc_compiler::lower::params::bytes(&scene.params));
-    let view = View::new(&scene.camera, w, h);
+    Ok(cells)
+}
+
+/// The ground truth on the CPU, then every cell on the GPU, with a progress bar.
+fn measure(
+    args: &BenchArgs,
+    gpu: &Gpu,
+    (scene, view): (&Scene, &View),
+    cells: &[Planned],
+    reference: Option<(&str, &str)>,
+) -> Result<(Truth, Vec<Cell>), Error> {
     let bar = progress_bar("measuring");
     if let Some(b) = &bar {
         b.set_length(cells.len() as u64 + 1);
         b.set_message("ground truth (CPU)");
     }
     let clock = std::time::Instant::now();
-    let depth = truth::depth_map(&scene, &view);
+    let depth = truth::depth_map(scene, view);
     let truth = Truth {
         steps: truth::STEPS,
         epsilon: truth::EPSILON,
@@ -174,59 +194,46 @@ fn bench(args: &BenchArgs) -> Result<(), String> {
             b.set_message(format!("{t}, {} steps", trace.steps));
         }
         let job = bench::Job {
-            scene: &scene,
+            scene,
             trace: (t, *trace),
             passes: *passes,
-            view: &view,
+            view,
             truth: &depth,
             repeat: args.repeat,
-            reference: reference.as_ref().map(|(t, p)| (t.as_str(), p.as_str())),
-            bvh: args.bvh,
+            reference,
+            bvh: bvh(args),
             fixed_offset: args.fixed_offset,
         };
-        measured.push(bench::measure(&gpu, &job)?);
+        measured.push(bench::measure(gpu, &job)?);
     }
     if let Some(b) = bar {
         b.finish_and_clear();
     }
-    let fastest = args.target_error.and_then(|e| {
-        measured
-            .iter()
-            .filter(|c| c.mse <= e && c.mismatch <= args.max_mismatch)
-            .min_by(|a, b| a.seconds.total_cmp(&b.seconds))
-            .cloned()
-    });
-    let report = Report {
-        scene: name.clone(),
-        width: w,
-        height: h,
-        adapter: gpu.info.name.clone(),
-        driver: gpu.info.driver_info.clone(),
-        backend: gpu.backend(),
-        timing: timing(&gpu),
-        repeat: args.repeat,
-        truth,
-        cells: measured,
-        target_error: args.target_error,
-        max_mismatch: args.max_mismatch,
-        fastest,
-    };
-    if let Some(p) = args.plot {
-        let title = format!("{name}: {w}×{h} on {}", report.adapter);
-        sdfc::plot::write(p, &title, &report.cells)?;
+    Ok((truth, measured))
+}
+
+/// Draws the plot (if asked for) and prints the report as asked: JSON, CSV or the table.
+fn print(args: &BenchArgs, report: &Report) -> Result<(), Error> {
+    if let Some(p) = args.plot.as_deref() {
+        let title = format!(
+            "{}: {}×{} on {}",
+            report.scene, report.width, report.height, report.adapter
+        );
+        sdfc::bench::plot::write(p, &title, &report.cells)?;
     }
     let text = if args.json {
-        let text = serde_json::to_string_pretty(&report).map_err(|e| format!("error: {e}"))?;
+        let text = serde_json::to_string_pretty(report)
+            .map_err(|e| Error::Usage(format!("error: {e}")))?;
         format!("{text}\n")
     } else if args.csv {
         csv(&report.cells)
     } else {
-        table(&report)
+        table(report)
     };
     // A closed pipe ends quietly; a full device was reported already.
-    match crate::cli::print_out(&text) {
+    match print_out(&text) {
         Ok(()) | Err(0) => Ok(()),
-        Err(_) => Err(String::new()),
+        Err(_) => Err(Error::Reported),
     }
 }
 

@@ -1,9 +1,10 @@
 //! The viewer's window events: mouse and keys, redraws, resizing, reloads after a save, and
 //! rest (no redraw while nothing changes).
 
-use crate::live::Live;
-use crate::view_cmd::App;
-use crate::view_events::{Step, Watched};
+use super::app::App;
+use super::live::Live;
+use super::script::Step;
+use super::watch::{SETTLE, Watched};
 use std::time::Instant;
 use winit::application::ApplicationHandler;
 use winit::event::{ElementState, MouseButton, MouseScrollDelta, WindowEvent};
@@ -13,7 +14,7 @@ use winit::window::WindowId;
 
 impl ApplicationHandler<Watched> for App {
     fn resumed(&mut self, event_loop: &ActiveEventLoop) {
-        if self.window.is_none()
+        if self.started.is_none()
             && let Err(e) = self.start(event_loop)
         {
             self.fail(event_loop, e);
@@ -22,7 +23,7 @@ impl ApplicationHandler<Watched> for App {
 
     fn user_event(&mut self, _: &ActiveEventLoop, event: Watched) {
         match event {
-            Watched::Changed => self.reload_at = Some(Instant::now() + crate::view_cmd::SETTLE),
+            Watched::Changed => self.reload_at = Some(Instant::now() + SETTLE),
             Watched::Gone => say!(
                 "`{}` was deleted or moved away; watching for it to come back",
                 self.args.file.display()
@@ -34,19 +35,13 @@ impl ApplicationHandler<Watched> for App {
         match event {
             WindowEvent::CloseRequested => event_loop.exit(),
             WindowEvent::Resized(s) => {
-                if let Some((surface, config)) = self.surface.as_mut() {
-                    config.width = s.width.max(1);
-                    config.height = s.height.max(1);
-                    self.live
-                        .as_ref()
-                        .expect("started")
-                        .gpu()
-                        .configure(surface, config);
-                }
-                if let Some(live) = self.live.as_mut()
-                    && let Err(e) = live.resize((s.width, s.height))
-                {
-                    self.fail(event_loop, e);
+                if let Some(started) = self.started.as_mut() {
+                    started.config.width = s.width.max(1);
+                    started.config.height = s.height.max(1);
+                    started.gpu().configure(&started.surface, &started.config);
+                    if let Err(e) = started.live.resize((s.width, s.height)) {
+                        self.fail(event_loop, e);
+                    }
                 }
             }
             WindowEvent::RedrawRequested => {
@@ -100,9 +95,10 @@ impl ApplicationHandler<Watched> for App {
             }
         }
         // Nothing to do when the picture is finished and nothing moves: the CPU rests.
-        let busy = self.live.as_ref().is_some_and(Live::busy);
-        if busy && let Some(w) = &self.window {
-            w.request_redraw();
+        if let Some(started) = &self.started
+            && Live::busy(&started.live)
+        {
+            started.window.request_redraw();
         }
         event_loop.set_control_flow(ControlFlow::Wait);
     }

@@ -1,7 +1,7 @@
 //! Showing a rendered picture in a window: the RGBA8 sRGB pixels uploaded to a texture and
 //! drawn over the whole surface by a full-screen triangle (scaled: coarse frames are smaller).
 
-use crate::gpu::Gpu;
+use sdfc::gpu::{Error, Gpu};
 
 const BLIT_WGSL: &str = r#"
 struct Out {
@@ -40,17 +40,17 @@ pub struct Present {
 
 impl Present {
     /// A presenter for surfaces of `format`.
-    pub fn new(gpu: &Gpu, format: wgpu::TextureFormat) -> Result<Present, String> {
-        let module =
-            naga::front::wgsl::parse_str(BLIT_WGSL).map_err(|e| e.emit_to_string(BLIT_WGSL))?;
+    pub fn new(gpu: &Gpu, format: wgpu::TextureFormat) -> Result<Present, Error> {
+        let module = naga::front::wgsl::parse_str(BLIT_WGSL)
+            .map_err(|e| Error::Wgsl(e.emit_to_string(BLIT_WGSL)))?;
         let shader = gpu
-            .device
+            .device()
             .create_shader_module(wgpu::ShaderModuleDescriptor {
                 label: Some("blit"),
                 source: wgpu::ShaderSource::Naga(std::borrow::Cow::Owned(module)),
             });
         let pipeline = gpu
-            .device
+            .device()
             .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
                 label: Some("blit"),
                 layout: None,
@@ -72,7 +72,7 @@ impl Present {
                 multiview_mask: None,
                 cache: None,
             });
-        let sampler = gpu.device.create_sampler(&wgpu::SamplerDescriptor {
+        let sampler = gpu.device().create_sampler(&wgpu::SamplerDescriptor {
             label: Some("blit"),
             mag_filter: wgpu::FilterMode::Nearest,
             min_filter: wgpu::FilterMode::Linear,
@@ -100,42 +100,13 @@ impl Present {
         surface: &wgpu::Surface,
         rgba: &[u8],
         size: (u32, u32),
-    ) -> Result<bool, String> {
+    ) -> Result<bool, Error> {
         let (w, h) = size;
         if self.picture.as_ref().map(|p| p.1) != Some(size) {
-            let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
-                label: Some("picture"),
-                size: wgpu::Extent3d {
-                    width: w,
-                    height: h,
-                    depth_or_array_layers: 1,
-                },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format: self.texture_format,
-                usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
-                view_formats: &[],
-            });
-            let view = texture.create_view(&Default::default());
-            let bind = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("picture"),
-                layout: &self.pipeline.get_bind_group_layout(0),
-                entries: &[
-                    wgpu::BindGroupEntry {
-                        binding: 0,
-                        resource: wgpu::BindingResource::TextureView(&view),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 1,
-                        resource: wgpu::BindingResource::Sampler(&self.sampler),
-                    },
-                ],
-            });
-            self.picture = Some((texture, size, bind));
+            self.picture = Some(self.texture(gpu, size));
         }
         let (texture, _, bind) = self.picture.as_ref().expect("a picture");
-        gpu.queue.write_texture(
+        gpu.queue().write_texture(
             texture.as_image_copy(),
             rgba,
             wgpu::TexelCopyBufferLayout {
@@ -153,12 +124,12 @@ impl Present {
             wgpu::CurrentSurfaceTexture::Success(f)
             | wgpu::CurrentSurfaceTexture::Suboptimal(f) => f,
             wgpu::CurrentSurfaceTexture::Validation => {
-                return Err("internal error: the window's surface refused a frame".into());
+                return Err(Error::SurfaceRefused);
             }
             _ => return Ok(false),
         };
         let target = frame.texture.create_view(&Default::default());
-        let mut encoder = gpu.device.create_command_encoder(&Default::default());
+        let mut encoder = gpu.device().create_command_encoder(&Default::default());
         {
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("blit"),
@@ -177,8 +148,43 @@ impl Present {
             pass.set_bind_group(0, bind, &[]);
             pass.draw(0..3, 0..1);
         }
-        gpu.queue.submit([encoder.finish()]);
-        gpu.queue.present(frame);
+        gpu.queue().submit([encoder.finish()]);
+        gpu.queue().present(frame);
         Ok(true)
+    }
+
+    /// A texture of `size` for the pictures, and its bind group.
+    fn texture(&self, gpu: &Gpu, size: (u32, u32)) -> (wgpu::Texture, (u32, u32), wgpu::BindGroup) {
+        let (w, h) = size;
+        let texture = gpu.device().create_texture(&wgpu::TextureDescriptor {
+            label: Some("picture"),
+            size: wgpu::Extent3d {
+                width: w,
+                height: h,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: self.texture_format,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+            view_formats: &[],
+        });
+        let view = texture.create_view(&Default::default());
+        let bind = gpu.device().create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("picture"),
+            layout: &self.pipeline.get_bind_group_layout(0),
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: wgpu::BindingResource::TextureView(&view),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: wgpu::BindingResource::Sampler(&self.sampler),
+                },
+            ],
+        });
+        (texture, size, bind)
     }
 }

@@ -1,8 +1,8 @@
 //! Shell completions and the man page, generated from the command line's own definition
 //! (`clap_complete`, `clap_mangen`), so that they cannot drift from it.
 
+use super::common::write_output;
 use crate::cli::Cli;
-use crate::emit_cmd::write_output;
 use clap::CommandFactory;
 use std::path::Path;
 

@@ -1,12 +1,13 @@
-//! The command line's value enums (`--spirv-version`, `--backend`, `--target`, `--entry`) and
-//! what they stand for in the runtime and the compiler.
+//! The command line's values (`--spirv-version`, `--glsl-version`, `--backend`, `--target`,
+//! `--entry`, `--size`) and what they stand for in the runtime and the compiler.
 
-use sdfc_compiler::emit::Target;
+use super::Error;
+use sdfc_compiler::emit::{self, Target};
 use sdfc_compiler::lower::Entry;
 
 /// A SPIR-V version.
 #[derive(Clone, Copy, clap::ValueEnum)]
-pub(crate) enum SpirvVersion {
+pub enum SpirvVersion {
     #[value(name = "1.0")]
     V10,
     #[value(name = "1.1")]
@@ -24,20 +25,20 @@ pub(crate) enum SpirvVersion {
 }
 
 impl SpirvVersion {
-    pub(crate) fn pair(self) -> (u8, u8) {
+    pub fn pair(self) -> (u8, u8) {
         (1, self as u8)
     }
 }
 
 #[derive(Clone, Copy, clap::ValueEnum)]
-pub(crate) enum BackendArg {
+pub enum BackendArg {
     Auto,
     Vulkan,
     Gl,
 }
 
 #[derive(Clone, Copy, clap::ValueEnum)]
-pub(crate) enum TargetArg {
+pub enum TargetArg {
     Wgsl,
     Spirv,
     Glsl,
@@ -46,7 +47,7 @@ pub(crate) enum TargetArg {
 }
 
 #[derive(Clone, Copy, clap::ValueEnum)]
-pub(crate) enum EntryArg {
+pub enum EntryArg {
     Compute,
     Fragment,
     Library,
@@ -89,4 +90,49 @@ impl From<EntryArg> for Entry {
             EntryArg::Shadertoy => Entry::Library,
         }
     }
+}
+
+/// `--glsl-version`.
+#[derive(Clone, Copy, clap::ValueEnum)]
+pub enum GlslVersionArg {
+    /// Desktop GLSL 4.50 core.
+    #[value(name = "450")]
+    Core450,
+    /// GLSL ES 3.10.
+    #[value(name = "310es")]
+    Es310,
+    /// GLSL ES 3.00.
+    #[value(name = "300es")]
+    Es300,
+}
+
+impl From<GlslVersionArg> for emit::GlslVersion {
+    fn from(v: GlslVersionArg) -> Self {
+        match v {
+            GlslVersionArg::Core450 => emit::GlslVersion::Core450,
+            GlslVersionArg::Es310 => emit::GlslVersion::Es310,
+            GlslVersionArg::Es300 => emit::GlslVersion::Es300,
+        }
+    }
+}
+
+/// Parses `WxH`.
+pub fn parse_size(s: &str) -> Result<(u32, u32), Error> {
+    let bad = || format!("error: `--size {s}` is not WIDTHxHEIGHT, e.g. `--size 1280x720`");
+    let (w, h) = s.split_once(['x', 'X']).ok_or_else(bad)?;
+    let (w, h): (u32, u32) = (
+        w.trim().parse().map_err(|_| bad())?,
+        h.trim().parse().map_err(|_| bad())?,
+    );
+    if w == 0 || h == 0 {
+        return Err(format!("error: the image size {w}x{h} is empty").into());
+    }
+    if w > sdfc::gpu::MAX_SIDE || h > sdfc::gpu::MAX_SIDE {
+        return Err(format!(
+            "error: the image size {w}x{h} is too large (at most {} per side)",
+            sdfc::gpu::MAX_SIDE
+        )
+        .into());
+    }
+    Ok((w, h))
 }

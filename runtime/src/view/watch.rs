@@ -1,9 +1,13 @@
-//! What drives `sdfc view` besides the window: the watcher of the scene file (and the files
-//! it imports) and the scripted input of `--script`.
+//! Following a scene file (and the files it imports) on disk: the viewer's reloads and the
+//! `--watch` of `render` and `emit`.
 
-use std::collections::{HashSet, VecDeque};
+use std::collections::HashSet;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
+use std::time::Duration;
+
+/// Waits this long after the last write before reloading (editors write in bursts).
+pub const SETTLE: Duration = Duration::from_millis(80);
 
 /// What the file watcher reports.
 #[derive(Debug)]
@@ -12,44 +16,6 @@ pub enum Watched {
     Changed,
     /// The scene file is gone.
     Gone,
-}
-
-/// One step of `--script`.
-#[derive(Clone, Debug, PartialEq)]
-pub enum Step {
-    /// `drag DX DY`: an orbit drag of so many pixels.
-    Drag(f64, f64),
-    /// `pan DX DY`: a pan drag.
-    Pan(f64, f64),
-    /// `zoom N`: wheel steps (positive: closer).
-    Zoom(f64),
-    /// `key K`: a key press.
-    Key(String),
-}
-
-pub fn parse_script(text: &str) -> Result<VecDeque<Step>, String> {
-    text.split(';')
-        .map(str::trim)
-        .filter(|s| !s.is_empty())
-        .map(|s| {
-            let words: Vec<&str> = s.split_whitespace().collect();
-            let num = |i: usize| -> Result<f64, String> {
-                words
-                    .get(i)
-                    .and_then(|w| w.parse().ok())
-                    .ok_or_else(|| format!("error: `--script`: `{s}` needs a number"))
-            };
-            match words[0] {
-                "drag" => Ok(Step::Drag(num(1)?, num(2)?)),
-                "pan" => Ok(Step::Pan(num(1)?, num(2)?)),
-                "zoom" => Ok(Step::Zoom(num(1)?)),
-                "key" if words.len() == 2 => Ok(Step::Key(words[1].to_string())),
-                _ => Err(format!(
-                    "error: `--script`: `{s}` is not `drag DX DY`, `pan DX DY`, `zoom N` or `key K`"
-                )),
-            }
-        })
-        .collect()
 }
 
 /// Watches the scene file and the files it imports: their directories (editors replace
@@ -67,7 +33,7 @@ impl SceneWatcher {
     /// directory that cannot be watched is skipped with a message.
     pub fn follow(&mut self, file: &Path) {
         use notify::Watcher;
-        let files: HashSet<PathBuf> = crate::input::imported_files(file)
+        let files: HashSet<PathBuf> = crate::cli::input::imported_files(file)
             .into_iter()
             .map(|f| std::path::absolute(&f).unwrap_or(f))
             .collect();
@@ -166,7 +132,7 @@ pub fn watch_loop(file: &Path, mut run: impl FnMut() -> i32) -> i32 {
             continue;
         }
         // Let the burst of writes settle, then run once for all of it.
-        std::thread::sleep(crate::view_cmd::SETTLE);
+        std::thread::sleep(SETTLE);
         while rx.try_recv().is_ok() {}
         if file.exists() {
             run();
@@ -176,7 +142,7 @@ pub fn watch_loop(file: &Path, mut run: impl FnMut() -> i32) -> i32 {
 }
 
 /// A command once, or with `--watch` again after every save of `file` (not for standard input).
-pub(crate) fn watching(file: &std::path::Path, watch: bool, mut once: impl FnMut() -> i32) -> i32 {
+pub fn watching(file: &std::path::Path, watch: bool, mut once: impl FnMut() -> i32) -> i32 {
     if !watch {
         return once();
     }
@@ -185,33 +151,4 @@ pub(crate) fn watching(file: &std::path::Path, watch: bool, mut once: impl FnMut
         return 1;
     }
     watch_loop(file, once)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn scripts_parse_or_say_what_is_wrong() {
-        let s = parse_script("drag 180 0; zoom 2 ;key t;  pan -3 4.5").unwrap();
-        assert_eq!(
-            Vec::from(s),
-            [
-                Step::Drag(180.0, 0.0),
-                Step::Zoom(2.0),
-                Step::Key("t".into()),
-                Step::Pan(-3.0, 4.5)
-            ]
-        );
-        assert!(
-            parse_script("drag 1")
-                .unwrap_err()
-                .contains("`drag 1` needs a number")
-        );
-        assert!(
-            parse_script("spin 3")
-                .unwrap_err()
-                .contains("is not `drag DX DY`")
-        );
-    }
 }

@@ -1,0 +1,274 @@
+//! The command line's definition (clap): the global flags and each subcommand's arguments.
+
+use super::tracer::TracerArgs;
+use super::values::{BackendArg, EntryArg, GlslVersionArg, SpirvVersion, TargetArg};
+use clap::{Args, Parser, Subcommand};
+use std::path::PathBuf;
+
+/// The version `--version` prints: the package's, and the commit it was built from when the
+/// build could ask git (`build.rs`).
+const VERSION: &str = match option_env!("SDFC_COMMIT") {
+    Some(_) => concat!(
+        env!("CARGO_PKG_VERSION"),
+        " (commit ",
+        env!("SDFC_COMMIT"),
+        ")"
+    ),
+    None => env!("CARGO_PKG_VERSION"),
+};
+
+/// The command line.
+#[derive(Parser)]
+#[command(
+    name = "sdfc",
+    version = VERSION,
+    about = "A compiler for scenes of signed distance functions"
+)]
+pub struct Cli {
+    /// The subcommand.
+    #[command(subcommand)]
+    pub command: Command,
+    /// Print nothing on success (errors and warnings still go to standard error).
+    #[arg(short, long, global = true)]
+    pub quiet: bool,
+    /// Diagnostics as a report with the source and a caret, or one JSON object per line.
+    #[arg(long, value_enum, global = true, default_value = "human")]
+    pub message_format: super::messages::Format,
+    /// Colour the report: on a terminal unless `NO_COLOR` is set, always, or never.
+    #[arg(long, value_enum, global = true, default_value = "auto")]
+    pub color: super::messages::Color,
+}
+
+#[derive(Subcommand)]
+pub enum Command {
+    /// Parse and check a scene; print a summary or the diagnostics.
+    Check(CheckArgs),
+    /// Compile a scene to shader code.
+    Emit(EmitArgs),
+    /// Render a scene to a PNG (or depth to `.npy`) on the GPU, headless.
+    Render(RenderArgs),
+    /// Show a scene in a window, live: drag to orbit, right-drag to pan, wheel to zoom; the
+    /// picture follows the file on every save. Keys: 1–5 colour/normal/depth/steps/material,
+    /// t tracer, a anti-aliasing, [ ] pick a parameter, - = change it, space pauses `time`,
+    /// r back to the scene's camera, s screenshot, q quit.
+    View(ViewArgs),
+    /// Measure every tracer × step budget on the GPU against an f64 ground truth: time,
+    /// evaluations per pixel, depth error, hit/miss agreement.
+    Bench(BenchArgs),
+    /// Print shell completions for `sdfc` (bash, zsh, fish, elvish, powershell).
+    Completions(CompletionsArgs),
+    /// Print the man page of `sdfc` (roff; `man -l sdfc.1` shows it).
+    Man(ManArgs),
+}
+
+/// `sdfc check`'s arguments.
+#[derive(Args)]
+pub struct CheckArgs {
+    /// The scene file (`-` for standard input).
+    pub file: Option<PathBuf>,
+    /// Print the catalog of primitives, operators and functions instead.
+    #[arg(long)]
+    pub list: bool,
+    /// Check `@lipschitz` annotations thoroughly (ten times the samples of the quick check
+    /// that `check`, `render` and `emit` always run).
+    #[arg(long)]
+    pub lipschitz: bool,
+}
+
+/// `sdfc emit`'s arguments.
+#[derive(Args)]
+pub struct EmitArgs {
+    /// The scene file (`-` for standard input).
+    pub file: PathBuf,
+    /// Output language [default: wgsl; glsl for `--entry shadertoy`].
+    #[arg(long, value_enum)]
+    pub target: Option<TargetArg>,
+    /// The interface: the runtime's compute pass, a full-screen fragment pass, or a library of functions.
+    #[arg(long, value_enum, default_value = "compute")]
+    pub entry: EntryArg,
+    /// Output file (default, or `-`: standard output; SPIR-V only when it is not a terminal).
+    #[arg(short, long)]
+    pub output: Option<PathBuf>,
+    /// SPIR-V version to write: 1.0 (Vulkan 1.0; the compute entry's storage buffers through
+    /// the SPV_KHR_storage_buffer_storage_class extension) to 1.6.
+    #[arg(long, value_enum, default_value = "1.3")]
+    pub spirv_version: SpirvVersion,
+    /// GLSL dialect: 450 (desktop core, Vulkan-style bindings), 310es (OpenGL ES 3.1) or
+    /// 300es (WebGL 2 / OpenGL ES 3.0: fragment and library entries only).
+    #[arg(long, value_enum, default_value = "450")]
+    pub glsl_version: GlslVersionArg,
+    #[command(flatten)]
+    pub tracer: TracerArgs,
+    /// Prefix the shader's own names (functions, structs, globals, constants) with `NAME_`
+    /// so that they cannot collide with the host's: `NAME_map`, `NAME_trace`, `NAME_Params`.
+    #[arg(long, value_name = "NAME")]
+    pub prefix: Option<String>,
+    /// Also write the manifest a host needs (bindings, uniform layouts, parameters, entry
+    /// points, functions, materials, camera, lights) as JSON to this file
+    /// (docs/interface.md).
+    #[arg(long, value_name = "FILE")]
+    pub manifest: Option<PathBuf>,
+    /// Write the output again on every save of the scene file, until interrupted.
+    #[arg(long)]
+    pub watch: bool,
+    /// The binding (in group 0) of the scene's `Params` uniform: another than the default
+    /// 9 lets two scenes' libraries (with `--prefix`) share a shader.
+    #[arg(long, value_name = "N", default_value_t = 9)]
+    pub params_binding: u32,
+}
+
+/// `sdfc render`'s arguments.
+#[derive(Args)]
+pub struct RenderArgs {
+    /// The scene file (`-` for standard input).
+    pub file: PathBuf,
+    /// Output file: `.png`, or `.npy` for raw f32 depth (`-`: a PNG to standard output).
+    #[arg(short = 'o', long = "output", visible_alias = "out")]
+    pub output: PathBuf,
+    /// Image size.
+    #[arg(long, default_value = "1280x720")]
+    pub size: String,
+    #[command(flatten)]
+    pub tracer: TracerArgs,
+    /// Graphics API: Vulkan, then GL, or one of them.
+    #[arg(long, value_enum, default_value = "auto")]
+    pub backend: BackendArg,
+    /// What to write.
+    #[arg(long = "channel", value_enum, default_value = "color")]
+    pub kind: sdfc::images::Channel,
+    /// Samples per pixel for anti-aliasing: a square number (a stratified grid), accumulated
+    /// at the output's size. Default: 4 for `--channel color` (1 when the scene's tracer
+    /// does Hart's cone anti-aliasing), 1 for the other channels.
+    #[arg(long)]
+    pub samples: Option<u32>,
+    /// Render a shader larger than the driver compiles in reasonable time (more than
+    /// 4 096 calls of distance functions; docs/stability.md).
+    #[arg(long)]
+    pub allow_slow_compile: bool,
+    /// Set a scene parameter: `NAME=VALUE` (a number, an angle with `deg`, `x,y,z` or
+    /// `#rrggbb`); repeat for several. It must be within the parameter's range.
+    #[arg(long = "param", value_name = "NAME=VALUE")]
+    pub params: Vec<String>,
+    /// The scene's `time`, in seconds (default 0); with `--frames`, added to each frame
+    /// k's k/fps.
+    #[arg(long, allow_hyphen_values = true)]
+    pub time: Option<f64>,
+    /// Render an animation of `time`: frames START to END (excluded), each `1/fps` s
+    /// after the one before, to an animated GIF (`-o anim.gif`) or numbered PNGs
+    /// (`-o out_###.png`); the shader is compiled once.
+    #[arg(long, value_name = "START..END")]
+    pub frames: Option<String>,
+    /// Frames per second of `--frames`.
+    #[arg(long, default_value_t = 30, requires = "frames")]
+    pub fps: u32,
+    /// Render again on every save of the scene file, until interrupted.
+    #[arg(long)]
+    pub watch: bool,
+}
+
+/// `sdfc view`'s arguments.
+#[derive(Args)]
+pub struct ViewArgs {
+    /// The scene file.
+    pub file: PathBuf,
+    /// The window's size.
+    #[arg(long, default_value = "960x600")]
+    pub size: String,
+    #[command(flatten)]
+    pub tracer: TracerArgs,
+    /// Graphics API: Vulkan, then GL, or one of them.
+    #[arg(long, value_enum, default_value = "auto")]
+    pub backend: BackendArg,
+    /// Write each finished picture (and the one kept after a failed reload) to this
+    /// directory as 000.png, 001.png, … (for tests and recordings).
+    #[arg(long, value_name = "DIR")]
+    pub screenshots: Option<PathBuf>,
+    /// Input to replay, one step per finished picture: `drag DX DY; pan DX DY; zoom N; key K`.
+    #[arg(long)]
+    pub script: Option<String>,
+    /// Close after this many screenshots.
+    #[arg(long, value_name = "N")]
+    pub quit_after: Option<u32>,
+    /// Hold the scene's `time` at T seconds (space lets it run); it runs with the clock
+    /// otherwise.
+    #[arg(long, allow_hyphen_values = true)]
+    pub time: Option<f64>,
+}
+
+/// `sdfc bench`'s arguments.
+#[derive(Args)]
+pub struct BenchArgs {
+    /// The scene file (`-` for standard input).
+    pub file: PathBuf,
+    /// Tracers to measure, comma-separated.
+    #[arg(long, default_value = "basic,relaxed,enhanced,hybrid,auto")]
+    pub tracers: String,
+    /// Step budgets, comma-separated.
+    #[arg(long, default_value = "8,16,32,64,128,256")]
+    pub steps: String,
+    /// Hit threshold for every tracer instead of the scene's: a distance, or `pixel`.
+    #[arg(long, allow_hyphen_values = true)]
+    pub epsilon: Option<String>,
+    /// Image size.
+    #[arg(long, default_value = "320x180")]
+    pub size: String,
+    /// Renders per cell; the median time is reported.
+    #[arg(long, default_value_t = 3)]
+    pub repeat: u32,
+    /// Report the fastest tracer and budget whose mean squared depth error is at most this.
+    #[arg(long, allow_hyphen_values = true)]
+    pub target_error: Option<f64>,
+    /// With `--target-error`: the largest share of pixels whose hit/miss may differ.
+    #[arg(long, default_value_t = 0.01)]
+    pub max_mismatch: f64,
+    /// Print JSON instead of the table.
+    #[arg(long)]
+    pub json: bool,
+    /// Print CSV instead of the table.
+    #[arg(long, conflicts_with = "json")]
+    pub csv: bool,
+    /// Also draw error against time and against evaluations per pixel to this `.svg` or `.png`.
+    #[arg(long)]
+    pub plot: Option<PathBuf>,
+    /// Graphics API: Vulkan, then GL, or one of them.
+    #[arg(long, value_enum, default_value = "auto")]
+    pub backend: BackendArg,
+    /// Also measure every cell with this many multi-resolution passes (Bálint §4): 2, 4 or 6.
+    #[arg(long, default_value_t = 1)]
+    pub passes: u32,
+    /// A hand-written WGSL tracer (runtime/benches/reference/README.md gives its interface)
+    /// timed alternately with each cell's trace, same view and size.
+    #[arg(long)]
+    pub reference: Option<PathBuf>,
+    /// Test every union's bounding boxes in `map` (as `render --bvh`).
+    #[arg(long, conflicts_with = "no_bvh")]
+    pub bvh: bool,
+    /// No bounding-box tests in `map` (as `render --no-bvh`).
+    #[arg(long)]
+    pub no_bvh: bool,
+    /// Start secondary rays a fixed 2·ε_floor off the surface (as `render --fixed-offset`).
+    #[arg(long)]
+    pub fixed_offset: bool,
+    /// Measure a shader larger than the driver compiles in reasonable time (as `render`).
+    #[arg(long)]
+    pub allow_slow_compile: bool,
+}
+
+/// `sdfc completions`'s arguments.
+#[derive(Args)]
+pub struct CompletionsArgs {
+    /// The shell.
+    #[arg(value_enum)]
+    pub shell: clap_complete::Shell,
+    /// Output file (default, or `-`: standard output).
+    #[arg(short, long)]
+    pub output: Option<PathBuf>,
+}
+
+/// `sdfc man`'s arguments.
+#[derive(Args)]
+pub struct ManArgs {
+    /// Output file (default, or `-`: standard output).
+    #[arg(short, long)]
+    pub output: Option<PathBuf>,
+}

@@ -1,0 +1,13 @@
+//! The command line's lowest layer: its definition (`args`, `values`, `tracer`), how messages
+//! reach the user (`messages`), and reading and checking a scene file (`input`). The
+//! subcommands (`crate::cmd`) and the viewer (`crate::view`) are built on it.
+
+mod args;
+mod error;
+pub mod input;
+pub mod messages;
+pub mod tracer;
+pub mod values;
+
+pub use args::*;
+pub use error::{Error, write_file};

@@ -1,0 +1,253 @@
+//! `sdfc emit`: a scene to WGSL, SPIR-V, GLSL, MSL or HLSL, written whole or not at all.
+
+use super::common::{write_output, write_whole};
+use crate::cli::input::load_scene;
+use crate::cli::values::{EntryArg, TargetArg};
+use crate::cli::{EmitArgs, Error};
+use crate::view::watch::watching;
+use sdfc_compiler::emit::{self, Output, Target};
+use sdfc_compiler::lower::Entry;
+use std::path::Path;
+
+/// What `sdfc emit` makes of its flags: the target, entry and writer's settings.
+struct Plan {
+    target: Target,
+    entry: Entry,
+    settings: emit::Settings,
+    /// `--entry shadertoy` (compiled as the library, written by `sdfc_compiler::shadertoy`).
+    shadertoy: bool,
+}
+
+/// Runs `sdfc emit` (again on every save with `--watch`); returns the exit code.
+pub fn run(args: &EmitArgs) -> i32 {
+    let shadertoy = matches!(args.entry, EntryArg::Shadertoy);
+    let target = match (args.target, shadertoy) {
+        (Some(t), _) => t,
+        (None, true) => TargetArg::Glsl,
+        (None, false) => TargetArg::Wgsl,
+    };
+    let mut settings = emit::Settings {
+        spirv_version: args.spirv_version.pair(),
+        glsl_version: args.glsl_version.into(),
+    };
+    if shadertoy {
+        settings.glsl_version = emit::GlslVersion::Es300;
+    }
+    let plan = Plan {
+        target: target.into(),
+        entry: args.entry.into(),
+        settings,
+        shadertoy,
+    };
+    watching(&args.file, args.watch, || once(args, &plan))
+}
+
+/// One run of `sdfc emit`; the exit code.
+fn once(args: &EmitArgs, plan: &Plan) -> i32 {
+    if let Err(e) = check_flags(args, plan) {
+        say!("{e}");
+        return 1;
+    }
+    let Some((sources, mut scene)) = load_scene(&args.file) else {
+        return 1;
+    };
+    let name = sources.main_name();
+    let options = match args.tracer.settle(&mut scene) {
+        Ok(mut o) => {
+            o.private_params = plan.shadertoy;
+            o.params_binding = args.params_binding;
+            o
+        }
+        Err(e) => {
+            say!("{e}");
+            return 1;
+        }
+    };
+    if options.passes && plan.entry != Entry::Compute {
+        say!(
+            "error: `--passes` is for the compute entry (the runtime's passes hand t from one to the next)"
+        );
+        return 1;
+    }
+    let (out, manifest) = match compile(args, plan, &scene, &options, name) {
+        Ok(o) => o,
+        Err(e) => {
+            say!("internal compiler error while compiling `{name}`: {}", e.0);
+            say!(
+                "note: this is a bug in sdfc, not in the scene; please report it with the scene file"
+            );
+            return 2;
+        }
+    };
+    write(args, plan, &out, manifest)
+}
+
+/// Refuses flags that do not go together, or files whose names say another format.
+fn check_flags(args: &EmitArgs, plan: &Plan) -> Result<(), Error> {
+    let (target, entry, shadertoy) = (plan.target, plan.entry, plan.shadertoy);
+    let prefix = args.prefix.as_deref();
+    if shadertoy && target != Target::Glsl {
+        return Err("error: the Shadertoy entry is GLSL ES 3.00: `--entry shadertoy` takes `--target glsl` (or no `--target`)".into());
+    }
+    if shadertoy && prefix.is_some() {
+        return Err("error: `--prefix` is for the library; the Shadertoy shader is a whole Image tab with its own `mainImage`".into());
+    }
+    let binding = args.params_binding;
+    if binding <= 8 && !matches!(entry, Entry::Library) {
+        return Err(format!("error: `--params-binding {binding}`: the entry's own resources use bindings 0 to 8; give 9 or more").into());
+    }
+    if let Some(path) = args.output.as_deref() {
+        check_extension(path, target)?;
+    }
+    if let Some(p) = prefix
+        && !sdfc_compiler::manifest::valid_prefix(p)
+    {
+        return Err(format!("error: `--prefix {p}` is not a name: it must start with a letter and go on with letters, digits or `_`").into());
+    }
+    if let Some(m) = args.manifest.as_deref()
+        && m.extension()
+            .is_some_and(|e| !e.eq_ignore_ascii_case("json"))
+    {
+        return Err(format!(
+            "error: `--manifest {}`: the manifest is JSON; give it a `.json` file",
+            m.display()
+        )
+        .into());
+    }
+    if target == Target::Glsl
+        && !plan.settings.glsl_version.has_compute()
+        && matches!(entry, Entry::Compute | Entry::Trace)
+    {
+        return Err("error: GLSL ES 3.00 has no compute shaders: `--glsl-version 300es` is for `--entry fragment` or `--entry library`\nhelp: `--glsl-version 310es` (OpenGL ES 3.1) has them".into());
+    }
+    Ok(())
+}
+
+/// The scene's module in the target's language (and its manifest, if asked for).
+fn compile(
+    args: &EmitArgs,
+    plan: &Plan,
+    scene: &sdfc_compiler::scene::Scene,
+    options: &sdfc_compiler::lower::tracer::Options,
+    name: &str,
+) -> Result<(Output, Option<serde_json::Value>), emit::InternalError> {
+    let (target, entry) = (plan.target, plan.entry);
+    let prefix = args.prefix.as_deref();
+    let (m, info) = emit::module(scene, entry, options).and_then(|(mut m, info)| {
+        let Some(p) = prefix else {
+            return Ok((m, info));
+        };
+        sdfc_compiler::manifest::prefix(&mut m, p);
+        let info = emit::validate(&m)?;
+        Ok((m, info))
+    })?;
+    let described = args.manifest.is_some().then(|| {
+        let origin = sdfc_compiler::manifest::Origin {
+            scene: name,
+            target: target_name(target),
+            entry,
+            prefix,
+        };
+        sdfc_compiler::manifest::manifest(scene, &m, &origin)
+    });
+    let out = emit::write_with(&m, &info, target, entry, &plan.settings).map(|out| match out {
+        Output::Text(library) if plan.shadertoy => {
+            Output::Text(sdfc_compiler::shadertoy::wrap(&library, scene))
+        }
+        other => other,
+    })?;
+    Ok((out, described))
+}
+
+/// Writes the output (and the manifest) and says so; the exit code.
+fn write(args: &EmitArgs, plan: &Plan, out: &Output, manifest: Option<serde_json::Value>) -> i32 {
+    let bytes: Vec<u8> = match out {
+        Output::Text(s) => s.clone().into_bytes(),
+        Output::Binary(words) => words.iter().flat_map(|w| w.to_le_bytes()).collect(),
+    };
+    let output = args.output.as_deref();
+    let code = write_output(output, &bytes, matches!(out, Output::Binary(_)));
+    if let (0, Some(path), Some(m)) = (code, args.manifest.as_deref(), manifest) {
+        let text = serde_json::to_string_pretty(&m).expect("JSON") + "\n";
+        if write_whole(path, text.as_bytes()) != 0 {
+            return 1;
+        }
+    }
+    if let (0, Some(path)) = (code, output.filter(|p| *p != Path::new("-"))) {
+        let what = if plan.shadertoy {
+            "a Shadertoy Image shader (GLSL ES 3.00)".to_string()
+        } else {
+            describe(plan.target, plan.entry)
+        };
+        crate::cli::messages::done(&format!(
+            "wrote {} — {what}, {} bytes",
+            path.display(),
+            bytes.len()
+        ));
+    }
+    code
+}
+
+/// The file extensions each target's output may have (an extension-less path, a device or a
+/// pipe, takes any).
+fn extensions(target: Target) -> &'static [&'static str] {
+    match target {
+        Target::Wgsl => &["wgsl"],
+        Target::Spirv => &["spv", "spirv"],
+        Target::Glsl => &["glsl", "comp", "frag", "vert"],
+        Target::Msl => &["metal", "msl"],
+        Target::Hlsl => &["hlsl", "fx"],
+    }
+}
+
+/// Refuses an output file whose extension belongs to another language than the target's.
+fn check_extension(path: &Path, target: Target) -> Result<(), Error> {
+    let Some(ext) = path.extension().and_then(|e| e.to_str()) else {
+        return Ok(());
+    };
+    let allowed = extensions(target);
+    if allowed.contains(&ext.to_ascii_lowercase().as_str()) {
+        return Ok(());
+    }
+    let list: Vec<String> = allowed.iter().map(|e| format!("`.{e}`")).collect();
+    Err(format!(
+        "error: `{}`: `--target {}` writes {}; its files end in {}, not `.{ext}`",
+        path.display(),
+        target_name(target),
+        describe_target(target),
+        list.join(", ")
+    )
+    .into())
+}
+
+fn target_name(target: Target) -> &'static str {
+    match target {
+        Target::Wgsl => "wgsl",
+        Target::Spirv => "spirv",
+        Target::Glsl => "glsl",
+        Target::Msl => "msl",
+        Target::Hlsl => "hlsl",
+    }
+}
+
+fn describe_target(target: Target) -> &'static str {
+    match target {
+        Target::Wgsl => "WGSL",
+        Target::Spirv => "SPIR-V",
+        Target::Glsl => "GLSL",
+        Target::Msl => "Metal Shading Language",
+        Target::Hlsl => "HLSL",
+    }
+}
+
+/// "WGSL, compute entry".
+fn describe(target: Target, entry: Entry) -> String {
+    let entry = match entry {
+        Entry::Compute => "compute entry",
+        Entry::Fragment => "fragment entry",
+        Entry::Library => "library",
+        Entry::Trace => "trace-only entry",
+        Entry::Rays | Entry::Field => "test entry",
+    };
+    format!("{}, {entry}", describe_target(target))
+}

@@ -1,0 +1,294 @@
+//! The viewer's application: what it was asked for, and once its window is open (`Started`)
+//! the window, its surface, the presenter and the live picture, all or none of them.
+
+use super::live::{Live, Picture};
+use super::present::Present;
+use super::script::Step;
+use super::watch::SceneWatcher;
+use crate::cli::input::load_scene;
+use crate::cli::{Error, ViewArgs, write_file};
+use sdfc::gpu::Gpu;
+use sdfc_compiler::lower::tracer::Options;
+use sdfc_compiler::scene::Scene;
+use std::collections::VecDeque;
+use std::sync::Arc;
+use std::time::Instant;
+use winit::event::MouseButton;
+use winit::event_loop::ActiveEventLoop;
+use winit::window::Window;
+
+/// `sdfc view` from its arguments to its exit code.
+pub struct App {
+    pub(super) args: ViewArgs,
+    size: (u32, u32),
+    /// The scene checked before the window opened, until it does.
+    first: Option<(Scene, Options)>,
+    code: i32,
+    pub(super) pointer: (f64, f64),
+    /// The button held.
+    pub(super) drag: Option<MouseButton>,
+    pub(super) reload_at: Option<Instant>,
+    shots: u32,
+    /// Pictures saved with `s`.
+    pub(super) saved: u32,
+    script: VecDeque<Step>,
+    /// Whether the file on disk has errors (the picture is the last good one).
+    broken: bool,
+    watcher: SceneWatcher,
+    /// The window and what draws to it, once it is open.
+    pub(super) started: Option<Started>,
+}
+
+/// The open window and what draws to it.
+pub(super) struct Started {
+    pub(super) window: Arc<Window>,
+    pub(super) surface: wgpu::Surface<'static>,
+    pub(super) config: wgpu::SurfaceConfiguration,
+    present: Present,
+    /// The picture (and the device it is rendered on).
+    pub(super) live: Live,
+}
+
+impl Started {
+    /// The device.
+    pub(super) fn gpu(&self) -> &Gpu {
+        self.live.gpu()
+    }
+}
+
+/// Reads and checks the scene with the tracer overrides; diagnostics printed.
+pub fn load(args: &ViewArgs) -> Option<(Scene, Options)> {
+    let (_, mut scene) = load_scene(&args.file)?;
+    match args.tracer.settle(&mut scene) {
+        Ok(mut options) => {
+            // One pass: the viewer's coarse frames take the passes' place.
+            options.passes = false;
+            Some((scene, options))
+        }
+        Err(e) => {
+            say!("{e}");
+            None
+        }
+    }
+}
+
+impl App {
+    /// The viewer of `args`, for a window of `size`, `first` the scene checked ([`load`]),
+    /// `script` to replay and the file followed by `watcher`.
+    pub fn new(
+        args: ViewArgs,
+        size: (u32, u32),
+        first: (Scene, Options),
+        script: VecDeque<Step>,
+        watcher: SceneWatcher,
+    ) -> App {
+        App {
+            args,
+            size,
+            first: Some(first),
+            code: 0,
+            pointer: (0.0, 0.0),
+            drag: None,
+            reload_at: None,
+            shots: 0,
+            saved: 0,
+            script,
+            broken: false,
+            watcher,
+            started: None,
+        }
+    }
+
+    /// The exit code: 0, or 1 after an error.
+    pub fn code(&self) -> i32 {
+        self.code
+    }
+
+    pub(super) fn fail(&mut self, event_loop: &ActiveEventLoop, e: Error) {
+        say!("{e}");
+        self.code = 1;
+        event_loop.exit();
+    }
+
+    /// Opens the window, the device that draws to it and the live picture of the first scene.
+    pub(super) fn start(&mut self, event_loop: &ActiveEventLoop) -> Result<(), Error> {
+        let attrs = Window::default_attributes()
+            .with_title(format!("sdfc view {}", self.args.file.display()))
+            .with_inner_size(winit::dpi::PhysicalSize::new(self.size.0, self.size.1));
+        let window = Arc::new(
+            event_loop
+                .create_window(attrs)
+                .map_err(|e| Error::Usage(format!("error: cannot open a window: {e}")))?,
+        );
+        let (gpu, surface) = Gpu::for_window(self.args.backend.into(), window.clone())?;
+        let inner = window.inner_size();
+        let size = (inner.width.max(1), inner.height.max(1));
+        let mut config = surface
+            .get_default_config(gpu.adapter(), size.0, size.1)
+            .ok_or("error: the window's surface cannot be configured")?;
+        config.present_mode = wgpu::PresentMode::AutoVsync;
+        gpu.configure(&surface, &config);
+        let present = Present::new(&gpu, config.format)?;
+        let (scene, options) = self.first.take().expect("the first scene");
+        let mut live = Live::new(gpu, scene, options, size)?;
+        if let Some(t) = self.args.time {
+            live.hold_time(t);
+        }
+        self.started = Some(Started {
+            window,
+            surface,
+            config,
+            present,
+            live,
+        });
+        self.title();
+        Ok(())
+    }
+
+    pub(super) fn title(&self) {
+        let Some(started) = &self.started else {
+            return;
+        };
+        let live = &started.live;
+        let method = sdfc_compiler::check::tracer::method_entry(live.method()).0;
+        let (s, evals) = live.stats;
+        let (width, height) = live.size();
+        let status = if self.broken {
+            " — error, see terminal"
+        } else {
+            ""
+        };
+        let param = live
+            .scene
+            .params
+            .get(live.selected)
+            .filter(|p| p.name != sdfc_compiler::check::TIME)
+            .map(|p| {
+                format!(
+                    ", [{}] {:?}",
+                    p.name,
+                    live.values.get(&p.name).unwrap_or(&p.values())
+                )
+            })
+            .unwrap_or_default();
+        started.window.set_title(&format!(
+            "{} — {:.1} ms, {evals:.1} evals/px, {method}, {width}×{height}, {:?}, {} ({}){param}{status}",
+            self.args.file.display(),
+            s * 1000.0,
+            live.channel,
+            started.gpu().info.name,
+            started.gpu().backend()
+        ));
+    }
+
+    /// Renders and shows the next frame; screenshots and script steps on a finished picture.
+    pub(super) fn frame(&mut self, event_loop: &ActiveEventLoop) -> Result<(), Error> {
+        let Some(started) = &mut self.started else {
+            return Ok(());
+        };
+        let picture = started.live.step()?;
+        let gpu = started.live.gpu();
+        let shown = started
+            .present
+            .show(gpu, &started.surface, &picture.rgba, picture.size)?;
+        if !shown {
+            // (Routine while a window is resized: configure again and draw the next time.)
+            gpu.configure(&started.surface, &started.config);
+            started.window.request_redraw();
+        }
+        if picture.finished {
+            self.title();
+            self.screenshot(event_loop, &picture)?;
+            if let Some(step) = self.script.pop_front() {
+                self.apply(event_loop, step);
+            }
+        }
+        Ok(())
+    }
+
+    pub(super) fn screenshot(
+        &mut self,
+        event_loop: &ActiveEventLoop,
+        picture: &Picture,
+    ) -> Result<(), Error> {
+        let Some(dir) = &self.args.screenshots else {
+            return Ok(());
+        };
+        let path = dir.join(format!("{:03}.png", self.shots));
+        let bytes = sdfc::images::png(picture.rgba.clone(), picture.size.0, picture.size.1)?;
+        write_file(&path, &bytes)?;
+        let (seconds, evals) = self.started.as_ref().map_or((0.0, 0.0), |s| s.live.stats);
+        say!(
+            "screenshot {} ({}×{}, last frame {:.1} ms, {evals:.1} evaluations per pixel)",
+            path.display(),
+            picture.size.0,
+            picture.size.1,
+            seconds * 1000.0
+        );
+        self.shots += 1;
+        if self.args.quit_after.is_some_and(|n| self.shots >= n) {
+            event_loop.exit();
+        }
+        Ok(())
+    }
+
+    pub(super) fn apply(&mut self, event_loop: &ActiveEventLoop, step: Step) {
+        let Some(live) = self.started.as_mut().map(|s| &mut s.live) else {
+            return;
+        };
+        let height = f64::from(live.size().1);
+        match step {
+            Step::Drag(dx, dy) => live.orbit.turn(dx, dy),
+            Step::Pan(dx, dy) => live.orbit.pan(dx, dy, height),
+            Step::Zoom(n) => live.orbit.zoom(n),
+            Step::Key(k) => {
+                self.key(event_loop, &k);
+                return;
+            }
+        }
+        live.touch();
+    }
+
+    /// Loads the scene again after a save: the new picture, or the last good one kept (and a
+    /// screenshot of it) when the file has errors.
+    pub(super) fn reload(&mut self, event_loop: &ActiveEventLoop) {
+        let Some(started) = self.started.as_mut() else {
+            return;
+        };
+        let live = &mut started.live;
+        let clock = Instant::now();
+        let loaded = load(&self.args);
+        self.watcher.follow(&self.args.file);
+        match loaded {
+            Some((scene, options)) => match live.replace(scene, options) {
+                Ok(()) => {
+                    self.broken = false;
+                    say!(
+                        "reloaded {} in {:.0} ms",
+                        self.args.file.display(),
+                        clock.elapsed().as_secs_f64() * 1000.0
+                    );
+                }
+                Err(e) => {
+                    say!("{e}");
+                    self.broken = true;
+                }
+            },
+            None => {
+                // The diagnostics are printed; the last good picture stays.
+                self.broken = true;
+                say!("the picture is the last one that checked; fix the file and save again");
+                let (rgba, size) = (live.last_picture(), live.size());
+                let picture = Picture {
+                    rgba,
+                    size,
+                    finished: true,
+                };
+                if let Err(e) = self.screenshot(event_loop, &picture) {
+                    say!("{e}");
+                }
+            }
+        }
+        self.title();
+    }
+}
