@@ -1,15 +1,16 @@
 //! A render whose GPU device is lost midway (destroyed between two tiles, as a driver reset
 //! would) ends with an error naming the loss: no panic, no hang, no image.
 
-mod common;
-use common::{compile, gpu};
+use crate::common::{compile, own_gpu};
+use sdfc::gpu::BackendChoice;
 use sdfc_compiler::emit;
 use sdfc_compiler::lower::{Entry, tracer::Options};
 use sdfc_compiler::view::View;
 
 #[test]
 fn losing_the_device_during_a_render_is_an_error() {
-    let gpu = gpu();
+    // Its own device, not a shared one: it destroys it.
+    let gpu = own_gpu(BackendChoice::Vulkan);
     let scene = compile("sphere(1)\nplane(y, -1)");
     let (module, _) = emit::module(&scene, Entry::Compute, &Options::from_scene(&scene)).unwrap();
     // Three tiles wide: the device goes after the first.
