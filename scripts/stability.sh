@@ -4,5 +4,5 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 SDFC_STABILITY_DOC="$PWD/docs/stability.md" \
-  cargo test --release -q -p sdfc --test extremes -- --nocapture > /dev/null
+  cargo test --release -q -p sdfc --test integration extremes:: -- --nocapture > /dev/null
 echo "wrote docs/stability.md"

@@ -10,10 +10,10 @@
 //! per-rule tightness (each node's steepest sampled slope over λ, median and loosest node) is
 //! printed for `docs/lipschitz.md`. The Mandelbulb, an estimate rather than a bound, is left out.
 
-mod lipschitz_sampler;
-
+use crate::lipschitz_sampler::{
+    POINTS, Sampling, Tally, args, sample_node, scene_source, shape, vec3,
+};
 use glam::DVec3;
-use lipschitz_sampler::{POINTS, Sampling, Tally, args, sample_node, scene_source, shape, vec3};
 use sdfc_compiler::catalog::PRIMITIVES;
 use sdfc_compiler::eval;
 use sdfc_compiler::scene::{NodeId, NodeKind};

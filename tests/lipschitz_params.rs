@@ -2,10 +2,8 @@
 //! ranged parameters, and fixed tight ones, sampled at the ranges' ends and inside, with the
 //! scene checked at its defaults and set to those values (`Scene::with_values`).
 
-mod lipschitz_sampler;
-
+use crate::lipschitz_sampler::{Tally, parametric_source, sample_node};
 use glam::DVec3;
-use lipschitz_sampler::{Tally, parametric_source, sample_node};
 use sdfc_compiler::eval;
 use sdfc_tests::Rng;
 use std::collections::HashMap;

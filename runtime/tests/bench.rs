@@ -1,8 +1,7 @@
 //! `sdfc bench` smoke test: the command runs on a tiny image and its JSON has every field.
 //! (Benchmarks are never timed assertions; this only checks the command and its output.)
 
-mod common;
-use common::{root, scratch, sdfc};
+use crate::common::{root, scratch, sdfc};
 
 fn example(name: &str) -> String {
     root().join("examples").join(name).display().to_string()

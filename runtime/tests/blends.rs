@@ -1,9 +1,7 @@
 //! Materials through smooth operators (`sdfc_compiler::blend`): the GPU's blended colours
 //! against the f64 reference pixel by pixel, and the colour continuous across a seam.
 
-mod common;
-
-use common::{compile, gpu, off_by, render, srgb8};
+use crate::common::{compile, gpu, off_by, render, srgb8};
 use sdfc_compiler::shading;
 use sdfc_compiler::view::View;
 

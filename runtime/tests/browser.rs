@@ -6,9 +6,7 @@
 //! `examples/hosts/webgpu/test`), which `.ci/run` installs; without them the test says
 //! SKIPPED loudly, and fails instead when `SDFC_REQUIRE_BROWSER=1` (as `.ci/run` sets).
 
-mod common;
-
-use common::{compile, gpu, off_by, render, root, scratch, sdfc};
+use crate::common::{compile, gpu, off_by, render, root, scratch, sdfc};
 use sdfc_compiler::view::View;
 use std::collections::HashMap;
 use std::process::Command;

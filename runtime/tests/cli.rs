@@ -1,9 +1,7 @@
 //! The command line as users run it: exit codes, diagnostics on standard error, and no partial
 //! output files.
 
-mod common;
-
-use common::{root, scratch, sdfc, write};
+use crate::common::{root, scratch, sdfc, write};
 use std::process::Command;
 
 #[test]

@@ -8,11 +8,9 @@
 //! are printed (`--nocapture`) and, with `SDFC_STABILITY_DOC=path`, written into that file
 //! between its markers (`bash scripts/stability.sh`).
 
-#[path = "extremes/cases.rs"]
 mod cases;
-mod common;
+use crate::common::{compile, gpu};
 use cases::{Case, cases};
-use common::{compile, gpu};
 use glam::DVec3;
 use sdfc::gpu::Gpu;
 use sdfc_compiler::check::tracer::{TRACE_METHODS, with_overrides};

@@ -38,13 +38,10 @@
 //! f32's range (or an input is where Vulkan leaves the result undefined, `atan2(0, 0)`) the
 //! point is not compared, and the table counts it.
 
-mod common;
-#[path = "field/draw.rs"]
 mod draw;
-#[path = "field/model.rs"]
 mod model;
 
-use common::{compile, gpu};
+use crate::common::{compile, gpu};
 use draw::{Rng, f32x, points, value};
 use glam::DVec3;
 use model::{MAX, TINY, U, ULP, builtin_ulps, estimate};

@@ -9,9 +9,11 @@
 //! footprint at t, large in a 64×36 image: 0.1 of 1.0 on a quarter of the village's hits).
 //! They are checked against the CPU's same formula, and loosely against the recorded ones.
 //!
-//! The recorded frames are re-written with `SDFC_GOLDEN=write cargo test --release --test
-//! golden`, which is only right *before* a change that must not alter pictures.
+//! The recorded frames are re-written with `SDFC_GOLDEN=write cargo test --release -p sdfc
+//! --test integration golden::`, which is only right *before* a change that must not alter
+//! pictures.
 
+use crate::common::{compile, examples, gpu, with_method};
 use sdfc::gpu::Frame;
 use sdfc::gpu::{Layout, Source, TILE};
 use sdfc_compiler::lower::{
@@ -21,8 +23,6 @@ use sdfc_compiler::lower::{
 use sdfc_compiler::scene::{Epsilon, Method, Scene};
 use sdfc_compiler::view::View;
 use sdfc_compiler::{emit, eval};
-mod common;
-use common::{compile, examples, gpu, with_method};
 use std::path::PathBuf;
 
 const W: u32 = 64;

@@ -3,13 +3,13 @@
 //! defaults and at other parameter values: the library, the manifest and docs/interface.md
 //! are enough for a host.
 
-mod common;
+use crate::common;
 
 #[allow(dead_code)]
 #[path = "../examples/host.rs"]
-mod host;
+mod example;
 
-use common::{compile, gpu, off_by, render};
+use crate::common::{compile, gpu, off_by, render};
 use sdfc_compiler::view::View;
 use std::collections::HashMap;
 
@@ -30,7 +30,7 @@ fn the_example_host_draws_what_render_draws() {
             .iter()
             .map(|(n, v)| (n.to_string(), v.to_vec()))
             .collect();
-        let hosted = host::render(&host::Job {
+        let hosted = example::render(&example::Job {
             source: &source,
             size: (w, h),
             values: &values,

@@ -3,9 +3,7 @@
 //! silhouette now that a hit is confirmed where f/λ is not a distance (`trace::careful`), and a
 //! `repeat` of an asymmetric child gives the hit mask of the explicit union of its copies.
 
-mod common;
-
-use common::{camera_rays, compile, gpu, gpu_trace};
+use crate::common::{camera_rays, compile, gpu, gpu_trace};
 use sdfc_compiler::scene::Scene;
 use sdfc_compiler::trace;
 use sdfc_compiler::view::View;

@@ -3,9 +3,7 @@
 //! raw f32 colour is finite (the compute entry writes bytes, where a NaN would only show as a
 //! wrong value), run on the GPU for every shading feature at scene scales 1e-4 to 1e4.
 
-mod common;
-
-use common::{compile, every_feature_scene, gpu};
+use crate::common::{compile, every_feature_scene, gpu};
 use sdfc::gpu::{Layout, Source, TILE};
 use sdfc_compiler::emit::{self, Output, Target};
 use sdfc_compiler::lower::{Entry, tracer::Options};

@@ -1,6 +1,7 @@
 //! The tracer options on the CPU reference and the GPU: convex bounds (Keinert §3.5) and
 //! multi-resolution passes (Bálint §4).
 
+use crate::common::{Safety, Tally, camera_rays, compile, examples, gpu, gpu_trace, with_method};
 use glam::DVec3;
 use sdfc_compiler::check::tracer::TRACE_METHODS;
 use sdfc_compiler::emit;
@@ -9,8 +10,6 @@ use sdfc_compiler::passes;
 use sdfc_compiler::scene::Scene;
 use sdfc_compiler::trace;
 use sdfc_compiler::view::View;
-mod common;
-use common::{Safety, Tally, camera_rays, compile, examples, gpu, gpu_trace, with_method};
 
 /// A unit sphere in a convex bound: rays from outside the bound, from inside the bound but
 /// outside the sphere, from inside the sphere, and rays missing the bound; (origin, direction,

@@ -2,9 +2,7 @@
 //! output's size, one line on success (none with `-q`), `error:` first on every error, output
 //! extensions checked, `--version`, shell completions and the man page.
 
-mod common;
-
-use common::{root, scratch, sdfc};
+use crate::common::{root, scratch, sdfc};
 use std::process::Command;
 
 /// `-o -` is standard output, for text and (when it is not a terminal) binary alike: the

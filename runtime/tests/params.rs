@@ -1,9 +1,9 @@
 //! Scene parameters on the GPU: one compiled module, its `Params` uniform set to other values
 //! and times between frames, each frame against the f64 reference at those values.
 
-mod common;
+use crate::common;
 
-use common::{compile, gpu, off_by, srgb8};
+use crate::common::{compile, gpu, off_by, srgb8};
 use sdfc::gpu::TILE;
 use sdfc::gpu::{Layout, Source};
 use sdfc_compiler::emit;

@@ -1,12 +1,11 @@
 //! Rendering for real on the machine's (software) GPU: every example's hit mask and depth
 //! against the f64 CPU reference tracer on the same rays, and Vulkan against GL.
 
-use sdfc::gpu::{BackendChoice, Frame, Gpu};
+use crate::common::{examples, gpu, own_gpu, render};
+use sdfc::gpu::{BackendChoice, Frame};
 use sdfc_compiler::scene::{Epsilon, Scene};
 use sdfc_compiler::trace::{self, Traced};
 use sdfc_compiler::view::View;
-mod common;
-use common::{examples, render};
 use std::path::PathBuf;
 
 const W: u32 = 96;
@@ -17,10 +16,6 @@ fn scene(path: &PathBuf) -> Scene {
     sdfc_compiler::check::compile(&source)
         .scene
         .expect("example compiles")
-}
-
-fn gpu(choice: BackendChoice) -> Gpu {
-    Gpu::new(choice).unwrap_or_else(|e| panic!("{e}\n(CI installs Mesa's drivers in .ci/run)"))
 }
 
 /// The CPU reference on the shader's rays (pixel centres).
@@ -55,7 +50,7 @@ fn ascii_diff(frame: &Frame, cpu: &[Traced]) -> String {
 
 #[test]
 fn every_example_matches_the_cpu_reference() {
-    let gpu = gpu(BackendChoice::Vulkan);
+    let gpu = gpu();
     let mut report = String::new();
     for path in examples() {
         let scene = scene(&path);
@@ -117,7 +112,7 @@ fn every_example_matches_the_cpu_reference() {
 
 #[test]
 fn vulkan_and_gl_give_the_same_image() {
-    let (vk, gl) = (gpu(BackendChoice::Vulkan), gpu(BackendChoice::Gl));
+    let (vk, gl) = (gpu(), own_gpu(BackendChoice::Gl));
     for path in examples() {
         let scene = scene(&path);
         let view = View::new(&scene.camera, W, H);
@@ -146,7 +141,7 @@ fn vulkan_and_gl_give_the_same_image() {
 #[test]
 fn a_render_splits_into_tiles_without_seams() {
     // 300×200 needs 2×1 tiles of 256: the tiled image equals the CPU reference mask too.
-    let gpu = gpu(BackendChoice::Vulkan);
+    let gpu = gpu();
     let scene = scene(
         &examples()
             .into_iter()
@@ -168,7 +163,7 @@ fn a_render_splits_into_tiles_without_seams() {
 /// lighting the encoded value as if it were linear gave 143.
 #[test]
 fn the_background_comes_out_as_written() {
-    let gpu = gpu(BackendChoice::Vulkan);
+    let gpu = gpu();
     let scene = scene(
         &examples()
             .into_iter()
@@ -190,7 +185,7 @@ fn the_background_comes_out_as_written() {
 
 #[test]
 fn a_lit_colour_is_lit_in_linear_light() {
-    let gpu = gpu(BackendChoice::Vulkan);
+    let gpu = gpu();
     let scene = sdfc_compiler::check::compile(
         "camera { eye (0, 0, -5)  target (0, 0, 0) }\n\
          light { direction (0, 0, -1)  color #fff }\n\
@@ -219,7 +214,7 @@ fn a_lit_colour_is_lit_in_linear_light() {
 /// and `shadow soft` lies in between under the sphere's rim.
 #[test]
 fn shadows_darken_what_is_hidden_and_nothing_else() {
-    let gpu = gpu(BackendChoice::Vulkan);
+    let gpu = gpu();
     let frame = |shadow: &str| {
         let scene = sdfc_compiler::check::compile(&format!(
             "camera {{ eye (0, 4, -6)  target (0, 0.5, 0) }}\n\

@@ -1,9 +1,7 @@
 //! Shading on the GPU against the f64 CPU reference shader (`sdfc_compiler::shading`), one
 //! scene per feature: the same rays, the same formulas, compared per pixel in 8-bit sRGB.
 
-mod common;
-
-use common::{EXTREMES_BASE, compile, every_feature_scene, gpu, off_by, render, srgb8};
+use crate::common::{EXTREMES_BASE, compile, every_feature_scene, gpu, off_by, render, srgb8};
 use sdfc_compiler::color::to_srgb;
 use sdfc_compiler::emit;
 use sdfc_compiler::lower::{Entry, tracer::Options};

@@ -1,9 +1,7 @@
 //! Shadow rays against an analytic shadow: no acne and no leaks with Keinert's dynamic offset
 //! (§3.3), and how much acne a fixed offset gives.
 
-mod common;
-
-use common::{compile, gpu};
+use crate::common::{compile, gpu};
 use sdfc_compiler::emit;
 use sdfc_compiler::lower::{Entry, tracer::Options};
 use sdfc_compiler::view::View;

@@ -2,9 +2,7 @@
 //! without end or with odd bytes, output paths that are pipes, links or devices, concurrent
 //! writers, and the SPIR-V version asked for.
 
-mod common;
-
-use common::{scratch, sdfc, write};
+use crate::common::{scratch, sdfc, write};
 use std::process::Command;
 
 /// Standard output that is full or closed, and inputs without end or with a byte-order mark.

@@ -1,9 +1,7 @@
 //! Procedural textures on the GPU against the f64 reference (`sdfc_compiler::texture`,
 //! `sdfc_compiler::shading::albedo`), pixel by pixel in 8-bit sRGB.
 
-mod common;
-
-use common::{compile, gpu, off_by, render, srgb8};
+use crate::common::{compile, gpu, off_by, render, srgb8};
 use sdfc_compiler::shading;
 use sdfc_compiler::view::View;
 

@@ -1,12 +1,11 @@
 //! Every tracing variant on the CPU reference and on the GPU: the grazing-plane table, GPU
 //! against CPU on the same rays, and safety against a 10 000-step ground truth.
 
+use crate::common::{Safety, Tally, camera_rays, compile, examples, gpu, gpu_trace, with_method};
 use sdfc_compiler::check::tracer::TRACE_METHODS;
 use sdfc_compiler::scene::{Method, Scene, Trace};
 use sdfc_compiler::trace::{self, Threshold};
 use sdfc_compiler::view::View;
-mod common;
-use common::{Safety, Tally, camera_rays, compile, examples, gpu, gpu_trace, with_method};
 
 /// The angles of the grazing-plane table, in degrees.
 const ANGLES: [f64; 4] = [45.0, 10.0, 1.0, 0.1];

@@ -6,9 +6,7 @@
 //! Needs `xvfb-run` (Debian's `xvfb`), which `.ci/run` installs; without it the window tests
 //! say SKIPPED loudly, and fail instead when `SDFC_REQUIRE_DISPLAY=1` (as `.ci/run` sets).
 
-mod common;
-
-use common::{root, scratch, sdfc};
+use crate::common::{root, scratch, sdfc};
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};

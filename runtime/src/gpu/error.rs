@@ -92,11 +92,6 @@ pub enum Error {
 pub type Consumed = Result<(), Box<dyn std::error::Error + Send + Sync>>;
 
 impl Error {
-    /// Whether the message contains `text` (tests look for words of it).
-    pub fn contains(&self, text: &str) -> bool {
-        self.to_string().contains(text)
-    }
-
     /// Whether the device is gone: every later use fails too.
     pub fn is_device_lost(&self) -> bool {
         matches!(self, Error::Lost(_) | Error::Poll(_))

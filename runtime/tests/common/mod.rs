@@ -1,5 +1,4 @@
-//! What the runtime's test files share: the example scenes, compiling, the GPU.
-#![allow(dead_code)]
+//! What the runtime's test files share: the example scenes, compiling, the GPU devices.
 
 use sdfc::gpu::{BackendChoice, Gpu};
 use sdfc_compiler::check::tracer::TRACE_METHODS;
@@ -9,6 +8,7 @@ use sdfc_compiler::scene::{Method, Scene, Trace};
 use sdfc_compiler::trace::{self, Traced};
 use std::path::PathBuf;
 use std::process::{Command, Output};
+use std::sync::Mutex;
 
 /// The example scene files, sorted.
 pub fn examples() -> Vec<PathBuf> {
@@ -33,10 +33,44 @@ pub fn compile(source: &str) -> Scene {
     })
 }
 
-/// The Vulkan device (lavapipe in CI).
-pub fn gpu() -> Gpu {
-    Gpu::new(BackendChoice::Vulkan)
-        .unwrap_or_else(|e| panic!("{e}\n(CI installs Mesa's drivers in .ci/run)"))
+/// The Vulkan devices the tests have finished with, for the next ones: the tests share one
+/// binary, and a device is opened once per test thread rather than once per test.
+static IDLE: Mutex<Vec<Gpu>> = Mutex::new(Vec::new());
+
+/// A Vulkan device (lavapipe in CI) for one test alone while it holds it: one another test has
+/// given back, else a new one. Tests running at the same time never share a device (its
+/// parameters and error state are per device), so at most one is opened per test thread.
+pub fn gpu() -> Lease {
+    let idle = IDLE.lock().unwrap_or_else(|e| e.into_inner()).pop();
+    Lease(Some(idle.unwrap_or_else(|| own_gpu(BackendChoice::Vulkan))))
+}
+
+/// A device of the test's own, never shared: for a test that loses it, or wants another
+/// backend.
+pub fn own_gpu(choice: BackendChoice) -> Gpu {
+    Gpu::new(choice).unwrap_or_else(|e| panic!("{e}\n(CI installs Mesa's drivers in .ci/run)"))
+}
+
+/// A device lent to one test ([`gpu`]), given back when dropped as a new one would be (no scene
+/// parameters set); not given back if the test panicked, as the device may be in a bad state.
+pub struct Lease(Option<Gpu>);
+
+impl std::ops::Deref for Lease {
+    type Target = Gpu;
+    fn deref(&self) -> &Gpu {
+        self.0.as_ref().expect("lent")
+    }
+}
+
+impl Drop for Lease {
+    fn drop(&mut self) {
+        if let Some(gpu) = self.0.take()
+            && !std::thread::panicking()
+        {
+            gpu.set_params(&[]);
+            IDLE.lock().unwrap_or_else(|e| e.into_inner()).push(gpu);
+        }
+    }
 }
 
 /// Traces rays with the scene's `Entry::Rays` module: (t, steps, flags) per ray.
@@ -179,7 +213,8 @@ pub fn root() -> PathBuf {
         .to_path_buf()
 }
 
-/// A fresh folder under the system's temporary one, by test name.
+/// A fresh folder under the system's temporary one, by test name: the tests share one process,
+/// so `name` must differ across all the test files.
 pub fn scratch(name: &str) -> PathBuf {
     let d = std::env::temp_dir().join(format!("sdfc-cli-{}-{name}", std::process::id()));
     std::fs::create_dir_all(&d).unwrap();

@@ -1,0 +1,28 @@
+//! The runtime's integration tests as one binary (as naga's `tests/naga/main.rs`): each file of
+//! this folder is a module, its tests named `<file>::<test>`, and `common` (what they share, the
+//! pooled GPU devices among it) is compiled once.
+
+mod common;
+
+mod bench;
+mod blends;
+mod browser;
+mod cli;
+mod device;
+mod extremes;
+mod field;
+mod golden;
+mod host;
+mod hostile;
+mod lipschitz;
+mod nan;
+mod options;
+mod outputs;
+mod params;
+mod render;
+mod shading;
+mod shadows;
+mod streams;
+mod textures;
+mod tracers;
+mod view;
