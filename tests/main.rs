@@ -8,6 +8,7 @@ mod eval;
 mod examples;
 mod fuzz;
 mod fuzz_scenes;
+mod house;
 mod imports;
 mod interface;
 mod limits;

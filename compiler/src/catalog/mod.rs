@@ -473,9 +473,29 @@ pub fn primitive(name: &str) -> Option<&'static Primitive> {
     PRIMITIVES.iter().find(|p| p.name == name)
 }
 
-/// Looks up an operator by name.
+/// Looks up an operator by name: the language's own, then those [`register_operator`] added.
 pub fn operator(name: &str) -> Option<&'static Operator> {
-    OPERATORS.iter().find(|p| p.name == name)
+    OPERATORS.iter().find(|p| p.name == name).or_else(|| {
+        let added = ADDED_OPERATORS.read().unwrap_or_else(|e| e.into_inner());
+        added.iter().copied().find(|p| p.name == name)
+    })
+}
+
+/// Operators defined outside this crate, after the language's own.
+static ADDED_OPERATORS: std::sync::RwLock<Vec<&'static Operator>> =
+    std::sync::RwLock::new(Vec::new());
+
+/// Adds an operator defined outside this crate (an embedder's, or a test's) to the table names
+/// are looked up in, for every scene checked after: its entry is all the checker, the CPU
+/// evaluator, the Lipschitz rules and the lowering need. `Err` (and nothing added) when a
+/// primitive, operator or math function already has its name.
+pub fn register_operator(op: &'static Operator) -> Result<(), String> {
+    let mut added = ADDED_OPERATORS.write().unwrap_or_else(|e| e.into_inner());
+    if all_names().any(|n| n == op.name) || added.iter().any(|o| o.name == op.name) {
+        return Err(format!("`{}` is taken", op.name));
+    }
+    added.push(op);
+    Ok(())
 }
 
 /// Looks up a math function by name.
