@@ -3,6 +3,7 @@
 //! recursion (the f64 reference it mirrors: `crate::shading::path`).
 
 use super::builder::{Ex, FnBuilder, ModuleBuilder};
+use super::probes::lift;
 use crate::scene::Scene;
 use crate::shading::{MIN_WEIGHT, REFLECTIONS, REFRACTIONS, SECONDARY_STEPS};
 use naga::{BinaryOperator as Op, Function, Handle, MathFunction as M, VectorSize};
@@ -50,26 +51,6 @@ pub(super) fn add_march(mb: &mut ModuleBuilder, map: Handle<Function>) -> Handle
     b.ret(Some(miss));
     let f = b.finish();
     mb.add_function(f)
-}
-
-/// How far a secondary ray's origin moves off the surface point `p`: Keinert's ε_dynamic =
-/// 2·max(h, |f(p)|) (§3.3), or `fixed` (for comparison, `Options::fixed_offset`).
-pub(super) fn lift(
-    b: &mut FnBuilder,
-    map: Handle<Function>,
-    p: Ex,
-    h: Ex,
-    fixed: Option<f64>,
-) -> Ex {
-    if let Some(f) = fixed {
-        return b.f(f);
-    }
-    super::count::count(b, 1);
-    let here = b.call(map, vec![p]);
-    let here = b.abs(here);
-    let lift = b.max(here, h);
-    let two = b.f(2.0);
-    b.mul(lift, two)
 }
 
 /// The functions `path` calls.

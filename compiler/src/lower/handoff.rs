@@ -2,7 +2,8 @@
 //! pass starts each ray, and what it hands to the next.
 
 use super::builder::{Ex, FnBuilder, ModuleBuilder};
-use super::entry::{Fns, storage_array, trace_pixel, view_field};
+use super::camera::{storage_array, view_field};
+use super::fns::{Fns, trace_pixel};
 use super::tracer::Pass;
 use naga::{Expression, Handle, MathFunction as M, ScalarKind, VectorSize};
 

@@ -2,8 +2,7 @@
 //! regula falsi refinement it shares with the hit confirmation.
 
 use super::builder::{Ex, FnBuilder};
-use super::march::{Cx, EXHAUSTED, HIT};
-use super::variants::var;
+use super::march::{Cx, EXHAUSTED, HIT, var};
 use naga::BinaryOperator as B;
 
 /// Liktor §5.4 (see `crate::trace::hybrid`), as one loop with one `map` call: each iteration

@@ -1,10 +1,10 @@
 //! The frame every tracing variant is lowered into: `trace_<method>(ro, rd[, pixel][, start,
 //! end][, budget, cone])` with its result type, ε(t), counting and stopping; the variants' bodies
-//! live in `variants.rs`, step for step the same as the CPU reference in `crate::trace`.
+//! live in `variants.rs` (the caller passes `variants::body`), step for step the same as the
+//! CPU reference in `crate::trace`.
 
 use super::builder::{Ex, FnBuilder, ModuleBuilder};
-use super::tracer::struct_ty;
-use super::variants;
+use super::globals::struct_ty;
 use crate::scene::{Epsilon, Method, Trace};
 use crate::trace::TOUCH;
 use naga::{Function, Handle, Type};
@@ -270,15 +270,24 @@ impl Cx {
     }
 }
 
-/// Adds `trace_<method>` for the settings' variant, taking `inputs`.
-pub fn add_trace(
+/// A local f32 variable.
+pub(super) fn var(b: &mut FnBuilder, name: &str, init: f64) -> Ex {
+    let ty = b.m.f32();
+    let v = b.f(init);
+    b.local(name, ty, Some(v))
+}
+
+/// The loop of a variant, emitted into the frame [`Cx`] (`variants::body`).
+pub(super) type Body = fn(&mut FnBuilder, &Cx);
+
+/// Adds `trace_<method>` for the settings' variant, taking `inputs`; `body` emits its loop.
+pub(super) fn add_trace(
     mb: &mut ModuleBuilder,
-    map: Handle<Function>,
+    (map, loose): (Handle<Function>, Option<Handle<Function>>),
     result_ty: Handle<Type>,
     trace: &Trace,
-    inputs: Inputs,
-    floor: f64,
-    loose: Option<Handle<Function>>,
+    (inputs, floor): (Inputs, f64),
+    body: Body,
 ) -> Handle<Function> {
     let f32t = mb.f32();
     let u32t = mb.u32();
@@ -338,7 +347,7 @@ pub fn add_trace(
         cover,
         loose,
     };
-    variants::body(&mut b, &cx);
+    body(&mut b, &cx);
     let tv = b.load(t);
     let tv = cx.absolute(&mut b, tv);
     let (s, h) = (b.load(steps), b.load(flags));

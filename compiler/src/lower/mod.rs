@@ -3,8 +3,9 @@
 //! `map`, (only when the scene has materials) `map_material`, (only when a material has a
 //! pattern) `map_texture` and (only when it has a loose part) `map_loose` (the tag walks:
 //! `tags.rs`, which return a constant where the scene leaves no choice); the tracer and entry
-//! points come from `tracer.rs`.
+//! points come from `assemble.rs`.
 
+mod assemble;
 mod bounce;
 mod bound;
 pub mod builder;
@@ -13,6 +14,8 @@ mod careful;
 mod constant;
 mod count;
 mod entry;
+mod fns;
+mod globals;
 mod handoff;
 mod hybrid;
 pub mod interface;
@@ -31,6 +34,7 @@ mod tags;
 mod texture;
 pub mod tracer;
 mod variants;
+mod vector;
 mod warp;
 
 use crate::catalog::{Ctx, Ty, Val};
@@ -117,7 +121,7 @@ pub fn lower(scene: &Scene, entry: Entry, options: &tracer::Options) -> naga::Mo
             bl.unwrap_or_else(|| b.splat3(0.0))
         })
     });
-    tracer::add(
+    assemble::add(
         &mut mb,
         scene,
         map,

@@ -73,7 +73,7 @@ pub(super) fn add(
             (n.as_str(), ty, o)
         })
         .collect();
-    let ty = super::tracer::struct_ty(mb, "Params", &members, size);
+    let ty = super::globals::struct_ty(mb, "Params", &members, size);
     if private {
         return Some(mb.module.global_variables.append(
             naga::GlobalVariable {
@@ -87,7 +87,7 @@ pub(super) fn add(
             naga::Span::UNDEFINED,
         ));
     }
-    Some(super::entry::global(
+    Some(super::globals::global(
         mb,
         "params",
         ty,

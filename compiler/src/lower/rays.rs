@@ -3,8 +3,10 @@
 //! `map` at it out).
 
 use super::builder::{Ex, FnBuilder, ModuleBuilder};
-use super::entry::{compute_main, storage_array};
-use super::tracer::{Pass, Tracer};
+use super::camera::storage_array;
+use super::entry::compute_main;
+use super::fns::Tracer;
+use super::tracer::Pass;
 use crate::layout::{self, FIELD_WORKGROUP, RAYS_WORKGROUP};
 use naga::{Binding, BuiltIn, Expression, Function, Handle, ScalarKind, VectorSize};
 

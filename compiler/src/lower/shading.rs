@@ -5,6 +5,7 @@
 use super::builder::{Ex, FnBuilder, ModuleBuilder};
 use super::params;
 use super::probes::{add_occlusion, add_shadow};
+use super::vector::unit_or_zero;
 use crate::catalog::{Ty, Val};
 use crate::scene::{LightKind, Scene, Shadow};
 use crate::shading::{AMBIENT, DEFAULT_COLOR, SHININESS, has_shadows};
@@ -217,16 +218,6 @@ pub(super) fn call_shade(
     h: Ex,
 ) -> Ex {
     b.call(shade, vec![p, n, rd, m, h])
-}
-
-/// `v` normalised, or zero for the zero vector (no NaN): `crate::shading::unit_or_zero`.
-pub(super) fn unit_or_zero(b: &mut FnBuilder, v: Ex) -> Ex {
-    let unit = b.math(M::Normalize, &[v]);
-    let len2 = b.dot(v, v);
-    let zero = b.f(0.0);
-    let none = b.bin(naga::BinaryOperator::Equal, len2, zero);
-    let zv = b.splat3(0.0);
-    b.select(none, zv, unit)
 }
 
 /// `fog(c, t)`: the linear colour `c` seen through the scene's fog from distance `t`,

@@ -55,7 +55,7 @@ impl Textures {
                 super::count::count(b, 1);
                 let q2 = b.call(self.map_texture, vec![p2]);
                 let d = b.sub(q2, q);
-                super::shading::unit_or_zero(b, d)
+                super::vector::unit_or_zero(b, d)
             });
             let w = self.weight(b, &pattern, q, nq);
             let first = b.vec3_lit(crate::color::linear(m.color));

@@ -2,7 +2,7 @@
 //! step as its CPU reference in `crate::trace` (whose doc comments cite the seeds).
 
 use super::builder::{Ex, FnBuilder};
-use super::march::{Cx, EXHAUSTED, HIT, is_hit};
+use super::march::{Cx, EXHAUSTED, HIT, is_hit, var};
 use crate::scene::Method;
 use crate::trace::{AUTO_MAX_OMEGA, CONE_PIXELS, ENHANCED_GUARD};
 use naga::BinaryOperator as B;
@@ -22,13 +22,6 @@ pub(super) fn body(b: &mut FnBuilder, cx: &Cx) {
     if cx.trace.discontinuity > 0 {
         discontinuity(b, cx);
     }
-}
-
-/// A local f32 variable.
-pub(super) fn var(b: &mut FnBuilder, name: &str, init: f64) -> Ex {
-    let ty = b.m.f32();
-    let v = b.f(init);
-    b.local(name, ty, Some(v))
 }
 
 /// Hart; Bálint Alg. 1; Munini Fig. 9, with cone anti-aliasing if asked (Munini §2.4; see
