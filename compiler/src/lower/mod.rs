@@ -19,6 +19,7 @@ mod globals;
 mod handoff;
 mod hybrid;
 pub mod interface;
+mod lobes;
 pub mod march;
 mod math;
 pub mod ops;
