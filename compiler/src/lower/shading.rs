@@ -7,7 +7,7 @@ use super::params;
 use super::probes::{add_occlusion, add_shadow};
 use super::vector::unit_or_zero;
 use crate::catalog::{Ty, Val};
-use crate::scene::{LightKind, Scene, Shadow};
+use crate::scene::{Light, LightKind, Scene, Shadow};
 use crate::shading::{AMBIENT, DEFAULT_COLOR, SHININESS, has_shadows};
 use naga::{Function, Handle, MathFunction as M, ScalarKind};
 
@@ -88,25 +88,7 @@ pub(super) fn add_shade(
         Some(t) => t.colors(&mut b, scene, p, n),
         None => Vec::new(),
     };
-    let (base, spec) = match blend {
-        None => material_props(&mut b, scene, mat, &patterned),
-        Some(f) => {
-            // Across a smooth operator's seam, two materials by its weight (`crate::blend`).
-            super::count::count(&mut b, 1);
-            let bl = b.call(f, vec![p]);
-            let [x, y, t] = b.xyz(bl);
-            let (ia, ib) = (b.cast(x, ScalarKind::Uint), b.cast(y, ScalarKind::Uint));
-            let (ca, sa) = material_props(&mut b, scene, ia, &patterned);
-            let (cb, sb) = material_props(&mut b, scene, ib, &patterned);
-            let t3 = b.splat(t, naga::VectorSize::Tri);
-            let base = b.math(M::Mix, &[ca, cb, t3]);
-            let spec = match (sa, sb) {
-                (Some(sa), Some(sb)) => Some(b.math(M::Mix, &[sa, sb, t])),
-                _ => None,
-            };
-            (base, spec)
-        }
-    };
+    let (base, spec) = base_and_specular(&mut b, scene, (mat, p), blend, &patterned);
     // Occlusion darkens the light that reaches the surface from all around, and the diffuse.
     let lit_base = match occlusion {
         Some(f) => {
@@ -118,65 +100,126 @@ pub(super) fn add_shade(
     let amb = b.f(AMBIENT);
     let mut color = b.mul(lit_base, amb);
     for light in &scene.lights {
-        let place = params::setting(&light.sym, 0);
-        let (l, far) = match light.kind {
-            LightKind::Directional(d) => {
-                let l = match place {
-                    Some(_) => params::arg(&mut b, Ty::Axis, Val::Vec3(d), place, p),
-                    None => b.vec3_lit(d.normalize()),
-                };
-                (l, b.f(scene.trace.max_distance))
-            }
-            LightKind::Point(pos) => {
-                let pv = params::arg(&mut b, Ty::Vec3, Val::Vec3(pos), place, p);
-                let d = b.sub(pv, p);
-                (unit_or_zero(&mut b, d), b.length(d))
-            }
-        };
-        let ndl = b.dot(n, l);
-        let zero = b.f(0.0);
-        let diff = b.max(ndl, zero);
-        let (tint, intensity) = (
-            params::setting(&light.sym, 1),
-            params::setting(&light.sym, 2),
+        color = add_light(
+            &mut b,
+            (scene, light),
+            [p, n, rd],
+            (lit_base, spec),
+            shadow,
+            color,
         );
-        let lc = if tint.is_none() && intensity.is_none() {
-            b.vec3_lit(crate::color::linear(light.color) * light.intensity)
-        } else {
-            let c = params::linear_color(&mut b, light.color, tint, p);
-            let k = params::arg(&mut b, Ty::Number, Val::Num(light.intensity), intensity, p);
-            b.mul(c, k)
-        };
-        let lc = match (shadow, light.shadow) {
-            (Some(f), Shadow::Hard | Shadow::Soft(_)) => {
-                let k = match light.shadow {
-                    Shadow::Soft(k) => b.f(k),
-                    _ => b.f(0.0),
-                };
-                let h = b.arg(4);
-                let seen = b.call(f, vec![p, n, l, far, h, k]);
-                b.mul(lc, seen)
-            }
-            _ => lc,
-        };
-        let lit = b.mul(lc, diff);
-        let lit = b.mul(lit_base, lit);
-        color = b.add(color, lit);
-        if let Some(s) = spec {
-            let hv = b.sub(l, rd);
-            let hv = unit_or_zero(&mut b, hv);
-            let ndh = b.dot(n, hv);
-            let ndh = b.max(ndh, zero);
-            let e = b.f(SHININESS);
-            let hl = b.math(M::Pow, &[ndh, e]);
-            let hl = b.mul(hl, s);
-            let hl = b.mul(lc, hl);
-            color = b.add(color, hl);
-        }
     }
     b.ret(Some(color));
     let f = b.finish();
     mb.add_function(f)
+}
+
+/// The surface's linear base colour and specular strength (if some material is specular): of
+/// material `mat`, or across a smooth operator's seam two materials mixed by its weight
+/// (`blend`: `map_blend`, see `crate::blend`).
+fn base_and_specular(
+    b: &mut FnBuilder,
+    scene: &Scene,
+    (mat, p): (Ex, Ex),
+    blend: Option<Handle<Function>>,
+    patterned: &[(usize, Ex)],
+) -> (Ex, Option<Ex>) {
+    let Some(f) = blend else {
+        return material_props(b, scene, mat, patterned);
+    };
+    super::count::count(b, 1);
+    let bl = b.call(f, vec![p]);
+    let [x, y, t] = b.xyz(bl);
+    let (ia, ib) = (b.cast(x, ScalarKind::Uint), b.cast(y, ScalarKind::Uint));
+    let (ca, sa) = material_props(b, scene, ia, patterned);
+    let (cb, sb) = material_props(b, scene, ib, patterned);
+    let t3 = b.splat(t, naga::VectorSize::Tri);
+    let base = b.math(M::Mix, &[ca, cb, t3]);
+    let spec = match (sa, sb) {
+        (Some(sa), Some(sb)) => Some(b.math(M::Mix, &[sa, sb, t])),
+        _ => None,
+    };
+    (base, spec)
+}
+
+/// `color` plus one light's terms at the surface point `p` of normal `n` seen along `rd`: the
+/// diffuse (Lambert, on `lit_base`) and, if `spec` is given, the Blinn–Phong highlight, both
+/// scaled by `shadow(…)` where the light casts shadows.
+fn add_light(
+    b: &mut FnBuilder,
+    (scene, light): (&Scene, &Light),
+    [p, n, rd]: [Ex; 3],
+    (lit_base, spec): (Ex, Option<Ex>),
+    shadow: Option<Handle<Function>>,
+    color: Ex,
+) -> Ex {
+    let (l, far) = light_direction(b, scene, light, p);
+    let ndl = b.dot(n, l);
+    let zero = b.f(0.0);
+    let diff = b.max(ndl, zero);
+    let lc = light_color(b, light, p);
+    let lc = match (shadow, light.shadow) {
+        (Some(f), Shadow::Hard | Shadow::Soft(_)) => {
+            let k = match light.shadow {
+                Shadow::Soft(k) => b.f(k),
+                _ => b.f(0.0),
+            };
+            let h = b.arg(4);
+            let seen = b.call(f, vec![p, n, l, far, h, k]);
+            b.mul(lc, seen)
+        }
+        _ => lc,
+    };
+    let lit = b.mul(lc, diff);
+    let lit = b.mul(lit_base, lit);
+    let color = b.add(color, lit);
+    let Some(s) = spec else {
+        return color;
+    };
+    let hv = b.sub(l, rd);
+    let hv = unit_or_zero(b, hv);
+    let ndh = b.dot(n, hv);
+    let ndh = b.max(ndh, zero);
+    let e = b.f(SHININESS);
+    let hl = b.math(M::Pow, &[ndh, e]);
+    let hl = b.mul(hl, s);
+    let hl = b.mul(lc, hl);
+    b.add(color, hl)
+}
+
+/// The direction towards `light` from `p` and how far the light is (the scene's far limit for
+/// a directional one).
+fn light_direction(b: &mut FnBuilder, scene: &Scene, light: &Light, p: Ex) -> (Ex, Ex) {
+    let place = params::setting(&light.sym, 0);
+    match light.kind {
+        LightKind::Directional(d) => {
+            let l = match place {
+                Some(_) => params::arg(b, Ty::Axis, Val::Vec3(d), place, p),
+                None => b.vec3_lit(d.normalize()),
+            };
+            (l, b.f(scene.trace.max_distance))
+        }
+        LightKind::Point(pos) => {
+            let pv = params::arg(b, Ty::Vec3, Val::Vec3(pos), place, p);
+            let d = b.sub(pv, p);
+            (unit_or_zero(b, d), b.length(d))
+        }
+    }
+}
+
+/// The light's linear colour times its intensity: a constant unless a parameter sets them.
+fn light_color(b: &mut FnBuilder, light: &Light, p: Ex) -> Ex {
+    let (tint, intensity) = (
+        params::setting(&light.sym, 1),
+        params::setting(&light.sym, 2),
+    );
+    if tint.is_none() && intensity.is_none() {
+        b.vec3_lit(crate::color::linear(light.color) * light.intensity)
+    } else {
+        let c = params::linear_color(b, light.color, tint, p);
+        let k = params::arg(b, Ty::Number, Val::Num(light.intensity), intensity, p);
+        b.mul(c, k)
+    }
 }
 
 /// The linear base colour of material `id` (patterned ones from `patterned`) and its specular
