@@ -136,6 +136,13 @@ fn relaxed(b: &mut FnBuilder, cx: &Cx) {
     // −1: no candidate yet (the first evaluation always makes one, so a ray whose budget runs
     // out has a candidate).
     let candidate_error = var(b, "candidate_error", -1.0);
+    let candidate = (candidate_t, candidate_error);
+    let vars = Relaxation {
+        omega,
+        step,
+        prev_radius,
+        prev_r,
+    };
     b.loop_(|b| {
         cx.budget(b, EXHAUSTED | HIT, |b| {
             // The best candidate is the hit (Keinert §3.2).
@@ -144,6 +151,38 @@ fn relaxed(b: &mut FnBuilder, cx: &Cx) {
         });
         let (t, r) = cx.here(b, "r");
         let radius = b.abs(r);
+        let (fail, new_step, e) = vars.step(b, cx, (t, r, radius));
+        let ok = b.expr(naga::Expression::Unary {
+            op: naga::UnaryOperator::LogicalNot,
+            expr: fail,
+        });
+        b.if_(
+            ok,
+            |b| candidate_or_stop(b, cx, candidate, (t, r, radius, e)),
+            |_| {},
+        );
+        let back = b.neg(t);
+        let new_step = b.max(new_step, back);
+        b.store(step, new_step);
+        cx.advance(b, t, new_step);
+    });
+}
+
+/// The variables of relaxed sphere tracing's step: ω, the last step, the last radius, and with
+/// `fallback keep` the last field value.
+struct Relaxation {
+    omega: Ex,
+    step: Ex,
+    prev_radius: Ex,
+    prev_r: Option<Ex>,
+}
+
+impl Relaxation {
+    /// The relaxed step from t (field `r`, `radius` = |r|) — back to the safe point where the
+    /// unbounding spheres fail to overlap, else ahead by ω·r — stored in `step`: (whether it
+    /// failed, the step, ε at t).
+    fn step(&self, b: &mut FnBuilder, cx: &Cx, (t, r, radius): (Ex, Ex, Ex)) -> (Ex, Ex, Ex) {
+        let (omega, step, prev_radius) = (self.omega, self.step, self.prev_radius);
         let (om, st, pr) = (b.load(omega), b.load(step), b.load(prev_radius));
         let one = b.f(1.0);
         let relaxing = b.gt(om, one);
@@ -152,7 +191,7 @@ fn relaxed(b: &mut FnBuilder, cx: &Cx) {
         let apart = cx.apart(b, st, (radius, pr), e);
         let fail = b.bin(B::LogicalAnd, relaxing, apart);
         b.name(fail, "fail");
-        let back = match prev_r {
+        let back = match self.prev_r {
             // Back to t₋ + r₋ with ω kept (Bálint & Valasek Alg. 2).
             Some(prev_r) => {
                 let pr = b.load(prev_r);
@@ -167,7 +206,7 @@ fn relaxed(b: &mut FnBuilder, cx: &Cx) {
         let ahead = b.mul(r, om);
         let new_step = b.select(fail, back, ahead);
         b.store(step, new_step);
-        match prev_r {
+        match self.prev_r {
             Some(prev_r) => {
                 let kept = b.select(fail, pr, radius);
                 b.store(prev_radius, kept);
@@ -181,45 +220,42 @@ fn relaxed(b: &mut FnBuilder, cx: &Cx) {
                 b.store(prev_radius, radius);
             }
         }
-        let ok = b.expr(naga::Expression::Unary {
-            op: naga::UnaryOperator::LogicalNot,
-            expr: fail,
-        });
-        b.if_(
-            ok,
-            |b| {
-                let error = b.div(radius, e);
-                let ce = b.load(candidate_error);
-                let smaller = b.lt(error, ce);
-                let zero = b.f(0.0);
-                let none = b.lt(ce, zero);
-                let better = b.bin(B::LogicalOr, smaller, none);
-                b.if_(
-                    better,
-                    |b| {
-                        b.store(candidate_t, t);
-                        b.store(candidate_error, error);
-                    },
-                    |_| {},
-                );
-                let near = b.lt(radius, e);
-                let zero = b.f(0.0);
-                let below = b.lt(r, zero);
-                let at_start = b.bin(B::LessEqual, t, zero);
-                let stuck = b.bin(B::LogicalAnd, below, at_start);
-                let close = b.bin(B::LogicalOr, near, stuck);
-                cx.stop_if(b, close, HIT);
-                let far = cx.far(b);
-                let gone = b.gt(t, far);
-                cx.stop_if(b, gone, 0);
-            },
-            |_| {},
-        );
-        let back = b.neg(t);
-        let new_step = b.max(new_step, back);
-        b.store(step, new_step);
-        cx.advance(b, t, new_step);
-    });
+        (fail, new_step, e)
+    }
+}
+
+/// Where the step stands: t becomes the candidate if its error |r|/ε is the smallest yet, and
+/// the ray stops on a hit (or inside at its start) or past the far limit.
+fn candidate_or_stop(
+    b: &mut FnBuilder,
+    cx: &Cx,
+    (candidate_t, candidate_error): (Ex, Ex),
+    (t, r, radius, e): (Ex, Ex, Ex, Ex),
+) {
+    let error = b.div(radius, e);
+    let ce = b.load(candidate_error);
+    let smaller = b.lt(error, ce);
+    let zero = b.f(0.0);
+    let none = b.lt(ce, zero);
+    let better = b.bin(B::LogicalOr, smaller, none);
+    b.if_(
+        better,
+        |b| {
+            b.store(candidate_t, t);
+            b.store(candidate_error, error);
+        },
+        |_| {},
+    );
+    let near = b.lt(radius, e);
+    let zero = b.f(0.0);
+    let below = b.lt(r, zero);
+    let at_start = b.bin(B::LessEqual, t, zero);
+    let stuck = b.bin(B::LogicalAnd, below, at_start);
+    let close = b.bin(B::LogicalOr, near, stuck);
+    cx.stop_if(b, close, HIT);
+    let far = cx.far(b);
+    let gone = b.gt(t, far);
+    cx.stop_if(b, gone, 0);
 }
 
 /// Bálint Alg. 3 (see `crate::trace::enhanced`).
