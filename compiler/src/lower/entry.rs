@@ -34,7 +34,6 @@ fn shade_hit(
 ) -> Shaded {
     let v3 = b.m.vec3();
     let u32t = b.m.u32();
-    let pixel_mode = matches!(options.trace.epsilon, Epsilon::Pixel);
     let bg = b.vec3_lit(crate::color::linear(scene.background));
     let color = b.local("color", v3, Some(bg));
     let zero3 = b.splat3(0.0);
@@ -42,34 +41,7 @@ fn shade_hit(
     let zero_u = b.u(0);
     let material = b.local("material", u32t, Some(zero_u));
     let is_hit = hit_bit(b, result);
-    // The surface at t along the ray: (colour, normal, material).
-    let surface = |b: &mut FnBuilder, t: Ex| {
-        let step = b.mul(rd, t);
-        let p = b.add(ro, step);
-        let h = pixel_mode.then_some(px);
-        let h = epsilon(b, &options.trace, t, h, floor);
-        let n = b.call(fns.normal, vec![p, h]);
-        let m = match fns.material {
-            Some(f) => {
-                super::count::count(b, 1);
-                b.call(f, vec![p])
-            }
-            None => b.u(0),
-        };
-        {
-            let c = super::shading::call_shade(b, fns.shade, [p, n, rd, m], h);
-            // Mirrors and transparent solids: the path of reflected and refracted rays.
-            let c = match fns.path {
-                Some(f) => b.call(f, vec![p, n, rd, m, h, c]),
-                None => c,
-            };
-            let c = match fns.fog {
-                Some(f) => b.call(f, vec![c, t]),
-                None => c,
-            };
-            (c, n, m)
-        }
-    };
+    let surface = |b: &mut FnBuilder, t: Ex| surface(b, fns, (options, floor), (ro, rd, px), t);
     b.if_(
         is_hit,
         |b| {
@@ -105,6 +77,42 @@ fn shade_hit(
         normal: b.load(normal),
         material: b.load(material),
     }
+}
+
+/// The surface at `t` along the ray from `ro` in direction `rd` (pixel footprint `px`): its
+/// colour (shaded, followed along the path of reflected and refracted rays, through the fog),
+/// normal and material.
+fn surface(
+    b: &mut FnBuilder,
+    fns: &Fns,
+    (options, floor): (&Options, f64),
+    (ro, rd, px): (Ex, Ex, Ex),
+    t: Ex,
+) -> (Ex, Ex, Ex) {
+    let pixel_mode = matches!(options.trace.epsilon, Epsilon::Pixel);
+    let step = b.mul(rd, t);
+    let p = b.add(ro, step);
+    let h = pixel_mode.then_some(px);
+    let h = epsilon(b, &options.trace, t, h, floor);
+    let n = b.call(fns.normal, vec![p, h]);
+    let m = match fns.material {
+        Some(f) => {
+            super::count::count(b, 1);
+            b.call(f, vec![p])
+        }
+        None => b.u(0),
+    };
+    let c = super::shading::call_shade(b, fns.shade, [p, n, rd, m], h);
+    // Mirrors and transparent solids: the path of reflected and refracted rays.
+    let c = match fns.path {
+        Some(f) => b.call(f, vec![p, n, rd, m, h, c]),
+        None => c,
+    };
+    let c = match fns.fog {
+        Some(f) => b.call(f, vec![c, t]),
+        None => c,
+    };
+    (c, n, m)
 }
 
 /// Whether a `TraceResult` has its hit bit.
