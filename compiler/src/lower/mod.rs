@@ -24,6 +24,7 @@ pub mod march;
 mod math;
 pub mod ops;
 pub mod params;
+mod pick;
 pub mod planar;
 pub mod prims;
 mod probes;
