@@ -2,7 +2,7 @@
 //! made by tests/data/iq_reference.py), hand-derived values, and the operators' definitions.
 
 use glam::DVec3;
-use sdfc_compiler::eval;
+use sdfc_compiler::reference::eval;
 
 fn at(source: &str, p: DVec3) -> f64 {
     eval::distance(&sdfc_tests::scene("inline", source), p)
@@ -242,17 +242,17 @@ fn patterns_follow_their_shapes_transforms() {
         );
         let p = p.normalize();
         let q = turn * p + DVec3::new(3.0, -1.0, 2.0);
-        let c1 = sdfc_compiler::shading::albedo(&here, 1, p, p);
-        let c2 = sdfc_compiler::shading::albedo(&moved, 1, q, turn * p);
+        let c1 = sdfc_compiler::reference::shading::albedo(&here, 1, p, p);
+        let c2 = sdfc_compiler::reference::shading::albedo(&moved, 1, q, turn * p);
         assert!((c1 - c2).length() < 1e-9, "at {p}: {c1} against {c2}");
         // The point's material is the one `eval::sample` gives.
-        let id = sdfc_compiler::eval::sample(&moved, q)
+        let id = sdfc_compiler::reference::eval::sample(&moved, q)
             .mat
             .map_or(0, |m| m + 1);
-        assert_eq!(sdfc_compiler::eval::surface(&moved, q).0, id);
+        assert_eq!(sdfc_compiler::reference::eval::surface(&moved, q).0, id);
     }
     // And the pattern is not uniform (the comparison could not fail otherwise).
-    let c = |p: DVec3| sdfc_compiler::shading::albedo(&here, 1, p, p);
+    let c = |p: DVec3| sdfc_compiler::reference::shading::albedo(&here, 1, p, p);
     assert!((c(DVec3::X) - c(DVec3::Z)).length() > 0.05);
 }
 
@@ -262,7 +262,7 @@ fn patterns_follow_their_shapes_transforms() {
 #[test]
 fn noise_is_periodic_and_defined_everywhere() {
     use glam::DVec3;
-    use sdfc_compiler::texture::{LATTICE_PERIOD, noise};
+    use sdfc_compiler::reference::texture::{LATTICE_PERIOD, noise};
     for k in 0..50 {
         let q = DVec3::new(k as f64 * 0.37, 1.3 - k as f64 * 0.11, k as f64 * 0.05);
         let far = q + DVec3::new(3.0, -7.0, 11.0) * LATTICE_PERIOD;

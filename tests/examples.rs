@@ -4,8 +4,9 @@
 
 use glam::DVec3;
 use sdfc_compiler::catalog::{OPERATORS, PRIMITIVES};
+use sdfc_compiler::reference::eval;
 use sdfc_compiler::scene::NodeKind;
-use sdfc_compiler::{check, docs, eval};
+use sdfc_compiler::{check, docs};
 use std::collections::BTreeSet;
 
 #[test]

@@ -303,7 +303,7 @@ fn random_implicit_bodies_check_quickly() {
                 glam::DVec3::new(0.3, -0.2, 0.1),
                 glam::DVec3::new(-2.0, 1.0, 0.5),
             ] {
-                let d = sdfc_compiler::eval::distance(&scene, p);
+                let d = sdfc_compiler::reference::eval::distance(&scene, p);
                 // Domain errors (sqrt, log, fractional powers, division by zero) and values
                 // surely beyond f32 are refused; an overflow that only may happen (exp of exp)
                 // is not yet: counted, and the first shown.

@@ -202,7 +202,7 @@ fn check_scene(source: &str, index: usize) {
         glam::DVec3::new(-3.0, 2.0, 7.0),
         glam::DVec3::splat(1e-9),
     ] {
-        let d = sdfc_compiler::eval::distance(&scene, p);
+        let d = sdfc_compiler::reference::eval::distance(&scene, p);
         assert!(d.is_finite(), "field {d} at {p} for\n{source}");
     }
 }

@@ -4,8 +4,9 @@
 //! bounded shape whose λ holds where sampled.
 
 use glam::DVec3;
+use sdfc_compiler::reference::eval;
 use sdfc_compiler::syntax::{FsLoader, MapLoader};
-use sdfc_compiler::{check, diag, eval};
+use sdfc_compiler::{check, diag};
 use std::path::PathBuf;
 
 fn files(list: &[(&str, &str)]) -> MapLoader {

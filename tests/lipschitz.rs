@@ -15,7 +15,7 @@ use crate::lipschitz_sampler::{
 };
 use glam::DVec3;
 use sdfc_compiler::catalog::PRIMITIVES;
-use sdfc_compiler::eval;
+use sdfc_compiler::reference::eval;
 use sdfc_compiler::scene::{NodeId, NodeKind};
 use sdfc_tests::Rng;
 

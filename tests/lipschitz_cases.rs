@@ -4,7 +4,7 @@
 //! the shader tests bounding boxes in.
 
 use glam::DVec3;
-use sdfc_compiler::eval;
+use sdfc_compiler::reference::eval;
 use std::collections::BTreeMap;
 
 /// Each `implicit` case of the Lipschitz audit: an error with a span, or a bound that holds;

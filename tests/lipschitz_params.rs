@@ -4,7 +4,7 @@
 
 use crate::lipschitz_sampler::{Tally, parametric_source, sample_node};
 use glam::DVec3;
-use sdfc_compiler::eval;
+use sdfc_compiler::reference::eval;
 use sdfc_tests::Rng;
 use std::collections::HashMap;
 

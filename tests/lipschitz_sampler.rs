@@ -7,7 +7,7 @@ use glam::DVec3;
 use sdfc_compiler::catalog::repeat;
 use sdfc_compiler::catalog::repeat::{AxisPlan, Plan};
 use sdfc_compiler::catalog::{PRIMITIVES, Param, Ty};
-use sdfc_compiler::eval;
+use sdfc_compiler::reference::eval;
 use sdfc_compiler::scene::{NodeId, NodeKind, Scene};
 use sdfc_tests::Rng;
 use std::cell::RefCell;

@@ -5,7 +5,7 @@
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use glam::DVec3;
-use sdfc_compiler::eval;
+use sdfc_compiler::reference::eval;
 use sdfc_compiler::view::View;
 
 /// Points along a 64×64 grid of camera rays, each at a distance spread over the scene.

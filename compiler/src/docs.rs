@@ -50,7 +50,7 @@ pub fn catalog_table() -> String {
 /// checks it is current).
 pub fn pattern_table() -> String {
     let mut s = String::from("| pattern | what it is |\n| --- | --- |\n");
-    for (name, _, doc) in crate::texture::PATTERNS {
+    for (name, _, doc) in crate::reference::texture::PATTERNS {
         let _ = writeln!(s, "| `{name}` | {} |", cell(doc));
     }
     s

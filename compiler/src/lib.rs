@@ -23,6 +23,3 @@ pub mod shadertoy;
 pub mod source;
 pub mod syntax;
 pub mod view;
-
-// Paths from before the CPU reference had its folder, until every user names `reference::`.
-pub use reference::{blend, eval, shading, texture, trace, truth};

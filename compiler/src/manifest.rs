@@ -208,7 +208,7 @@ fn materials(scene: &Scene, origin: &Origin) -> Vec<Value> {
     let mut materials = vec![json!({
         "id": 0,
         "name": "default",
-        "color": crate::shading::DEFAULT_COLOR.to_array(),
+        "color": crate::reference::shading::DEFAULT_COLOR.to_array(),
     })];
     for (i, m) in scene.materials.iter().enumerate() {
         let mut v = json!({
@@ -221,7 +221,7 @@ fn materials(scene: &Scene, origin: &Origin) -> Vec<Value> {
             "ior": m.ior,
         });
         if let Some(pt) = &m.pattern {
-            let kind = crate::texture::PATTERNS
+            let kind = crate::reference::texture::PATTERNS
                 .iter()
                 .find(|p| p.1 == pt.kind)
                 .map_or("?", |p| p.0);

@@ -1,8 +1,8 @@
 //! Multi-resolution rendering (Bálint §4): the pass schedules, each pass's size, budget and cone
 //! slope, and the CPU reference of a whole multi-pass image, which the runtime's passes mirror.
 
+use crate::reference::trace::{self, Segment, Traced};
 use crate::scene::Scene;
-use crate::trace::{self, Segment, Traced};
 use crate::view::View;
 
 /// The schedules from Bálint §5: (resolution relative to the image, share of the step budget)

@@ -1,8 +1,8 @@
-//! Materials through smooth operators (`sdfc_compiler::blend`): the GPU's blended colours
+//! Materials through smooth operators (`sdfc_compiler::reference::blend`): the GPU's blended colours
 //! against the f64 reference pixel by pixel, and the colour continuous across a seam.
 
 use crate::common::{compile, gpu, off_by, render, srgb8};
-use sdfc_compiler::shading;
+use sdfc_compiler::reference::pixel;
 use sdfc_compiler::view::View;
 
 /// A smooth union of two spheres and a box (three materials), a smooth intersection and a
@@ -37,13 +37,13 @@ fn blended_materials_match_the_cpu_reference() {
             (i as u32 % view.width) as f64 + 0.5,
             (i as u32 / view.width) as f64 + 0.5,
         );
-        let c = shading::pixel(&scene, &scene.trace, &view, x, y);
+        let c = pixel::pixel(&scene, &scene.trace, &view, x, y);
         let d = off_by(frame.color[i], srgb8(c));
         worst = worst.max(d);
         within += (d <= 2) as u32;
         if frame.depth[i] >= 0.0 {
             let p = view.eye + view.ray(x, y) * frame.depth[i] as f64;
-            let bl = sdfc_compiler::eval::blend(&scene, p);
+            let bl = sdfc_compiler::reference::eval::blend(&scene, p);
             blended += (bl.t > 0.05 && bl.t < 0.95 && bl.a != bl.b) as u32;
         }
     }
@@ -70,7 +70,7 @@ fn a_seam_changes_colour_gradually() {
     let view = View::new(&scene.camera, 400, 400);
     // Along the middle row: red and blue components of the shaded colour, hits only.
     let row: Vec<glam::DVec3> = (0..view.width)
-        .map(|x| shading::pixel(&scene, &scene.trace, &view, x as f64 + 0.5, 200.5))
+        .map(|x| pixel::pixel(&scene, &scene.trace, &view, x as f64 + 0.5, 200.5))
         .collect();
     let hits: Vec<glam::DVec3> = row.into_iter().filter(|c| c.x + c.z > 0.05).collect();
     // The share of red in the colour (the hue, whatever the lighting).

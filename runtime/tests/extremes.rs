@@ -14,11 +14,12 @@ use cases::{Case, cases};
 use glam::DVec3;
 use sdfc::gpu::Gpu;
 use sdfc_compiler::check::tracer::{TRACE_METHODS, with_overrides};
+use sdfc_compiler::emit;
 use sdfc_compiler::lower::{Entry, tracer::Options};
+use sdfc_compiler::reference::trace::{self, Threshold};
+use sdfc_compiler::reference::{eval, truth};
 use sdfc_compiler::scene::Scene;
-use sdfc_compiler::trace::{self, Threshold};
 use sdfc_compiler::view::View;
-use sdfc_compiler::{emit, eval, truth};
 
 const WIDTH: u32 = 48;
 const HEIGHT: u32 = 32;

@@ -197,7 +197,7 @@ fn implicit_case(gpu: &Gpu, row: &mut Row, source: &str, r: &mut Rng) {
     row.scenes += 1;
     for (&p, &g) in pts.iter().zip(&got) {
         let e = estimate(field, p);
-        let cpu = sdfc_compiler::eval::distance(&scene, p);
+        let cpu = sdfc_compiler::reference::eval::distance(&scene, p);
         assert!(
             cpu.to_bits() == e.v.to_bits() || (cpu.is_nan() && e.v.is_nan()),
             "the error model evaluates `{source}` differently from the CPU reference at {p}"
@@ -245,7 +245,7 @@ fn primitive_case(gpu: &Gpu, row: &mut Row, source: &str, r: &mut Rng) {
     let probe = PROBE_ULPS.max(builtin_ulps(&module));
     let got = gpu_field(gpu, &module, &pts);
     row.scenes += 1;
-    let field = |p: DVec3| sdfc_compiler::eval::distance(&scene, p);
+    let field = |p: DVec3| sdfc_compiler::reference::eval::distance(&scene, p);
     for (&p, &g) in pts.iter().zip(&got) {
         let cpu = field(p);
         let mut sensitivity: f64 = 0.0;

@@ -16,13 +16,14 @@
 use crate::common::{compile, examples, gpu, with_method};
 use sdfc::gpu::Frame;
 use sdfc::gpu::{Layout, Source, TILE};
+use sdfc_compiler::emit;
 use sdfc_compiler::lower::{
     Entry,
     tracer::{BoundingVolumes, Options},
 };
+use sdfc_compiler::reference::eval;
 use sdfc_compiler::scene::{Epsilon, Method, Scene};
 use sdfc_compiler::view::View;
-use sdfc_compiler::{emit, eval};
 use std::path::PathBuf;
 
 const W: u32 = 64;

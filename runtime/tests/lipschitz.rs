@@ -4,8 +4,8 @@
 //! `repeat` of an asymmetric child gives the hit mask of the explicit union of its copies.
 
 use crate::common::{camera_rays, compile, gpu, gpu_trace};
+use sdfc_compiler::reference::trace;
 use sdfc_compiler::scene::Scene;
-use sdfc_compiler::trace;
 use sdfc_compiler::view::View;
 
 const W: u32 = 64;

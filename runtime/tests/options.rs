@@ -7,8 +7,8 @@ use sdfc_compiler::check::tracer::TRACE_METHODS;
 use sdfc_compiler::emit;
 use sdfc_compiler::lower::{Entry, tracer::Options};
 use sdfc_compiler::passes;
+use sdfc_compiler::reference::trace;
 use sdfc_compiler::scene::Scene;
-use sdfc_compiler::trace;
 use sdfc_compiler::view::View;
 
 /// A unit sphere in a convex bound: rays from outside the bound, from inside the bound but
@@ -123,8 +123,12 @@ fn a_bound_saves_steps_and_misses_nothing() {
             // grazing incidence θ, so the two may differ by more than 2ε along the ray).
             for r in [a, b].iter().filter(|r| r.hit) {
                 let p = view.eye + rd * r.t;
-                let f = sdfc_compiler::eval::distance(&free, p);
-                let g = trace::tetra_gradient(|q| sdfc_compiler::eval::distance(&free, q), p, 1e-6);
+                let f = sdfc_compiler::reference::eval::distance(&free, p);
+                let g = trace::tetra_gradient(
+                    |q| sdfc_compiler::reference::eval::distance(&free, q),
+                    p,
+                    1e-6,
+                );
                 if f.abs() > 2.0 * view.pixel * r.t * g {
                     deeper += 1;
                 }

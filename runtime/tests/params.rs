@@ -9,7 +9,7 @@ use sdfc::gpu::{Layout, Source};
 use sdfc_compiler::emit;
 use sdfc_compiler::lower::params::bytes;
 use sdfc_compiler::lower::{Entry, tracer::Options};
-use sdfc_compiler::shading;
+use sdfc_compiler::reference::pixel;
 use sdfc_compiler::view::View;
 use std::collections::HashMap;
 
@@ -126,7 +126,7 @@ fn one_module_draws_every_setting_as_the_cpu_reference() {
                 (i as u32 % view.width) as f64 + 0.5,
                 (i as u32 / view.width) as f64 + 0.5,
             );
-            let c = shading::pixel(&here, &here.trace, &view, x, y);
+            let c = pixel::pixel(&here, &here.trace, &view, x, y);
             let d = off_by(px, srgb8(c));
             worst = worst.max(d);
             within += u32::from(d <= LEVELS);

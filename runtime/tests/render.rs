@@ -3,8 +3,8 @@
 
 use crate::common::{examples, gpu, own_gpu, render};
 use sdfc::gpu::{BackendChoice, Frame};
+use sdfc_compiler::reference::trace::{self, Traced};
 use sdfc_compiler::scene::{Epsilon, Scene};
-use sdfc_compiler::trace::{self, Traced};
 use sdfc_compiler::view::View;
 use std::path::PathBuf;
 
@@ -199,7 +199,7 @@ fn a_lit_colour_is_lit_in_linear_light() {
     let centre = (H / 2 * W + W / 2) as usize;
     assert!(frame.depth[centre] > 0.0, "the face is hit");
     use sdfc_compiler::color::{to_linear, to_srgb};
-    let lit = to_linear(128.0 / 255.0) * (sdfc_compiler::shading::AMBIENT + 1.0);
+    let lit = to_linear(128.0 / 255.0) * (sdfc_compiler::reference::shading::AMBIENT + 1.0);
     let want = (to_srgb(lit) * 255.0).round() as i32;
     assert_eq!(want, 135);
     let px = frame.color[centre].to_le_bytes();

@@ -1,11 +1,11 @@
-//! Shading on the GPU against the f64 CPU reference shader (`sdfc_compiler::shading`), one
+//! Shading on the GPU against the f64 CPU reference shader (`sdfc_compiler::reference::shading`), one
 //! scene per feature: the same rays, the same formulas, compared per pixel in 8-bit sRGB.
 
 use crate::common::{EXTREMES_BASE, compile, every_feature_scene, gpu, off_by, render, srgb8};
 use sdfc_compiler::color::to_srgb;
 use sdfc_compiler::emit;
 use sdfc_compiler::lower::{Entry, tracer::Options};
-use sdfc_compiler::shading;
+use sdfc_compiler::reference::pixel;
 use sdfc_compiler::view::View;
 
 const W: u32 = 96;
@@ -105,7 +105,7 @@ fn every_shading_feature_matches_the_cpu_reference() {
         for y in 0..H {
             for x in 0..W {
                 let i = (y * W + x) as usize;
-                let c = shading::pixel(&scene, &scene.trace, &view, x as f64 + 0.5, y as f64 + 0.5);
+                let c = pixel::pixel(&scene, &scene.trace, &view, x as f64 + 0.5, y as f64 + 0.5);
                 let diff = off_by(frame.color[i], srgb8(c));
                 worst = worst.max(diff);
                 sum += diff as f64;
@@ -168,7 +168,7 @@ fn anti_aliasing_samples_average_the_cpu_reference_at_their_points() {
             let mean = points
                 .iter()
                 .map(|[px, py]| {
-                    shading::pixel(&scene, &scene.trace, &view, x as f64 + px, y as f64 + py)
+                    pixel::pixel(&scene, &scene.trace, &view, x as f64 + px, y as f64 + py)
                         .clamp(glam::DVec3::ZERO, glam::DVec3::ONE)
                 })
                 .sum::<glam::DVec3>()
@@ -209,7 +209,7 @@ fn anti_aliasing_samples_average_the_cpu_reference_at_their_points() {
     let within = (0..w * h)
         .filter(|&i| {
             let (x, y) = ((i % w) as f64 + 0.1, (i / w) as f64 + 0.8);
-            let c = shading::pixel(&scene, &scene.trace, &view, x, y);
+            let c = pixel::pixel(&scene, &scene.trace, &view, x, y);
             off_by(got[i as usize], srgb8(c)) <= LEVELS
         })
         .count();
@@ -259,7 +259,7 @@ fn refraction_through_glass_and_a_gem_matches_the_cpu_reference() {
         for x in 0..w {
             let i = (y * w + x) as usize;
             let (c, bounces) =
-                shading::pixel_counted(&clear, &clear.trace, &view, x as f64 + 0.5, y as f64 + 0.5);
+                pixel::pixel_counted(&clear, &clear.trace, &view, x as f64 + 0.5, y as f64 + 0.5);
             assert!(c.is_finite(), "({x}, {y}): {c}");
             internal += (bounces.total_internal > 0) as u32;
             let d = off_by(got.color[i], srgb8(c));
@@ -301,7 +301,7 @@ fn every_feature_stays_finite_at_every_scale() {
         for y in 0..h {
             for x in 0..w {
                 let i = (y * w + x) as usize;
-                let c = shading::pixel(&scene, &scene.trace, &view, x as f64 + 0.5, y as f64 + 0.5);
+                let c = pixel::pixel(&scene, &scene.trace, &view, x as f64 + 0.5, y as f64 + 0.5);
                 assert!(c.is_finite(), "× {s:e}, ({x}, {y}): {c}");
                 within += (off_by(frame.color[i], srgb8(c)) <= LEVELS) as u32;
             }

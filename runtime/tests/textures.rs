@@ -1,8 +1,8 @@
-//! Procedural textures on the GPU against the f64 reference (`sdfc_compiler::texture`,
-//! `sdfc_compiler::shading::albedo`), pixel by pixel in 8-bit sRGB.
+//! Procedural textures on the GPU against the f64 reference (`sdfc_compiler::reference::texture`,
+//! `sdfc_compiler::reference::shading::albedo`), pixel by pixel in 8-bit sRGB.
 
 use crate::common::{compile, gpu, off_by, render, srgb8};
-use sdfc_compiler::shading;
+use sdfc_compiler::reference::pixel;
 use sdfc_compiler::view::View;
 
 /// Most 8-bit levels a channel may differ by (f32 against f64).
@@ -60,7 +60,7 @@ fn procedural_textures_match_the_cpu_reference() {
             (i as u32 % view.width) as f64 + 0.5,
             (i as u32 / view.width) as f64 + 0.5,
         );
-        let c = shading::pixel(&textured, &textured.trace, &view, x, y);
+        let c = pixel::pixel(&textured, &textured.trace, &view, x, y);
         let d = off_by(got.color[i], srgb8(c));
         worst = worst.max(d);
         within += (d <= LEVELS) as u32;

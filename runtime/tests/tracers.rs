@@ -3,8 +3,8 @@
 
 use crate::common::{Safety, Tally, camera_rays, compile, examples, gpu, gpu_trace, with_method};
 use sdfc_compiler::check::tracer::TRACE_METHODS;
+use sdfc_compiler::reference::trace::{self, Threshold};
 use sdfc_compiler::scene::{Method, Scene, Trace};
-use sdfc_compiler::trace::{self, Threshold};
 use sdfc_compiler::view::View;
 
 /// The angles of the grazing-plane table, in degrees.

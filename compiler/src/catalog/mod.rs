@@ -338,7 +338,7 @@ pub enum MatRule {
     /// The only child's.
     Pass,
     /// As `Nearest`; shading blends the children's materials over the smooth minimum's radius
-    /// (argument 0) by its mix factor (`crate::blend`).
+    /// (argument 0) by its mix factor (`crate::reference::blend`).
     SmoothNearest,
     /// As `Farthest`, blended over the smooth maximum's radius.
     SmoothFarthest,
@@ -452,7 +452,7 @@ pub struct Operator {
     pub eval: fn(&Ctx, DVec3, ChildEval) -> f64,
     /// Whether the result's gradient has length λ almost everywhere when every child's has
     /// (its own λ then: f/λ is a distance to first order, so the tracer's hit test f/λ < ε
-    /// needs no confirmation; see `crate::trace::careful`).
+    /// needs no confirmation; see `crate::reference::trace::careful`).
     pub unit_gradient: fn(&Ctx) -> bool,
     /// Whether the result's f/λ is the distance to its surface outside it when every child's
     /// is (union, moves, uniform scale, `repeat`, `round`, `onion`).

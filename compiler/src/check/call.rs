@@ -129,7 +129,10 @@ impl Checker<'_> {
             self.diags.push(d);
             return None;
         }
-        if crate::texture::PATTERNS.iter().any(|p| p.0 == name) {
+        if crate::reference::texture::PATTERNS
+            .iter()
+            .any(|p| p.0 == name)
+        {
             self.diags.push(
                 Diagnostic::error(
                     call.name.span,

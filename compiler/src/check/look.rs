@@ -6,9 +6,9 @@ use super::args::RunTime;
 use super::settings::v;
 use crate::catalog::{Param, Ty, Val, opt, req};
 use crate::diag::{Diagnostic, Span, did_you_mean};
+use crate::reference::texture::{MAX_OCTAVES, PATTERNS};
 use crate::scene::{Light, LightKind, Material, Occlusion, Pattern, Shadow};
 use crate::syntax::{Arg, Ident};
-use crate::texture::{MAX_OCTAVES, PATTERNS};
 
 /// `material name { color  specular  reflect  transparent  ior }`.
 const MATERIAL: &[Param] = &[

@@ -7,8 +7,8 @@
 
 use super::bound_in;
 use crate::diag::Diagnostic;
-use crate::eval;
 use crate::interval::Interval;
+use crate::reference::eval;
 use crate::scene::{NodeId, NodeKind, Scene};
 use crate::view::View;
 use glam::DVec3;

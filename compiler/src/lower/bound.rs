@@ -1,9 +1,9 @@
 //! A convex bound in IR (Keinert §3.5): `trace_bounded` clips the ray to the declared volume,
 //! culls rays that miss it, and traces rays starting inside a convex object backwards from the
-//! volume's far side; step for step the same as `crate::trace::bounded`.
+//! volume's far side; step for step the same as `crate::reference::trace::bounded`.
 
-use super::builder::{Ex, FnBuilder, ModuleBuilder};
 use super::march::{EXHAUSTED, HIT, Inputs, is_hit};
+use crate::ir::builder::{Ex, FnBuilder, ModuleBuilder};
 use crate::scene::{AXIS_GUARD, BoundShape, Convex};
 use naga::{BinaryOperator as B, Function, Handle, Type};
 
@@ -61,28 +61,8 @@ pub(super) fn add(
                 forward(b, none);
                 return;
             }
-            // Keinert §3.5, case 3: a ray starting inside the object.
-            let tested = b.local("tested", u32t, Some(zero_u));
-            let bool_ty = b.m.bool();
-            let no = b.boolean(false);
-            let inside = b.local("inside", bool_ty, Some(no));
-            let at_start = b.bin(B::LessEqual, near, start);
-            b.if_(
-                at_start,
-                |b| {
-                    let s = b.mul(rd, lo);
-                    let p = b.add(ro, s);
-                    let d = b.call(map, vec![p]);
-                    let zero = b.f(0.0);
-                    let neg = b.lt(d, zero);
-                    b.store(inside, neg);
-                    let one = b.u(1);
-                    b.store(tested, one);
-                },
-                |_| {},
-            );
-            let is_inside = b.load(inside);
-            let extra = b.load(tested);
+            let (is_inside, extra) =
+                starts_inside(b, map, (ro, rd), (near, start, lo), (zero_u, u32t));
             b.if_(
                 is_inside,
                 |b| backwards(b, (&all, variant, out), result, (start, lo, hi, cone)),
@@ -94,6 +74,38 @@ pub(super) fn add(
     b.ret(Some(r));
     let f = b.finish();
     mb.add_function(f)
+}
+
+/// Keinert §3.5, case 3: whether the ray starts inside the object — `map` at the clipped
+/// start `lo` is negative, tested only where the volume's `near` side is at or behind the ray's
+/// `start` — and the evaluations that took (0 or 1), each loaded from a variable set to it.
+fn starts_inside(
+    b: &mut FnBuilder,
+    map: Handle<Function>,
+    (ro, rd): (Ex, Ex),
+    (near, start, lo): (Ex, Ex, Ex),
+    (zero_u, u32t): (Ex, Handle<Type>),
+) -> (Ex, Ex) {
+    let tested = b.local("tested", u32t, Some(zero_u));
+    let bool_ty = b.m.bool();
+    let no = b.boolean(false);
+    let inside = b.local("inside", bool_ty, Some(no));
+    let at_start = b.bin(B::LessEqual, near, start);
+    b.if_(
+        at_start,
+        |b| {
+            let s = b.mul(rd, lo);
+            let p = b.add(ro, s);
+            let d = b.call(map, vec![p]);
+            let zero = b.f(0.0);
+            let neg = b.lt(d, zero);
+            b.store(inside, neg);
+            let one = b.u(1);
+            b.store(tested, one);
+        },
+        |_| {},
+    );
+    (b.load(inside), b.load(tested))
 }
 
 /// Traces from the far side `hi` back towards `lo` and reports the point found as the hit

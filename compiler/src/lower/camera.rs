@@ -1,12 +1,12 @@
 //! The camera entries' globals: the `View` uniform (with `view_field` to read it), storage
 //! arrays, and `camera_ray`, the pinhole camera.
 
-use super::builder::{Ex, FnBuilder, ModuleBuilder};
-use super::tracer::struct_ty;
+use super::globals::{global, struct_ty};
+use crate::ir::builder::{Ex, FnBuilder, ModuleBuilder};
 use crate::layout::{self, VIEW_FIELDS};
 use naga::{
-    AddressSpace, Expression, Function, Handle, MathFunction as M, ResourceBinding, Span,
-    StorageAccess, Type, TypeInner, VectorSize,
+    AddressSpace, Expression, Function, Handle, MathFunction as M, StorageAccess, Type, TypeInner,
+    VectorSize,
 };
 
 /// The `View` uniform at group 0, binding 0 (with the `pass` field only for passes).
@@ -21,29 +21,6 @@ pub(super) fn add_view(mb: &mut ModuleBuilder, passes: bool) -> Handle<naga::Glo
         .collect();
     let ty = struct_ty(mb, "View", &members, 16 * fields as u32);
     global(mb, "view", ty, AddressSpace::Uniform, layout::VIEW_BINDING)
-}
-
-pub(super) fn global(
-    mb: &mut ModuleBuilder,
-    name: &str,
-    ty: Handle<Type>,
-    space: AddressSpace,
-    binding: u32,
-) -> Handle<naga::GlobalVariable> {
-    mb.module.global_variables.append(
-        naga::GlobalVariable {
-            name: Some(name.to_string()),
-            space,
-            binding: Some(ResourceBinding {
-                group: layout::GROUP,
-                binding,
-            }),
-            ty,
-            init: None,
-            memory_decorations: naga::MemoryDecorations::empty(),
-        },
-        Span::UNDEFINED,
-    )
 }
 
 /// The runtime-sized storage array `buffer` of the interface (`crate::layout`): elements of

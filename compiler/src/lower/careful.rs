@@ -1,13 +1,13 @@
 //! The confirmation of a hit where f/λ is not a distance to first order, in IR: step for step
-//! `crate::trace::careful` (the variant's hit stands where the nearest part is not loose
+//! `crate::reference::trace::careful` (the variant's hit stands where the nearest part is not loose
 //! (`map_loose`); else the ray goes on as basic sphere tracing in which a zone of f < ε(t) over
 //! a loose part is crossed in steps of ε(t) until the field turns negative, a crossing placed
 //! by regula falsi, or rises above ε).
 
-use super::builder::{Ex, FnBuilder};
 use super::hybrid::regula_falsi;
 use super::march::{Cx, EXHAUSTED, HIT};
-use crate::trace::{CROSSING_REFINE, ZONE_STEP};
+use crate::ir::builder::{Ex, FnBuilder};
+use crate::reference::trace::{CROSSING_REFINE, ZONE_STEP};
 use naga::BinaryOperator as B;
 use naga::{Function, Handle};
 
@@ -41,6 +41,9 @@ pub(super) fn careful(b: &mut FnBuilder, cx: &Cx, loose: Handle<Function>) {
     );
 }
 
+/// The confirmation's loop from the variant's hit, known loose: basic sphere tracing that
+/// crosses a zone of f < ε(t) over a loose part in steps of ε(t), a hit where the field turns
+/// negative (the crossing placed by regula falsi) or where a part that is not loose is near.
 fn confirm(b: &mut FnBuilder, cx: &Cx, loose: Handle<Function>) {
     let zero_u = b.u(0);
     b.store(cx.flags, zero_u);
@@ -81,33 +84,7 @@ fn confirm(b: &mut FnBuilder, cx: &Cx, loose: Handle<Function>) {
         let near = b.lt(d, e);
         b.if_(
             near,
-            |b| {
-                // Entering a zone (not at the variant's hit, known loose): a part that is not
-                // loose is a hit at once.
-                let entered = b.load(in_zone);
-                let not_in = not(b, entered);
-                let first = b.load(fresh);
-                let again = not(b, first);
-                let recheck = b.bin(B::LogicalAnd, not_in, again);
-                b.if_(
-                    recheck,
-                    |b| {
-                        let p = b.load(cx.p);
-                        let l = b.call(loose, vec![p]);
-                        b.increment(cx.steps);
-                        let zero_u = b.u(0);
-                        let tight = b.bin(B::Equal, l, zero_u);
-                        cx.stop_if(b, tight, HIT);
-                    },
-                    |_| {},
-                );
-                let yes = b.boolean(true);
-                b.store(in_zone, yes);
-                let k = b.f(ZONE_STEP);
-                let ke = b.mul(e, k);
-                let s = b.max(d, ke);
-                b.store(step, s);
-            },
+            |b| enter_zone(b, cx, loose, (in_zone, fresh, step), (d, e)),
             |b| {
                 let no = b.boolean(false);
                 b.store(in_zone, no);
@@ -124,6 +101,41 @@ fn confirm(b: &mut FnBuilder, cx: &Cx, loose: Handle<Function>) {
         let beyond = b.gt(nt, far);
         cx.stop_if(b, beyond, 0);
     });
+}
+
+/// Within ε of the surface: entering a zone (not at the variant's hit, known loose), a part
+/// that is not loose is a hit at once; in the zone, the step is at least [`ZONE_STEP`]·ε.
+/// The variables: `in_zone`, `fresh` (still at the variant's hit) and `step`.
+fn enter_zone(
+    b: &mut FnBuilder,
+    cx: &Cx,
+    loose: Handle<Function>,
+    (in_zone, fresh, step): (Ex, Ex, Ex),
+    (d, e): (Ex, Ex),
+) {
+    let entered = b.load(in_zone);
+    let not_in = not(b, entered);
+    let first = b.load(fresh);
+    let again = not(b, first);
+    let recheck = b.bin(B::LogicalAnd, not_in, again);
+    b.if_(
+        recheck,
+        |b| {
+            let p = b.load(cx.p);
+            let l = b.call(loose, vec![p]);
+            b.increment(cx.steps);
+            let zero_u = b.u(0);
+            let tight = b.bin(B::Equal, l, zero_u);
+            cx.stop_if(b, tight, HIT);
+        },
+        |_| {},
+    );
+    let yes = b.boolean(true);
+    b.store(in_zone, yes);
+    let k = b.f(ZONE_STEP);
+    let ke = b.mul(e, k);
+    let s = b.max(d, ke);
+    b.store(step, s);
 }
 
 /// !a

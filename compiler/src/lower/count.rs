@@ -2,7 +2,7 @@
 //! rays, occlusion, reflected and refracted rays — in the compute entry, so that `sdfc bench`
 //! reports what shading costs as measured, not as estimated.
 
-use super::builder::{FnBuilder, ModuleBuilder};
+use crate::ir::builder::{FnBuilder, ModuleBuilder};
 use naga::{AddressSpace, Expression, GlobalVariable, Span};
 
 /// Adds the per-invocation counter (`var<private> evaluations: u32 = 0`) that [`count`] adds

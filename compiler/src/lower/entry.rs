@@ -1,94 +1,20 @@
 //! The entry points: the compute entry the runtime uses (one pixel per invocation, with
-//! multi-resolution passes if asked), the full-screen fragment entry, and the ray-list entry of
-//! the tests; the view uniform and the pinhole camera they share.
+//! multi-resolution passes if asked), the full-screen fragment entry, the trace-only entry and
+//! the library's `color`; the view uniform and the pinhole camera they share are in
+//! `camera.rs`, the functions they call in `fns.rs`.
 
-use super::builder::{Ex, FnBuilder, ModuleBuilder};
-use super::camera::{add_camera_ray, add_view};
-pub(super) use super::camera::{global, storage_array, view_field};
+use super::camera::{storage_array, view_field};
+use super::fns::{Fns, trace_pixel};
 use super::handoff::{hand_over, trace_in_pass};
 use super::march::{epsilon, is_hit};
-use super::tracer::{Options, Pass, Tracer};
+use super::tracer::Options;
+use crate::ir::builder::{Ex, FnBuilder, ModuleBuilder};
 use crate::layout::{self, Element, WORKGROUP};
 use crate::scene::{Epsilon, Scene};
 use naga::{
     Binding, BuiltIn, EntryPoint, Expression, Function, Handle, MathFunction as M, ScalarKind,
     ShaderStage, VectorSize,
 };
-
-/// The functions and globals the camera entries share.
-pub(super) struct Fns {
-    tracer: Tracer,
-    normal: Handle<Function>,
-    shade: Handle<Function>,
-    material: Option<Handle<Function>>,
-    fog: Option<Handle<Function>>,
-    path: Option<Handle<Function>>,
-    /// `camera_ray` and the `View` uniform: none in the library (the host has its camera).
-    camera: Option<(Handle<Function>, Handle<naga::GlobalVariable>)>,
-    pub(super) passes: bool,
-}
-
-impl Fns {
-    /// Adds the view uniform and `camera_ray`.
-    pub fn new(
-        mb: &mut ModuleBuilder,
-        tracer: Tracer,
-        [normal, shade]: [Handle<Function>; 2],
-        material: Option<Handle<Function>>,
-        [fog, path]: [Option<Handle<Function>>; 2],
-        passes: bool,
-    ) -> Fns {
-        let view = add_view(mb, passes);
-        let ray = add_camera_ray(mb, view);
-        Fns {
-            camera: Some((ray, view)),
-            passes,
-            ..Fns::library(tracer, [normal, shade], material, [fog, path])
-        }
-    }
-
-    /// The functions without a camera: the library's.
-    pub fn library(
-        tracer: Tracer,
-        [normal, shade]: [Handle<Function>; 2],
-        material: Option<Handle<Function>>,
-        [fog, path]: [Option<Handle<Function>>; 2],
-    ) -> Fns {
-        Fns {
-            tracer,
-            normal,
-            shade,
-            material,
-            fog,
-            path,
-            camera: None,
-            passes: false,
-        }
-    }
-
-    /// The `View` uniform (the camera entries have one).
-    pub(super) fn view(&self) -> Handle<naga::GlobalVariable> {
-        self.camera.expect("a camera entry").1
-    }
-}
-
-/// The ray through `pixel` traced (in a pass if given): (origin, direction, `TraceResult`,
-/// pixel footprint).
-pub(super) fn trace_pixel(
-    b: &mut FnBuilder,
-    fns: &Fns,
-    pixel: Ex,
-    pass: Option<Pass>,
-) -> (Ex, Ex, Ex, Ex) {
-    let rd = b.call(fns.camera.expect("a camera entry").0, vec![pixel]);
-    let eye = view_field(b, fns.view(), 0);
-    let ro = b.swizzle(eye, &[0, 1, 2]);
-    let size = view_field(b, fns.view(), 4);
-    let px = b.at(size, 2);
-    let result = fns.tracer.call(b, ro, rd, px, pass);
-    b.name(result, "traced");
-    (ro, rd, result, px)
-}
 
 /// The shaded colour (or background), normal and material of a traced ray: shared by both
 /// entry points.
@@ -108,7 +34,6 @@ fn shade_hit(
 ) -> Shaded {
     let v3 = b.m.vec3();
     let u32t = b.m.u32();
-    let pixel_mode = matches!(options.trace.epsilon, Epsilon::Pixel);
     let bg = b.vec3_lit(crate::color::linear(scene.background));
     let color = b.local("color", v3, Some(bg));
     let zero3 = b.splat3(0.0);
@@ -116,34 +41,7 @@ fn shade_hit(
     let zero_u = b.u(0);
     let material = b.local("material", u32t, Some(zero_u));
     let is_hit = hit_bit(b, result);
-    // The surface at t along the ray: (colour, normal, material).
-    let surface = |b: &mut FnBuilder, t: Ex| {
-        let step = b.mul(rd, t);
-        let p = b.add(ro, step);
-        let h = pixel_mode.then_some(px);
-        let h = epsilon(b, &options.trace, t, h, floor);
-        let n = b.call(fns.normal, vec![p, h]);
-        let m = match fns.material {
-            Some(f) => {
-                super::count::count(b, 1);
-                b.call(f, vec![p])
-            }
-            None => b.u(0),
-        };
-        {
-            let c = super::shading::call_shade(b, fns.shade, [p, n, rd, m], h);
-            // Mirrors and transparent solids: the path of reflected and refracted rays.
-            let c = match fns.path {
-                Some(f) => b.call(f, vec![p, n, rd, m, h, c]),
-                None => c,
-            };
-            let c = match fns.fog {
-                Some(f) => b.call(f, vec![c, t]),
-                None => c,
-            };
-            (c, n, m)
-        }
-    };
+    let surface = |b: &mut FnBuilder, t: Ex| surface(b, fns, (options, floor), (ro, rd, px), t);
     b.if_(
         is_hit,
         |b| {
@@ -179,6 +77,42 @@ fn shade_hit(
         normal: b.load(normal),
         material: b.load(material),
     }
+}
+
+/// The surface at `t` along the ray from `ro` in direction `rd` (pixel footprint `px`): its
+/// colour (shaded, followed along the path of reflected and refracted rays, through the fog),
+/// normal and material.
+fn surface(
+    b: &mut FnBuilder,
+    fns: &Fns,
+    (options, floor): (&Options, f64),
+    (ro, rd, px): (Ex, Ex, Ex),
+    t: Ex,
+) -> (Ex, Ex, Ex) {
+    let pixel_mode = matches!(options.trace.epsilon, Epsilon::Pixel);
+    let step = b.mul(rd, t);
+    let p = b.add(ro, step);
+    let h = pixel_mode.then_some(px);
+    let h = epsilon(b, &options.trace, t, h, floor);
+    let n = b.call(fns.normal, vec![p, h]);
+    let m = match fns.material {
+        Some(f) => {
+            super::count::count(b, 1);
+            b.call(f, vec![p])
+        }
+        None => b.u(0),
+    };
+    let c = super::shading::call_shade(b, fns.shade, [p, n, rd, m], h);
+    // Mirrors and transparent solids: the path of reflected and refracted rays.
+    let c = match fns.path {
+        Some(f) => b.call(f, vec![p, n, rd, m, h, c]),
+        None => c,
+    };
+    let c = match fns.fog {
+        Some(f) => b.call(f, vec![c, t]),
+        None => c,
+    };
+    (c, n, m)
 }
 
 /// Whether a `TraceResult` has its hit bit.

@@ -1,9 +1,10 @@
 //! Multi-resolution passes in the compute entries (Bálint §4): the hand-over buffers, where a
 //! pass starts each ray, and what it hands to the next.
 
-use super::builder::{Ex, FnBuilder, ModuleBuilder};
-use super::entry::{Fns, storage_array, trace_pixel, view_field};
+use super::camera::{storage_array, view_field};
+use super::fns::{Fns, trace_pixel};
 use super::tracer::Pass;
+use crate::ir::builder::{Ex, FnBuilder, ModuleBuilder};
 use naga::{Expression, Handle, MathFunction as M, ScalarKind, VectorSize};
 
 /// With passes: the hand-over buffers (`pass_in` at binding 6, read; `pass_out` at 7).

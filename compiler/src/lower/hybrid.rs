@@ -1,12 +1,11 @@
 //! Liktor's sphere-tracing and linear-search hybrid in IR (one loop, one `map` call), and the
 //! regula falsi refinement it shares with the hit confirmation.
 
-use super::builder::{Ex, FnBuilder};
-use super::march::{Cx, EXHAUSTED, HIT};
-use super::variants::var;
+use super::march::{Cx, EXHAUSTED, HIT, var};
+use crate::ir::builder::{Ex, FnBuilder};
 use naga::BinaryOperator as B;
 
-/// Liktor §5.4 (see `crate::trace::hybrid`), as one loop with one `map` call: each iteration
+/// Liktor §5.4 (see `crate::reference::trace::hybrid`), as one loop with one `map` call: each iteration
 /// evaluates either the search's next point or, once a step has landed inside, the bracket's
 /// regula falsi point (`refining` counts those iterations, from 1), so that SIMD lanes in
 /// either phase share the call (the notes' performance facts: a second call site cost up to

@@ -1,6 +1,6 @@
 //! What the library entry offers a host besides its functions: a named constant per material.
 
-use super::builder::ModuleBuilder;
+use crate::ir::builder::ModuleBuilder;
 use crate::scene::Scene;
 use naga::{Constant, Expression, Literal, Span};
 

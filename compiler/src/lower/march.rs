@@ -1,12 +1,12 @@
 //! The frame every tracing variant is lowered into: `trace_<method>(ro, rd[, pixel][, start,
 //! end][, budget, cone])` with its result type, ε(t), counting and stopping; the variants' bodies
-//! live in `variants.rs`, step for step the same as the CPU reference in `crate::trace`.
+//! live in `variants.rs` (the caller passes `variants::body`), step for step the same as the
+//! CPU reference in `crate::reference::trace`.
 
-use super::builder::{Ex, FnBuilder, ModuleBuilder};
-use super::tracer::struct_ty;
-use super::variants;
+use super::globals::struct_ty;
+use crate::ir::builder::{Ex, FnBuilder, ModuleBuilder};
+use crate::reference::trace::TOUCH;
 use crate::scene::{Epsilon, Method, Trace};
-use crate::trace::TOUCH;
 use naga::{Function, Handle, Type};
 
 /// Bit of `TraceResult.flags`: the ray hit (or, for `relaxed`, its candidate is taken).
@@ -23,7 +23,7 @@ pub fn is_hit(b: &mut FnBuilder, flags: Ex) -> Ex {
 }
 
 /// `struct TraceResult { t: f32, steps: u32, flags: u32 }` (flags: [`HIT`] | [`EXHAUSTED`]),
-/// with cone anti-aliasing also `cover_t: f32, cover: f32` (see `crate::trace::Traced`).
+/// with cone anti-aliasing also `cover_t: f32, cover: f32` (see `crate::reference::trace::Traced`).
 pub fn trace_result_type(mb: &mut ModuleBuilder, antialias: bool) -> Handle<Type> {
     let (f, u) = (mb.f32(), mb.u32());
     let mut members = vec![("t", f, 0), ("steps", u, 4), ("flags", u, 8)];
@@ -54,7 +54,7 @@ pub fn function_name(method: Method) -> String {
 }
 
 /// Which inputs `trace_<method>` takes besides `ro` and `rd`, each only when something needs it
-/// (mirrors `crate::trace::Segment`).
+/// (mirrors `crate::reference::trace::Segment`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Inputs {
     /// `pixel`: the footprint of a pixel per unit distance, for the pixel ε.
@@ -197,7 +197,7 @@ impl Cx {
         (at, point, rn, apart)
     }
 
-    /// `crate::trace::apart`: spheres of radii `r.0`, `r.1` a `step` apart fail to overlap by
+    /// `crate::reference::trace::apart`: spheres of radii `r.0`, `r.1` a `step` apart fail to overlap by
     /// more than the [`TOUCH`] margin, kept below `e` (ε at the current point).
     pub fn apart(&self, b: &mut FnBuilder, step: Ex, r: (Ex, Ex), e: Ex) -> Ex {
         let (a, c) = (b.abs(r.0), b.abs(r.1));
@@ -270,15 +270,24 @@ impl Cx {
     }
 }
 
-/// Adds `trace_<method>` for the settings' variant, taking `inputs`.
-pub fn add_trace(
+/// A local f32 variable.
+pub(super) fn var(b: &mut FnBuilder, name: &str, init: f64) -> Ex {
+    let ty = b.m.f32();
+    let v = b.f(init);
+    b.local(name, ty, Some(v))
+}
+
+/// The loop of a variant, emitted into the frame [`Cx`] (`variants::body`).
+pub(super) type Body = fn(&mut FnBuilder, &Cx);
+
+/// Adds `trace_<method>` for the settings' variant, taking `inputs`; `body` emits its loop.
+pub(super) fn add_trace(
     mb: &mut ModuleBuilder,
-    map: Handle<Function>,
+    (map, loose): (Handle<Function>, Option<Handle<Function>>),
     result_ty: Handle<Type>,
     trace: &Trace,
-    inputs: Inputs,
-    floor: f64,
-    loose: Option<Handle<Function>>,
+    (inputs, floor): (Inputs, f64),
+    body: Body,
 ) -> Handle<Function> {
     let f32t = mb.f32();
     let u32t = mb.u32();
@@ -338,7 +347,7 @@ pub fn add_trace(
         cover,
         loose,
     };
-    variants::body(&mut b, &cx);
+    body(&mut b, &cx);
     let tv = b.load(t);
     let tv = cx.absolute(&mut b, tv);
     let (s, h) = (b.load(steps), b.load(flags));

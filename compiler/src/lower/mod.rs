@@ -3,8 +3,9 @@
 //! `map`, (only when the scene has materials) `map_material`, (only when a material has a
 //! pattern) `map_texture` and (only when it has a loose part) `map_loose` (the tag walks:
 //! `tags.rs`, which return a constant where the scene leaves no choice); the tracer and entry
-//! points come from `tracer.rs`.
+//! points come from `assemble.rs`.
 
+mod assemble;
 mod bounce;
 mod bound;
 mod camera;
@@ -12,11 +13,15 @@ mod careful;
 mod constant;
 mod count;
 mod entry;
+mod fns;
+mod globals;
 mod handoff;
 mod hybrid;
 pub mod interface;
+mod lobes;
 pub mod march;
 pub mod params;
+mod pick;
 mod probes;
 mod rays;
 mod shading;
@@ -24,11 +29,12 @@ mod tags;
 mod texture;
 pub mod tracer;
 mod variants;
+mod vector;
 
 use crate::catalog::gpu::{args, field};
 use crate::catalog::traits::Helper;
 use crate::catalog::{Ctx, Ty, Val};
-use crate::ir::builder::{self, Ex, FnBuilder, ModuleBuilder};
+use crate::ir::{Ex, FnBuilder, ModuleBuilder};
 use crate::scene::{NodeId, NodeKind, Scene};
 use naga::{Function, Handle, Type};
 use std::borrow::Cow;
@@ -83,11 +89,31 @@ pub fn lower(scene: &Scene, entry: Entry, options: &tracer::Options) -> naga::Mo
             l.unwrap_or_else(|| b.u(0))
         })
     });
+    let [texture, blend] = add_surface_maps(&mut mb, &walk, scene);
+    assemble::add(
+        &mut mb,
+        scene,
+        map,
+        [material, texture, blend],
+        loose,
+        entry,
+        options,
+    );
+    mb.module
+}
+
+/// `map_texture` where a material has a pattern and `map_blend` where an operator blends
+/// materials (each `None` where the scene has none).
+fn add_surface_maps(
+    mb: &mut ModuleBuilder,
+    walk: &Walk,
+    scene: &Scene,
+) -> [Option<Handle<Function>>; 2] {
     let v3 = mb.vec3();
     // Where a material has a pattern: `map_texture(p)`, the point in the own coordinates of
     // the shape whose material the surface takes (`eval::surface`).
     let texture = (!used_patterns(scene).is_empty()).then(|| {
-        point_function(&mut mb, "map_texture", v3, |b, p| {
+        point_function(mb, "map_texture", v3, |b, p| {
             let q = walk.with_texture(b, scene.root, p);
             // The point itself where no material was given (as `eval::surface`).
             match q {
@@ -103,23 +129,14 @@ pub fn lower(scene: &Scene, entry: Entry, options: &tracer::Options) -> naga::Mo
         })
     });
     // Where a smooth operator or `mix` blends materials: `map_blend(p)`, vec3(first id, second
-    // id, weight of the second) (`crate::blend`, `eval::blend`).
-    let blend = crate::blend::has_blends(scene).then(|| {
-        point_function(&mut mb, "map_blend", v3, |b, p| {
+    // id, weight of the second) (`crate::reference::blend`, `eval::blend`).
+    let blend = crate::reference::blend::has_blends(scene).then(|| {
+        point_function(mb, "map_blend", v3, |b, p| {
             let bl = walk.with_blend(b, scene.root, p);
             bl.unwrap_or_else(|| b.splat3(0.0))
         })
     });
-    tracer::add(
-        &mut mb,
-        scene,
-        map,
-        [material, texture, blend],
-        loose,
-        entry,
-        options,
-    );
-    mb.module
+    [texture, blend]
 }
 
 /// Adds the helper `name(p: vec3<f32>) -> ret` returning `body(p)`.

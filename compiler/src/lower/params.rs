@@ -1,13 +1,10 @@
 //! The `Params` uniform (the scene's parameters, set by the host at run time) and arguments
 //! computed from it.
 
-use super::builder::{Ex, FnBuilder, ModuleBuilder};
 use crate::catalog::gpu::args::components;
+use crate::ir::builder::{Ex, FnBuilder, ModuleBuilder};
 use crate::scene::{Field, ParamDecl, ParamKind, Scene};
 use naga::{AddressSpace, Handle, VectorSize};
-
-// Arguments read from the uniform are the catalog's (its shader bodies read them too).
-pub(super) use crate::catalog::gpu::args::{arg, num, varies};
 
 /// The byte offset of each parameter in the `Params` uniform and the struct's size: std140
 /// (and WGSL uniform) layout, a number 4-byte aligned, a vector or colour a `vec3<f32>`
@@ -76,7 +73,7 @@ pub(super) fn add(
             (n.as_str(), ty, o)
         })
         .collect();
-    let ty = super::tracer::struct_ty(mb, "Params", &members, size);
+    let ty = super::globals::struct_ty(mb, "Params", &members, size);
     if private {
         return Some(mb.module.global_variables.append(
             naga::GlobalVariable {
@@ -90,7 +87,7 @@ pub(super) fn add(
             naga::Span::UNDEFINED,
         ));
     }
-    Some(super::entry::global(
+    Some(super::globals::global(
         mb,
         "params",
         ty,

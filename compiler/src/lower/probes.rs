@@ -1,9 +1,10 @@
-//! Samples of the field away from the camera ray, for shading: shadow rays towards lights and
-//! ambient occlusion along the normal (the f64 formulas they mirror: `crate::shading`).
+//! Samples of the field away from the camera ray, for shading: shadow rays towards lights,
+//! ambient occlusion along the normal, and how far secondary rays start off the surface (the
+//! f64 formulas they mirror: `crate::reference::shading`).
 
-use super::builder::{FnBuilder, ModuleBuilder};
+use crate::ir::builder::{Ex, FnBuilder, ModuleBuilder};
+use crate::reference::shading::SHADOW_STEPS;
 use crate::scene::Occlusion;
-use crate::shading::SHADOW_STEPS;
 use naga::{Function, Handle};
 
 /// `shadow(p, n, l, far, h, k)`: how much of the light in direction `l` reaches the surface
@@ -29,7 +30,7 @@ pub(super) fn add_shadow(
     ];
     let mut b = FnBuilder::new(mb, "shadow", &args, Some(f32t));
     let (p, n, l, far, h, k) = (b.arg(0), b.arg(1), b.arg(2), b.arg(3), b.arg(4), b.arg(5));
-    let lift = super::bounce::lift(&mut b, map, p, h, fixed_offset);
+    let lift = lift(&mut b, map, p, h, fixed_offset);
     let up = b.mul(n, lift);
     let p = b.add(p, up);
     let zero = b.f(0.0);
@@ -85,7 +86,7 @@ pub(super) fn add_shadow(
 }
 
 /// `occlusion(p, n)`: ambient occlusion at the surface point `p` of normal `n` (Evans 2006, as
-/// `crate::shading::occlusion`): `samples` evaluations at i·δ along `n` in one loop (one call
+/// `crate::reference::shading::occlusion`): `samples` evaluations at i·δ along `n` in one loop (one call
 /// site of `map`), the missing clearance iδ − f weighted by 2⁻ⁱ; returns
 /// clamp(1 − strength·Σ/δ, 0, 1).
 pub(super) fn add_occlusion(
@@ -139,4 +140,24 @@ pub(super) fn add_occlusion(
     b.ret(Some(ao));
     let f = b.finish();
     mb.add_function(f)
+}
+
+/// How far a secondary ray's origin moves off the surface point `p`: Keinert's ε_dynamic =
+/// 2·max(h, |f(p)|) (§3.3), or `fixed` (for comparison, `Options::fixed_offset`).
+pub(super) fn lift(
+    b: &mut FnBuilder,
+    map: Handle<Function>,
+    p: Ex,
+    h: Ex,
+    fixed: Option<f64>,
+) -> Ex {
+    if let Some(f) = fixed {
+        return b.f(f);
+    }
+    super::count::count(b, 1);
+    let here = b.call(map, vec![p]);
+    let here = b.abs(here);
+    let lift = b.max(here, h);
+    let two = b.f(2.0);
+    b.mul(lift, two)
 }

@@ -2,9 +2,11 @@
 //! in, one `vec4(t, steps, flags, cover)` out per invocation) and the field list (one point in,
 //! `map` at it out).
 
-use super::builder::{Ex, FnBuilder, ModuleBuilder};
-use super::entry::{compute_main, storage_array};
-use super::tracer::{Pass, Tracer};
+use super::camera::storage_array;
+use super::entry::compute_main;
+use super::fns::Tracer;
+use super::tracer::Pass;
+use crate::ir::builder::{Ex, FnBuilder, ModuleBuilder};
 use crate::layout::{self, FIELD_WORKGROUP, RAYS_WORKGROUP};
 use naga::{Binding, BuiltIn, Expression, Function, Handle, ScalarKind, VectorSize};
 

@@ -1,17 +1,19 @@
 //! Shading in IR: `normal` from a tetrahedron of samples, `shade` with only the lights,
 //! material terms, shadows and occlusion the scene has, and `fog` if it has fog (the f64
-//! reference they mirror: `crate::shading`).
+//! reference they mirror: `crate::reference::shading`).
 
-use super::builder::{Ex, FnBuilder, ModuleBuilder};
 use super::params;
 use super::probes::{add_occlusion, add_shadow};
+use super::vector::unit_or_zero;
+use crate::catalog::gpu::args;
 use crate::catalog::{Ty, Val};
-use crate::scene::{LightKind, Scene, Shadow};
-use crate::shading::{AMBIENT, DEFAULT_COLOR, SHININESS, has_shadows};
+use crate::ir::builder::{Ex, FnBuilder, ModuleBuilder};
+use crate::reference::shading::{AMBIENT, DEFAULT_COLOR, SHININESS, has_shadows};
+use crate::scene::{Light, LightKind, Scene, Shadow};
 use naga::{Function, Handle, MathFunction as M, ScalarKind};
 
 /// `normal(p, h)`: the field's gradient from four samples at the corners of a tetrahedron
-/// around `p`, each at distance `h` (see [`crate::eval::TETRAHEDRON`]), normalised: four
+/// around `p`, each at distance `h` (see [`crate::reference::eval::TETRAHEDRON`]), normalised: four
 /// evaluations instead of central differences' six (Munini §2.3), at the price of an O(h)
 /// error from the mixed second derivatives where central differences have O(h²); a zero
 /// gradient gives zero, not NaN.
@@ -20,11 +22,11 @@ pub(super) fn add_normal(mb: &mut ModuleBuilder, map: Handle<Function>) -> Handl
     let f32t = mb.f32();
     let mut b = FnBuilder::new(mb, "normal", &[("p", v3), ("h", f32t)], Some(v3));
     let (p, h) = (b.arg(0), b.arg(1));
-    super::count::count(&mut b, crate::eval::TETRAHEDRON.len() as u32);
+    super::count::count(&mut b, crate::reference::eval::TETRAHEDRON.len() as u32);
     let third = b.f(1.0 / 3f64.sqrt());
     let e = b.mul(h, third);
     let mut g = None;
-    for k in crate::eval::TETRAHEDRON {
+    for k in crate::reference::eval::TETRAHEDRON {
         let corner = b.vec3_lit(k);
         let off = b.mul(corner, e);
         let q = b.add(p, off);
@@ -87,25 +89,7 @@ pub(super) fn add_shade(
         Some(t) => t.colors(&mut b, scene, p, n),
         None => Vec::new(),
     };
-    let (base, spec) = match blend {
-        None => material_props(&mut b, scene, mat, &patterned),
-        Some(f) => {
-            // Across a smooth operator's seam, two materials by its weight (`crate::blend`).
-            super::count::count(&mut b, 1);
-            let bl = b.call(f, vec![p]);
-            let [x, y, t] = b.xyz(bl);
-            let (ia, ib) = (b.cast(x, ScalarKind::Uint), b.cast(y, ScalarKind::Uint));
-            let (ca, sa) = material_props(&mut b, scene, ia, &patterned);
-            let (cb, sb) = material_props(&mut b, scene, ib, &patterned);
-            let t3 = b.splat(t, naga::VectorSize::Tri);
-            let base = b.math(M::Mix, &[ca, cb, t3]);
-            let spec = match (sa, sb) {
-                (Some(sa), Some(sb)) => Some(b.math(M::Mix, &[sa, sb, t])),
-                _ => None,
-            };
-            (base, spec)
-        }
-    };
+    let (base, spec) = base_and_specular(&mut b, scene, (mat, p), blend, &patterned);
     // Occlusion darkens the light that reaches the surface from all around, and the diffuse.
     let lit_base = match occlusion {
         Some(f) => {
@@ -117,65 +101,126 @@ pub(super) fn add_shade(
     let amb = b.f(AMBIENT);
     let mut color = b.mul(lit_base, amb);
     for light in &scene.lights {
-        let place = params::setting(&light.sym, 0);
-        let (l, far) = match light.kind {
-            LightKind::Directional(d) => {
-                let l = match place {
-                    Some(_) => params::arg(&mut b, Ty::Axis, Val::Vec3(d), place, p),
-                    None => b.vec3_lit(d.normalize()),
-                };
-                (l, b.f(scene.trace.max_distance))
-            }
-            LightKind::Point(pos) => {
-                let pv = params::arg(&mut b, Ty::Vec3, Val::Vec3(pos), place, p);
-                let d = b.sub(pv, p);
-                (unit_or_zero(&mut b, d), b.length(d))
-            }
-        };
-        let ndl = b.dot(n, l);
-        let zero = b.f(0.0);
-        let diff = b.max(ndl, zero);
-        let (tint, intensity) = (
-            params::setting(&light.sym, 1),
-            params::setting(&light.sym, 2),
+        color = add_light(
+            &mut b,
+            (scene, light),
+            [p, n, rd],
+            (lit_base, spec),
+            shadow,
+            color,
         );
-        let lc = if tint.is_none() && intensity.is_none() {
-            b.vec3_lit(crate::color::linear(light.color) * light.intensity)
-        } else {
-            let c = params::linear_color(&mut b, light.color, tint, p);
-            let k = params::arg(&mut b, Ty::Number, Val::Num(light.intensity), intensity, p);
-            b.mul(c, k)
-        };
-        let lc = match (shadow, light.shadow) {
-            (Some(f), Shadow::Hard | Shadow::Soft(_)) => {
-                let k = match light.shadow {
-                    Shadow::Soft(k) => b.f(k),
-                    _ => b.f(0.0),
-                };
-                let h = b.arg(4);
-                let seen = b.call(f, vec![p, n, l, far, h, k]);
-                b.mul(lc, seen)
-            }
-            _ => lc,
-        };
-        let lit = b.mul(lc, diff);
-        let lit = b.mul(lit_base, lit);
-        color = b.add(color, lit);
-        if let Some(s) = spec {
-            let hv = b.sub(l, rd);
-            let hv = unit_or_zero(&mut b, hv);
-            let ndh = b.dot(n, hv);
-            let ndh = b.max(ndh, zero);
-            let e = b.f(SHININESS);
-            let hl = b.math(M::Pow, &[ndh, e]);
-            let hl = b.mul(hl, s);
-            let hl = b.mul(lc, hl);
-            color = b.add(color, hl);
-        }
     }
     b.ret(Some(color));
     let f = b.finish();
     mb.add_function(f)
+}
+
+/// The surface's linear base colour and specular strength (if some material is specular): of
+/// material `mat`, or across a smooth operator's seam two materials mixed by its weight
+/// (`blend`: `map_blend`, see `crate::reference::blend`).
+fn base_and_specular(
+    b: &mut FnBuilder,
+    scene: &Scene,
+    (mat, p): (Ex, Ex),
+    blend: Option<Handle<Function>>,
+    patterned: &[(usize, Ex)],
+) -> (Ex, Option<Ex>) {
+    let Some(f) = blend else {
+        return material_props(b, scene, mat, patterned);
+    };
+    super::count::count(b, 1);
+    let bl = b.call(f, vec![p]);
+    let [x, y, t] = b.xyz(bl);
+    let (ia, ib) = (b.cast(x, ScalarKind::Uint), b.cast(y, ScalarKind::Uint));
+    let (ca, sa) = material_props(b, scene, ia, patterned);
+    let (cb, sb) = material_props(b, scene, ib, patterned);
+    let t3 = b.splat(t, naga::VectorSize::Tri);
+    let base = b.math(M::Mix, &[ca, cb, t3]);
+    let spec = match (sa, sb) {
+        (Some(sa), Some(sb)) => Some(b.math(M::Mix, &[sa, sb, t])),
+        _ => None,
+    };
+    (base, spec)
+}
+
+/// `color` plus one light's terms at the surface point `p` of normal `n` seen along `rd`: the
+/// diffuse (Lambert, on `lit_base`) and, if `spec` is given, the Blinn–Phong highlight, both
+/// scaled by `shadow(…)` where the light casts shadows.
+fn add_light(
+    b: &mut FnBuilder,
+    (scene, light): (&Scene, &Light),
+    [p, n, rd]: [Ex; 3],
+    (lit_base, spec): (Ex, Option<Ex>),
+    shadow: Option<Handle<Function>>,
+    color: Ex,
+) -> Ex {
+    let (l, far) = light_direction(b, scene, light, p);
+    let ndl = b.dot(n, l);
+    let zero = b.f(0.0);
+    let diff = b.max(ndl, zero);
+    let lc = light_color(b, light, p);
+    let lc = match (shadow, light.shadow) {
+        (Some(f), Shadow::Hard | Shadow::Soft(_)) => {
+            let k = match light.shadow {
+                Shadow::Soft(k) => b.f(k),
+                _ => b.f(0.0),
+            };
+            let h = b.arg(4);
+            let seen = b.call(f, vec![p, n, l, far, h, k]);
+            b.mul(lc, seen)
+        }
+        _ => lc,
+    };
+    let lit = b.mul(lc, diff);
+    let lit = b.mul(lit_base, lit);
+    let color = b.add(color, lit);
+    let Some(s) = spec else {
+        return color;
+    };
+    let hv = b.sub(l, rd);
+    let hv = unit_or_zero(b, hv);
+    let ndh = b.dot(n, hv);
+    let ndh = b.max(ndh, zero);
+    let e = b.f(SHININESS);
+    let hl = b.math(M::Pow, &[ndh, e]);
+    let hl = b.mul(hl, s);
+    let hl = b.mul(lc, hl);
+    b.add(color, hl)
+}
+
+/// The direction towards `light` from `p` and how far the light is (the scene's far limit for
+/// a directional one).
+fn light_direction(b: &mut FnBuilder, scene: &Scene, light: &Light, p: Ex) -> (Ex, Ex) {
+    let place = params::setting(&light.sym, 0);
+    match light.kind {
+        LightKind::Directional(d) => {
+            let l = match place {
+                Some(_) => args::arg(b, Ty::Axis, Val::Vec3(d), place, p),
+                None => b.vec3_lit(d.normalize()),
+            };
+            (l, b.f(scene.trace.max_distance))
+        }
+        LightKind::Point(pos) => {
+            let pv = args::arg(b, Ty::Vec3, Val::Vec3(pos), place, p);
+            let d = b.sub(pv, p);
+            (unit_or_zero(b, d), b.length(d))
+        }
+    }
+}
+
+/// The light's linear colour times its intensity: a constant unless a parameter sets them.
+fn light_color(b: &mut FnBuilder, light: &Light, p: Ex) -> Ex {
+    let (tint, intensity) = (
+        params::setting(&light.sym, 1),
+        params::setting(&light.sym, 2),
+    );
+    if tint.is_none() && intensity.is_none() {
+        b.vec3_lit(crate::color::linear(light.color) * light.intensity)
+    } else {
+        let c = params::linear_color(b, light.color, tint, p);
+        let k = args::arg(b, Ty::Number, Val::Num(light.intensity), intensity, p);
+        b.mul(c, k)
+    }
 }
 
 /// The linear base colour of material `id` (patterned ones from `patterned`) and its specular
@@ -202,7 +247,7 @@ fn material_props(
                 Some(s) => s,
                 None => b.f(0.0),
             };
-            let s = params::arg(b, Ty::Number, Val::Num(m.specular), specular, id);
+            let s = args::arg(b, Ty::Number, Val::Num(m.specular), specular, id);
             spec = Some(b.select(is, s, prev));
         }
     }
@@ -219,18 +264,8 @@ pub(super) fn call_shade(
     b.call(shade, vec![p, n, rd, m, h])
 }
 
-/// `v` normalised, or zero for the zero vector (no NaN): `crate::shading::unit_or_zero`.
-pub(super) fn unit_or_zero(b: &mut FnBuilder, v: Ex) -> Ex {
-    let unit = b.math(M::Normalize, &[v]);
-    let len2 = b.dot(v, v);
-    let zero = b.f(0.0);
-    let none = b.bin(naga::BinaryOperator::Equal, len2, zero);
-    let zv = b.splat3(0.0);
-    b.select(none, zv, unit)
-}
-
 /// `fog(c, t)`: the linear colour `c` seen through the scene's fog from distance `t`,
-/// mix(fog, c, e^(−density·t)) (as `crate::shading::fog`); `None` without fog.
+/// mix(fog, c, e^(−density·t)) (as `crate::reference::shading::fog`); `None` without fog.
 pub(super) fn add_fog(mb: &mut ModuleBuilder, scene: &Scene) -> Option<Handle<Function>> {
     let fog = scene.fog?;
     let v3 = mb.vec3();

@@ -1,10 +1,10 @@
 //! Procedural textures in IR: `lattice_hash`, `value_noise`, the octave sums and one weight expression per
-//! patterned material, operation for operation as `crate::texture` computes them in f64; each
+//! patterned material, operation for operation as `crate::reference::texture` computes them in f64; each
 //! function only when a material's pattern needs it.
 
-use super::builder::{Ex, FnBuilder, ModuleBuilder};
+use crate::ir::builder::{Ex, FnBuilder, ModuleBuilder};
+use crate::reference::texture::{LATTICE_PERIOD, NORMAL_STEP, NORMAL_STEP_FLOOR};
 use crate::scene::{Pattern, PatternKind, Scene};
-use crate::texture::{LATTICE_PERIOD, NORMAL_STEP, NORMAL_STEP_FLOOR};
 use naga::{BinaryOperator as Op, Expression, Function, Handle, MathFunction as M, ScalarKind};
 
 /// The texture functions a module has.
@@ -34,7 +34,7 @@ impl Textures {
     }
 
     /// The linear base colour of each patterned material at the surface point `p` of normal
-    /// `n` (`crate::shading::albedo`): (material index, colour).
+    /// `n` (`crate::reference::shading::albedo`): (material index, colour).
     pub fn colors(&self, b: &mut FnBuilder, scene: &Scene, p: Ex, n: Ex) -> Vec<(usize, Ex)> {
         super::count::count(b, 1);
         let q = b.call(self.map_texture, vec![p]);
@@ -55,7 +55,7 @@ impl Textures {
                 super::count::count(b, 1);
                 let q2 = b.call(self.map_texture, vec![p2]);
                 let d = b.sub(q2, q);
-                super::shading::unit_or_zero(b, d)
+                super::vector::unit_or_zero(b, d)
             });
             let w = self.weight(b, &pattern, q, nq);
             let first = b.vec3_lit(crate::color::linear(m.color));
@@ -66,7 +66,7 @@ impl Textures {
         out
     }
 
-    /// The pattern's weight at `q` (`crate::texture::weight`).
+    /// The pattern's weight at `q` (`crate::reference::texture::weight`).
     fn weight(&self, b: &mut FnBuilder, pattern: &Pattern, q: Ex, nq: Option<Ex>) -> Ex {
         let s = pattern.scale;
         let k = pattern.octaves;
@@ -187,7 +187,7 @@ fn parity(b: &mut FnBuilder, coords: &[Ex], s: f64) -> Ex {
     b.sub(sum, even)
 }
 
-/// `value_noise(q)`: value noise (`crate::texture::noise`) with the lattice hash inlined once.
+/// `value_noise(q)`: value noise (`crate::reference::texture::noise`) with the lattice hash inlined once.
 fn add_noise(mb: &mut ModuleBuilder) -> Handle<Function> {
     let hash = add_hash(mb);
     let v3 = mb.vec3();
@@ -202,7 +202,7 @@ fn add_noise(mb: &mut ModuleBuilder) -> Handle<Function> {
     let u = b.sub(three, tf);
     let ff = b.mul(f, f);
     let u = b.mul(ff, u);
-    // The lattice cell modulo the period (`crate::texture::noise`): 0 ≤ c < 65536.
+    // The lattice cell modulo the period (`crate::reference::texture::noise`): 0 ≤ c < 65536.
     let inv = b.f(1.0 / LATTICE_PERIOD);
     let inv3 = b.splat(inv, naga::VectorSize::Tri);
     let wraps = b.mul(i, inv3);
@@ -253,7 +253,7 @@ fn ivec3(mb: &mut ModuleBuilder) -> naga::Handle<naga::Type> {
     })
 }
 
-/// `lattice_hash(i)`: `crate::texture::hash` in u32 arithmetic (wrapping, as WGSL's u32 is).
+/// `lattice_hash(i)`: `crate::reference::texture::hash` in u32 arithmetic (wrapping, as WGSL's u32 is).
 fn add_hash(mb: &mut ModuleBuilder) -> Handle<Function> {
     let ivec = ivec3(mb);
     let f32t = mb.f32();

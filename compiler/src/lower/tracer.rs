@@ -1,13 +1,9 @@
-//! What a module has besides `map`: the chosen tracer (`trace_<method>`, behind a convex
-//! bound's `trace_bounded` if the scene declares one), `normal`, `shade`, and the compute,
-//! fragment, library, ray-list or field-list interface (`entry.rs`, `rays.rs`); the options
-//! that choose them.
+//! The options that choose what a module has besides `map` (its interface, the tracer's
+//! settings, the bounding-volume trees), and where a multi-resolution pass starts a ray; the
+//! module is assembled from them in `assemble.rs`.
 
-use super::builder::{Ex, FnBuilder, ModuleBuilder};
-use super::march::{self, Inputs};
-use super::{entry, rays, shading};
-use crate::scene::{Epsilon, Scene};
-use naga::{Function, Handle, StructMember, Type, TypeInner};
+use crate::ir::builder::Ex;
+use crate::scene::Scene;
 
 /// Which interface the module has.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -99,158 +95,10 @@ impl Options {
     }
 }
 
-/// The function the entries call to trace a ray, and the inputs it takes.
-#[derive(Clone, Copy)]
-pub(super) struct Tracer {
-    function: Handle<Function>,
-    inputs: Inputs,
-    max_distance: f64,
-    pub steps: u32,
-    /// Whether results carry cone anti-aliasing's cover fields.
-    pub antialias: bool,
-}
-
 /// Where a multi-resolution pass starts a ray and with what budget and cone slope.
 #[derive(Clone, Copy)]
 pub(super) struct Pass {
     pub start: Ex,
     pub budget: Ex,
     pub cone: Ex,
-}
-
-impl Tracer {
-    /// Calls the tracer on a ray; `pixel` is used in pixel-ε mode, `pass` when the module has
-    /// passes (otherwise the whole ray with the full budget).
-    pub fn call(&self, b: &mut FnBuilder, ro: Ex, rd: Ex, pixel: Ex, pass: Option<Pass>) -> Ex {
-        let mut args = vec![ro, rd];
-        if self.inputs.pixel {
-            args.push(pixel);
-        }
-        if self.inputs.segment {
-            let start = match pass {
-                Some(p) => p.start,
-                None => b.f(0.0),
-            };
-            args.extend([start, b.f(self.max_distance)]);
-        }
-        if self.inputs.pass {
-            let (budget, cone) = match pass {
-                Some(p) => (p.budget, p.cone),
-                None => (b.u(self.steps), b.f(0.0)),
-            };
-            args.extend([budget, cone]);
-        }
-        b.call(self.function, args)
-    }
-}
-
-/// Adds the tracer, normal, shading and the entry interface to a module that has `map` (for
-/// [`Entry::Field`], only the entry: it calls `map` alone).
-pub fn add(
-    mb: &mut ModuleBuilder,
-    scene: &Scene,
-    map: Handle<Function>,
-    [material, texture, blend]: [Option<Handle<Function>>; 3],
-    loose: Option<Handle<Function>>,
-    entry: Entry,
-    options: &Options,
-) {
-    if entry == Entry::Field {
-        rays::add_field(mb, map, scene.root_node().lambda);
-        return;
-    }
-    let floor = scene.camera.epsilon_floor();
-    let result_ty = march::trace_result_type(mb, options.trace.antialias);
-    let inputs = Inputs {
-        pixel: matches!(options.trace.epsilon, Epsilon::Pixel) || options.trace.antialias,
-        segment: scene.bound.is_some() || options.passes,
-        pass: options.passes,
-    };
-    let variant = march::add_trace(mb, map, result_ty, &options.trace, inputs, floor, loose);
-    let function = match &scene.bound {
-        Some(bound) => {
-            let out = (result_ty, options.trace.antialias);
-            super::bound::add(mb, map, out, variant, inputs, bound)
-        }
-        None => variant,
-    };
-    let tracer = Tracer {
-        function,
-        inputs,
-        max_distance: options.trace.max_distance,
-        steps: options.trace.steps,
-        antialias: options.trace.antialias,
-    };
-    if entry == Entry::Compute {
-        super::count::add_counter(mb);
-    }
-    let normal = shading::add_normal(mb, map);
-    // The offset of secondary rays' origins: ε_dynamic, or a fixed one to compare with.
-    let fixed = options
-        .fixed_offset
-        .then(|| 2.0 * scene.camera.epsilon_floor());
-    let shade = shading::add_shade(mb, scene, (map, texture, blend), fixed);
-    let fog = shading::add_fog(mb, scene);
-    let path = match material {
-        Some(material) if crate::shading::has_paths(scene) => {
-            let march = super::bounce::add_march(mb, map);
-            let calls = super::bounce::Calls {
-                map,
-                normal,
-                material,
-                shade,
-                march,
-            };
-            Some(super::bounce::add_path(mb, scene, &calls, fixed))
-        }
-        _ => None,
-    };
-    match entry {
-        Entry::Library => {
-            // Stable names and signatures whatever the variant and settings
-            // (docs/interface.md): `trace(ro, rd, pixel)` (`pixel` unused with an absolute ε)
-            // and `color(ro, rd, pixel)`, the whole pixel.
-            let v3 = mb.vec3();
-            let f32t = mb.f32();
-            let args = [("ro", v3), ("rd", v3), ("pixel", f32t)];
-            let mut b = FnBuilder::new(mb, "trace", &args, Some(result_ty));
-            let (ro, rd, pixel) = (b.arg(0), b.arg(1), b.arg(2));
-            let r = tracer.call(&mut b, ro, rd, pixel, None);
-            b.ret(Some(r));
-            let f = b.finish();
-            mb.add_function(f);
-            let fns = entry::Fns::library(tracer, [normal, shade], material, [fog, path]);
-            entry::add_color(mb, scene, &fns, options, floor);
-            super::interface::add_material_constants(mb, scene);
-        }
-        Entry::Rays => rays::add_rays(mb, &tracer),
-        Entry::Field => unreachable!("the field entry returned above"),
-        Entry::Compute | Entry::Fragment | Entry::Trace => {
-            let passes = options.passes && entry != Entry::Fragment;
-            let fns = entry::Fns::new(mb, tracer, [normal, shade], material, [fog, path], passes);
-            match entry {
-                Entry::Compute => entry::add_compute(mb, scene, &fns, options, floor),
-                Entry::Fragment => entry::add_fragment(mb, scene, &fns, options, floor),
-                _ => entry::add_trace_only(mb, &fns),
-            }
-        }
-    }
-}
-
-pub(super) fn struct_ty(
-    mb: &mut ModuleBuilder,
-    name: &str,
-    members: &[(&str, Handle<Type>, u32)],
-    span: u32,
-) -> Handle<Type> {
-    let members = members
-        .iter()
-        .map(|&(n, ty, offset)| StructMember {
-            name: Some(n.to_string()),
-            ty,
-            binding: None,
-            offset,
-        })
-        .collect();
-    mb.named_ty(name, TypeInner::Struct { members, span })
 }

@@ -1,10 +1,10 @@
 //! The tracing variants' loop bodies in IR, one function per variant, each the same step for
-//! step as its CPU reference in `crate::trace` (whose doc comments cite the seeds).
+//! step as its CPU reference in `crate::reference::trace` (whose doc comments cite the seeds).
 
-use super::builder::{Ex, FnBuilder};
-use super::march::{Cx, EXHAUSTED, HIT, is_hit};
+use super::march::{Cx, EXHAUSTED, HIT, is_hit, var};
+use crate::ir::builder::{Ex, FnBuilder};
+use crate::reference::trace::{AUTO_MAX_OMEGA, CONE_PIXELS, ENHANCED_GUARD};
 use crate::scene::Method;
-use crate::trace::{AUTO_MAX_OMEGA, CONE_PIXELS, ENHANCED_GUARD};
 use naga::BinaryOperator as B;
 
 /// The chosen variant's loop, then discontinuity reduction if asked.
@@ -24,15 +24,8 @@ pub(super) fn body(b: &mut FnBuilder, cx: &Cx) {
     }
 }
 
-/// A local f32 variable.
-pub(super) fn var(b: &mut FnBuilder, name: &str, init: f64) -> Ex {
-    let ty = b.m.f32();
-    let v = b.f(init);
-    b.local(name, ty, Some(v))
-}
-
 /// Hart; Bálint Alg. 1; Munini Fig. 9, with cone anti-aliasing if asked (Munini §2.4; see
-/// `crate::trace::basic` and `Cone`).
+/// `crate::reference::trace::basic` and `Cone`).
 fn basic(b: &mut FnBuilder, cx: &Cx) {
     // The open run of near misses: its nearest t and d/r (−1: none open).
     let run = cx
@@ -114,7 +107,7 @@ fn close_run(b: &mut FnBuilder, cx: &Cx, (run_t, run_q): (Ex, Ex)) {
     );
 }
 
-/// Hart's coverage α(q) (see `crate::trace::coverage`).
+/// Hart's coverage α(q) (see `crate::reference::trace::coverage`).
 fn coverage(b: &mut FnBuilder, q: Ex) -> Ex {
     let zero = b.f(0.0);
     let one = b.f(1.0);
@@ -131,7 +124,7 @@ fn coverage(b: &mut FnBuilder, q: Ex) -> Ex {
     b.sub(half, sum)
 }
 
-/// Keinert §3.1–3.2, Listing 2 (see `crate::trace::relaxed`).
+/// Keinert §3.1–3.2, Listing 2 (see `crate::reference::trace::relaxed`).
 fn relaxed(b: &mut FnBuilder, cx: &Cx) {
     let omega = var(b, "omega", cx.trace.omega);
     let step = var(b, "step", 0.0);
@@ -143,6 +136,13 @@ fn relaxed(b: &mut FnBuilder, cx: &Cx) {
     // −1: no candidate yet (the first evaluation always makes one, so a ray whose budget runs
     // out has a candidate).
     let candidate_error = var(b, "candidate_error", -1.0);
+    let candidate = (candidate_t, candidate_error);
+    let vars = Relaxation {
+        omega,
+        step,
+        prev_radius,
+        prev_r,
+    };
     b.loop_(|b| {
         cx.budget(b, EXHAUSTED | HIT, |b| {
             // The best candidate is the hit (Keinert §3.2).
@@ -151,6 +151,38 @@ fn relaxed(b: &mut FnBuilder, cx: &Cx) {
         });
         let (t, r) = cx.here(b, "r");
         let radius = b.abs(r);
+        let (fail, new_step, e) = vars.step(b, cx, (t, r, radius));
+        let ok = b.expr(naga::Expression::Unary {
+            op: naga::UnaryOperator::LogicalNot,
+            expr: fail,
+        });
+        b.if_(
+            ok,
+            |b| candidate_or_stop(b, cx, candidate, (t, r, radius, e)),
+            |_| {},
+        );
+        let back = b.neg(t);
+        let new_step = b.max(new_step, back);
+        b.store(step, new_step);
+        cx.advance(b, t, new_step);
+    });
+}
+
+/// The variables of relaxed sphere tracing's step: ω, the last step, the last radius, and with
+/// `fallback keep` the last field value.
+struct Relaxation {
+    omega: Ex,
+    step: Ex,
+    prev_radius: Ex,
+    prev_r: Option<Ex>,
+}
+
+impl Relaxation {
+    /// The relaxed step from t (field `r`, `radius` = |r|) — back to the safe point where the
+    /// unbounding spheres fail to overlap, else ahead by ω·r — stored in `step`: (whether it
+    /// failed, the step, ε at t).
+    fn step(&self, b: &mut FnBuilder, cx: &Cx, (t, r, radius): (Ex, Ex, Ex)) -> (Ex, Ex, Ex) {
+        let (omega, step, prev_radius) = (self.omega, self.step, self.prev_radius);
         let (om, st, pr) = (b.load(omega), b.load(step), b.load(prev_radius));
         let one = b.f(1.0);
         let relaxing = b.gt(om, one);
@@ -159,7 +191,7 @@ fn relaxed(b: &mut FnBuilder, cx: &Cx) {
         let apart = cx.apart(b, st, (radius, pr), e);
         let fail = b.bin(B::LogicalAnd, relaxing, apart);
         b.name(fail, "fail");
-        let back = match prev_r {
+        let back = match self.prev_r {
             // Back to t₋ + r₋ with ω kept (Bálint & Valasek Alg. 2).
             Some(prev_r) => {
                 let pr = b.load(prev_r);
@@ -174,7 +206,7 @@ fn relaxed(b: &mut FnBuilder, cx: &Cx) {
         let ahead = b.mul(r, om);
         let new_step = b.select(fail, back, ahead);
         b.store(step, new_step);
-        match prev_r {
+        match self.prev_r {
             Some(prev_r) => {
                 let kept = b.select(fail, pr, radius);
                 b.store(prev_radius, kept);
@@ -188,48 +220,45 @@ fn relaxed(b: &mut FnBuilder, cx: &Cx) {
                 b.store(prev_radius, radius);
             }
         }
-        let ok = b.expr(naga::Expression::Unary {
-            op: naga::UnaryOperator::LogicalNot,
-            expr: fail,
-        });
-        b.if_(
-            ok,
-            |b| {
-                let error = b.div(radius, e);
-                let ce = b.load(candidate_error);
-                let smaller = b.lt(error, ce);
-                let zero = b.f(0.0);
-                let none = b.lt(ce, zero);
-                let better = b.bin(B::LogicalOr, smaller, none);
-                b.if_(
-                    better,
-                    |b| {
-                        b.store(candidate_t, t);
-                        b.store(candidate_error, error);
-                    },
-                    |_| {},
-                );
-                let near = b.lt(radius, e);
-                let zero = b.f(0.0);
-                let below = b.lt(r, zero);
-                let at_start = b.bin(B::LessEqual, t, zero);
-                let stuck = b.bin(B::LogicalAnd, below, at_start);
-                let close = b.bin(B::LogicalOr, near, stuck);
-                cx.stop_if(b, close, HIT);
-                let far = cx.far(b);
-                let gone = b.gt(t, far);
-                cx.stop_if(b, gone, 0);
-            },
-            |_| {},
-        );
-        let back = b.neg(t);
-        let new_step = b.max(new_step, back);
-        b.store(step, new_step);
-        cx.advance(b, t, new_step);
-    });
+        (fail, new_step, e)
+    }
 }
 
-/// Bálint Alg. 3 (see `crate::trace::enhanced`).
+/// Where the step stands: t becomes the candidate if its error |r|/ε is the smallest yet, and
+/// the ray stops on a hit (or inside at its start) or past the far limit.
+fn candidate_or_stop(
+    b: &mut FnBuilder,
+    cx: &Cx,
+    (candidate_t, candidate_error): (Ex, Ex),
+    (t, r, radius, e): (Ex, Ex, Ex, Ex),
+) {
+    let error = b.div(radius, e);
+    let ce = b.load(candidate_error);
+    let smaller = b.lt(error, ce);
+    let zero = b.f(0.0);
+    let none = b.lt(ce, zero);
+    let better = b.bin(B::LogicalOr, smaller, none);
+    b.if_(
+        better,
+        |b| {
+            b.store(candidate_t, t);
+            b.store(candidate_error, error);
+        },
+        |_| {},
+    );
+    let near = b.lt(radius, e);
+    let zero = b.f(0.0);
+    let below = b.lt(r, zero);
+    let at_start = b.bin(B::LessEqual, t, zero);
+    let stuck = b.bin(B::LogicalAnd, below, at_start);
+    let close = b.bin(B::LogicalOr, near, stuck);
+    cx.stop_if(b, close, HIT);
+    let far = cx.far(b);
+    let gone = b.gt(t, far);
+    cx.stop_if(b, gone, 0);
+}
+
+/// Bálint Alg. 3 (see `crate::reference::trace::enhanced`).
 fn enhanced(b: &mut FnBuilder, cx: &Cx) {
     let d = var(b, "d", 0.0);
     let r_prev = var(b, "r_prev", 0.0);
@@ -283,7 +312,7 @@ fn enhanced(b: &mut FnBuilder, cx: &Cx) {
     });
 }
 
-/// Bán & Valasek 2023 (see `crate::trace::auto`).
+/// Bán & Valasek 2023 (see `crate::reference::trace::auto`).
 fn auto(b: &mut FnBuilder, cx: &Cx) {
     let start = b.f(0.0);
     let r0 = cx.field_at(b, cx.ro, start);

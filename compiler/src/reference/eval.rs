@@ -1,8 +1,8 @@
 //! The CPU reference evaluator: the scene's field and material at a point, in f64. It is the
 //! ground truth the GPU output is checked against.
 
-use crate::blend::Blend;
 use crate::catalog::{Ctx, MatRule, Sample};
+use crate::reference::blend::Blend;
 use crate::scene::{NodeId, NodeKind, Scene};
 use glam::DVec3;
 
@@ -67,11 +67,11 @@ impl Tag for (u32, DVec3) {
 
 impl Tag for Blend {
     fn pick(rule: MatRule, ctx: &Ctx, children: &[(f64, Option<Blend>)]) -> Option<Blend> {
-        crate::blend::pick(rule, ctx, children)
+        crate::reference::blend::pick(rule, ctx, children)
     }
 }
 
-/// The materials blended at `p` by the smooth operators and `mix` (`crate::blend`); one
+/// The materials blended at `p` by the smooth operators and `mix` (`crate::reference::blend`); one
 /// material where none blends.
 pub fn blend(scene: &Scene, p: DVec3) -> Blend {
     let tag = |n: NodeId, _: DVec3, inner: Option<Blend>| match scene.nodes[n].material {

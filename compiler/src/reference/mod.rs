@@ -6,6 +6,7 @@
 
 pub mod blend;
 pub mod eval;
+pub mod pixel;
 pub mod shading;
 pub mod texture;
 pub mod trace;

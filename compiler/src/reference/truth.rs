@@ -2,9 +2,9 @@
 //! in f64 with 10 000 steps and a hit threshold far below any tracer's, refined by bisection
 //! across the surface.
 
-use crate::eval;
+use crate::reference::eval;
+use crate::reference::trace;
 use crate::scene::{Method, Scene};
-use crate::trace;
 use crate::view::View;
 use glam::DVec3;
 

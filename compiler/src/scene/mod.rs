@@ -248,7 +248,7 @@ pub struct Material {
     pub transparent: f64,
     /// Index of refraction of a transparent solid (1.5 glass, 2.42 diamond).
     pub ior: f64,
-    /// A procedural pattern mixing `color` with a second colour (`crate::texture`).
+    /// A procedural pattern mixing `color` with a second colour (`crate::reference::texture`).
     pub pattern: Option<Pattern>,
     /// Settings computed from parameters (indexed as `check::look::MATERIAL`: `color`,
     /// `specular`), as expressions per component; empty when none is.
@@ -272,7 +272,7 @@ pub struct Pattern {
     pub octaves: u32,
 }
 
-/// The patterns (`crate::texture::PATTERNS` says what each is).
+/// The patterns (`crate::reference::texture::PATTERNS` says what each is).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[allow(missing_docs)]
 pub enum PatternKind {

@@ -10,8 +10,8 @@ use sdfc::bench::{self, Cell, Truth};
 use sdfc::gpu::Gpu;
 use sdfc_compiler::check::tracer::with_overrides;
 use sdfc_compiler::lower::tracer::BoundingVolumes;
+use sdfc_compiler::reference::truth;
 use sdfc_compiler::scene::{Scene, Trace};
-use sdfc_compiler::truth;
 use sdfc_compiler::view::View;
 use serde::Serialize;
 

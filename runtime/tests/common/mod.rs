@@ -4,8 +4,8 @@ use sdfc::gpu::{BackendChoice, Gpu};
 use sdfc_compiler::check::tracer::TRACE_METHODS;
 use sdfc_compiler::emit;
 use sdfc_compiler::lower::{Entry, tracer::Options};
+use sdfc_compiler::reference::trace::{self, Traced};
 use sdfc_compiler::scene::{Method, Scene, Trace};
-use sdfc_compiler::trace::{self, Traced};
 use std::path::PathBuf;
 use std::process::{Command, Output};
 use std::sync::Mutex;
@@ -186,7 +186,7 @@ impl Safety {
 /// `around`/1024; `f64::INFINITY` if it does not enter there.
 fn inside_length(scene: &Scene, eye: glam::DVec3, rd: glam::DVec3, t: f64, around: f64) -> f64 {
     let step = around / 1024.0;
-    let inside = |s: f64| sdfc_compiler::eval::distance(scene, eye + rd * s) <= 0.0;
+    let inside = |s: f64| sdfc_compiler::reference::eval::distance(scene, eye + rd * s) <= 0.0;
     let Some(entry) = (0..1024).map(|k| t + step * k as f64).find(|&s| inside(s)) else {
         return f64::INFINITY;
     };

@@ -3,7 +3,7 @@
 
 use super::variants::{regula_falsi, stop};
 use super::{Threshold, Traced};
-use crate::eval;
+use crate::reference::eval;
 use crate::scene::{Scene, Trace};
 use glam::DVec3;
 

@@ -10,7 +10,7 @@ pub use careful::{ByScene, CROSSING_REFINE, Confirm, ZONE_STEP, tetra_gradient};
 use careful::{careful, confirmation};
 use variants::stop;
 
-use crate::eval;
+use crate::reference::eval;
 use crate::scene::{Convex, Epsilon, Method, Scene, Trace};
 use glam::DVec3;
 
