@@ -259,7 +259,7 @@ def unit(a):
 
 
 def rotate(v, axis, angle):
-    """Rodrigues' rotation, as operators.rs `rotate`."""
+    """Rodrigues' rotation, as catalog/geometry.rs `rotate`."""
     s, c = math.sin(angle), math.cos(angle)
     return add(add(mul(v, c), mul(cross(axis, v), s)), mul(axis, dot(axis, v) * (1 - c)))
 

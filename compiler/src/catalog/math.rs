@@ -291,7 +291,7 @@ pub static MATH_FUNCTIONS: &[MathFn] = &[
         // The divisor must keep its sign (b = 0 divides by zero).
         defined: |a| a[1].lo > 0.0 || a[1].hi < 0.0,
         units: Units::Same,
-        // Lowered as a − b·floor(a / b) (`lower::lower_field`).
+        // Lowered as a − b·floor(a / b) (`catalog::gpu::field::lower`).
         lower: naga::MathFunction::Floor,
         arity: 2,
         doc: "a − b·floor(a / b), GLSL's mod: in [0, b) for b > 0 (a jump where a / b is whole)",
@@ -325,7 +325,8 @@ pub static MATH_FUNCTIONS: &[MathFn] = &[
             w.lo > 0.0 || w.hi < 0.0
         },
         units: Units::Plain,
-        // Lowered as t²·(3 − 2t), t = clamp((c − a) / (b − a), 0, 1) (`lower::lower_field`).
+        // Lowered as t²·(3 − 2t), t = clamp((c − a) / (b − a), 0, 1)
+        // (`catalog::gpu::field::lower`).
         lower: naga::MathFunction::SmoothStep,
         arity: 3,
         doc: "t²·(3 − 2t) with t = clamp((c − a) / (b − a), 0, 1): from 0 at a to 1 at b, smoothly (slope ≤ 1.5/|b − a|)",

@@ -17,9 +17,9 @@ pub struct ModuleBuilder {
     /// The module.
     pub module: Module,
     helpers: std::collections::HashMap<String, Handle<Function>>,
-    /// The compute entry's count of shading evaluations, if it has one (`count.rs`).
+    /// The compute entry's count of shading evaluations, if it has one (`lower/count.rs`).
     pub evaluations: Option<Handle<naga::GlobalVariable>>,
-    /// The `Params` uniform, if the scene has parameters (`params.rs`).
+    /// The `Params` uniform, if the scene has parameters (`lower/params.rs`).
     pub params: Option<Handle<naga::GlobalVariable>>,
     /// Per primitive function (`sd_<name>`), which arguments are constants inside it rather
     /// than parameters (`Primitive::bake`).

@@ -1,5 +1,5 @@
-//! `repeat_polar` in IR: the angle, then each copy's point turned back (the plan and its proof
-//! are the catalog entry's, `catalog/polar.rs`).
+//! `repeat_polar` in IR: the angle, then each copy's point turned back (the plan is
+//! `polar_plan` in `catalog/repeat.rs`, its proof the catalog entry's, `catalog/polar.rs`).
 
 use super::ChildLower;
 use crate::catalog::Ctx;
