@@ -6,11 +6,11 @@ use crate::catalog::Ctx;
 use crate::catalog::prune::{Group, Inside, Tree};
 use crate::ir::{Ex, FnBuilder};
 
-/// The union by `tree`: `d` starts at f32's largest value and takes the minimum with each
-/// child evaluated.
+/// The union by `tree`: `d` starts at [`crate::ir::FAR`] and takes the minimum with each child
+/// evaluated.
 pub fn union(b: &mut FnBuilder, c: &Ctx, p: Ex, child: ChildLower, tree: &Tree) -> Ex {
     let f32t = b.m.f32();
-    let start = b.f(f32::MAX as f64);
+    let start = b.f(crate::ir::FAR);
     let d = b.local("d", f32t, Some(start));
     for &i in &tree.first {
         lower_into(b, c, p, child, d, i);
