@@ -11,8 +11,9 @@ use sdfc_compiler::view::View;
 use std::collections::HashMap;
 use std::process::Command;
 
-#[test]
-fn the_webgpu_page_draws_what_render_draws() {
+/// Chromium and the page's test driver, or `None` (said loudly) when they are missing and
+/// `SDFC_REQUIRE_BROWSER` is not set.
+fn browser() -> Option<(String, std::path::PathBuf)> {
     let chrome = std::env::var("CHROME").unwrap_or("/usr/bin/chromium-headless-shell".into());
     let driver = root().join("examples/hosts/webgpu/test");
     let ready = std::path::Path::new(&chrome).exists()
@@ -27,8 +28,16 @@ fn the_webgpu_page_draws_what_render_draws() {
         eprintln!(
             "\n*** chromium-headless-shell or the WebGPU page's test driver is missing: the browser test is SKIPPED (`.ci/run` installs them) ***\n"
         );
-        return;
+        return None;
     }
+    Some((chrome, driver))
+}
+
+#[test]
+fn the_webgpu_page_draws_what_render_draws() {
+    let Some((chrome, driver)) = browser() else {
+        return;
+    };
     let dir = scratch("browser");
     let scene_file = root().join("examples/lamp.sdf");
     let out = sdfc(&[
@@ -102,4 +111,66 @@ fn the_webgpu_page_draws_what_render_draws() {
         );
         assert!(share >= 0.995, "{json}: only {:.2}%", share * 100.0);
     }
+}
+
+/// Every example's WGSL, for each of the compute, fragment, library and trace entries, with
+/// the default bounding volumes and with every union's tree (`--bvh`), compiled by Chrome's
+/// own WebGPU (Tint's front end, then a compute or render pipeline made of each entry on
+/// SwiftShader; `examples/hosts/webgpu/test/compile.mjs`): none refused. naga's validator
+/// had passed modules Chrome refuses (`f32::MAX` printed above f32's range, issue 30).
+#[test]
+fn every_example_compiles_in_chromes_webgpu() {
+    use sdfc_compiler::emit::{self, Output, Target};
+    use sdfc_compiler::lower::{Entry, tracer::BoundingVolumes, tracer::Options};
+    let Some((chrome, driver)) = browser() else {
+        return;
+    };
+    let dir = scratch("chrome-compile");
+    let examples: Vec<_> = std::fs::read_dir(root().join("examples"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "sdf"))
+        .collect();
+    let mut written = 0;
+    for path in &examples {
+        let scene = compile(&std::fs::read_to_string(path).unwrap());
+        let stem = path.file_stem().unwrap().to_string_lossy().to_string();
+        for (trees, tag) in [(BoundingVolumes::Large, ""), (BoundingVolumes::All, "-bvh")] {
+            let mut options = Options::from_scene(&scene);
+            options.bounding_volumes = trees;
+            for (entry, name) in [
+                (Entry::Compute, "compute"),
+                (Entry::Fragment, "fragment"),
+                (Entry::Library, "library"),
+                (Entry::Trace, "trace"),
+            ] {
+                let (m, info) = emit::module(&scene, entry, &options).unwrap();
+                let Output::Text(code) = emit::write(&m, &info, Target::Wgsl, entry).unwrap()
+                else {
+                    unreachable!("WGSL is text")
+                };
+                std::fs::write(dir.join(format!("{stem}{tag}.{name}.wgsl")), code).unwrap();
+                written += 1;
+            }
+        }
+    }
+    let run = Command::new("node")
+        .arg(driver.join("compile.mjs"))
+        .arg(&dir)
+        .env("CHROME", &chrome)
+        .output()
+        .unwrap();
+    let said = String::from_utf8_lossy(&run.stdout).to_string();
+    let refused: Vec<&str> = said.lines().filter(|l| l.starts_with("error")).collect();
+    println!("{}", said.lines().last().unwrap_or(""));
+    assert!(
+        run.status.success() && refused.is_empty(),
+        "Chrome refused {} of {written} modules:\n{}{}",
+        refused.len(),
+        refused.join("\n"),
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let ok = said.lines().filter(|l| l.starts_with("ok ")).count();
+    assert_eq!(ok, written, "{said}");
+    assert!(written >= 16 * 8, "{written}");
 }
