@@ -446,3 +446,72 @@ fn render_output_is_the_file_and_channel_the_kind() {
     assert!(!std::path::Path::new("depth").exists());
     let _ = std::fs::remove_dir_all(dir);
 }
+
+/// `emit` to standard output (`-o -` or no `-o`) says what it wrote on standard error, as
+/// every command does when it succeeds, and `-q` keeps it quiet; standard output holds only
+/// the code (issue 30).
+#[test]
+fn emit_to_standard_output_says_so_on_standard_error() {
+    let scene = root().join("examples/jewel.sdf");
+    for args in [&["-o", "-"][..], &[][..]] {
+        let mut all = vec!["emit", scene.to_str().unwrap()];
+        all.extend_from_slice(args);
+        let out = sdfc(&all);
+        assert_eq!(out.status.code(), Some(0));
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(
+            err.trim_end(),
+            format!(
+                "wrote standard output — WGSL, compute entry, {} bytes",
+                out.stdout.len()
+            ),
+            "{args:?}"
+        );
+        assert!(String::from_utf8_lossy(&out.stdout).contains("fn map("));
+    }
+    let quiet = sdfc(&["emit", scene.to_str().unwrap(), "-o", "-", "-q"]);
+    assert_eq!(quiet.status.code(), Some(0));
+    assert!(
+        quiet.stderr.is_empty(),
+        "{}",
+        String::from_utf8_lossy(&quiet.stderr)
+    );
+}
+
+/// The README's lines that install the bash completions work on a fresh machine (a home
+/// without `~/.local/share/bash-completion`), run as written with `sdfc` on the path.
+#[test]
+fn the_readmes_completions_lines_work_in_a_fresh_home() {
+    let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
+    let lines: Vec<&str> = readme
+        .lines()
+        .filter(|l| l.contains("bash-completion/completions"))
+        .map(|l| l.split("   #").next().unwrap().trim())
+        .collect();
+    assert!(!lines.is_empty(), "the README names no completions file");
+    let home = scratch("fresh-home");
+    let _ = std::fs::remove_dir_all(&home);
+    std::fs::create_dir_all(&home).unwrap();
+    let bin = std::path::Path::new(env!("CARGO_BIN_EXE_sdfc"))
+        .parent()
+        .unwrap();
+    let path = format!(
+        "{}:{}",
+        bin.display(),
+        std::env::var("PATH").unwrap_or_default()
+    );
+    let out = Command::new("bash")
+        .args(["-euc", &lines.join("\n")])
+        .env("HOME", &home)
+        .env("PATH", path)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let script = home.join(".local/share/bash-completion/completions/sdfc");
+    let text = std::fs::read_to_string(&script).unwrap();
+    assert!(text.contains("_sdfc()"), "{}", &text[..text.len().min(200)]);
+}

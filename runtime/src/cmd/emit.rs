@@ -173,17 +173,19 @@ fn write(args: &EmitArgs, plan: &Plan, out: &Output, manifest: Option<serde_json
             return 1;
         }
     }
-    if let (0, Some(path)) = (code, output.filter(|p| *p != Path::new("-"))) {
+    if code == 0 {
         let what = if plan.shadertoy {
             "a Shadertoy Image shader (GLSL ES 3.00)".to_string()
         } else {
             describe(plan.target, plan.entry)
         };
-        crate::cli::messages::done(&format!(
-            "wrote {} — {what}, {} bytes",
-            path.display(),
-            bytes.len()
-        ));
+        // Standard output carries the code; the line goes to standard error, as every
+        // command's does.
+        let to = match output.filter(|p| *p != Path::new("-")) {
+            Some(path) => path.display().to_string(),
+            None => "standard output".to_string(),
+        };
+        crate::cli::messages::done(&format!("wrote {to} — {what}, {} bytes", bytes.len()));
     }
     code
 }
