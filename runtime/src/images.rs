@@ -25,7 +25,7 @@ pub enum Channel {
     Normal,
     /// Evaluations per pixel as a heat map from 0 (dark blue) to the step budget (yellow).
     Steps,
-    /// Material ids in distinct colours (the default material grey).
+    /// Material ids in distinct colours (the default material grey, misses black).
     Material,
 }
 
@@ -54,6 +54,8 @@ pub fn rgba(frame: &Frame, channel: Channel, budget: u32) -> Vec<u8> {
                 }
             }
             Channel::Steps => heat(frame.steps[i] as f32 / budget.max(1) as f32),
+            // A miss is black, apart from the default material's grey (issue 30).
+            Channel::Material if frame.depth[i] < 0.0 => [0, 0, 0, 255],
             Channel::Material => palette(frame.material[i]),
         };
         out.extend_from_slice(&px);

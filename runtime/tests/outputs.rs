@@ -303,3 +303,48 @@ fn diagnostics_in_imported_files() {
     assert!(human.contains(&format!("┌─ {lib}:2:41")), "{human}");
     assert!(human.contains(&format!("┌─ {main}:2:1")), "{human}");
 }
+
+/// The material channel tells a miss (black) from a hit in the default material (grey) and
+/// from a declared material (a colour): a sphere in the default material and a box in `red`,
+/// with the background around them (issue 30: misses were drawn in the default's grey).
+#[test]
+fn the_material_channel_tells_misses_from_the_default_material() {
+    let dir = scratch("material-channel");
+    let scene = dir.join("two.sdf");
+    std::fs::write(
+        &scene,
+        "camera { eye (0, 0, -6) target (0, 0, 0) }\nmaterial red { color #f00 }\n\
+         sphere(1) at (-1.5, 0, 0)\nbox(1.6) at (1.5, 0, 0) : red\n",
+    )
+    .unwrap();
+    let png = dir.join("material.png");
+    let out = sdfc(&[
+        "render",
+        scene.to_str().unwrap(),
+        "-o",
+        png.to_str().unwrap(),
+        "--size",
+        "64x32",
+        "--channel",
+        "material",
+    ]);
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let img = image::open(&png).unwrap().to_rgba8();
+    let at = |x: u32, y: u32| img.get_pixel(x, y).0;
+    // The corner misses; the two shapes' centres are hit (which one is on the left depends
+    // on the camera's handedness: either way, one grey and one coloured).
+    let (miss, a, b) = (at(0, 0), at(16, 16), at(48, 16));
+    let grey = [128, 128, 128, 255];
+    assert_eq!(miss, [0, 0, 0, 255], "a miss");
+    let (default, declared) = if a == grey { (a, b) } else { (b, a) };
+    assert_eq!(default, grey, "the default material: {a:?} {b:?}");
+    assert!(
+        declared != miss && declared != grey,
+        "the declared material: {declared:?}"
+    );
+}
