@@ -42,6 +42,15 @@ pub const VIEW_BINDING: u32 = 0;
 /// cone slope, step budget and the previous pass's size.
 pub const VIEW_FIELDS: [&str; 7] = ["eye", "right", "up", "forward", "size", "offset", "handoff"];
 
+/// The index of the `View` uniform's field `name` (one of [`VIEW_FIELDS`]); its byte offset is
+/// 16 times that.
+pub fn view_field(name: &str) -> usize {
+    VIEW_FIELDS
+        .iter()
+        .position(|f| *f == name)
+        .unwrap_or_else(|| panic!("`{name}` is not a field of the View uniform"))
+}
+
 /// The `View` uniform's size in bytes with every field (a module without passes declares the
 /// first six, 96 bytes; a host may always bind all of them).
 pub const VIEW_BYTES: usize = 16 * VIEW_FIELDS.len();

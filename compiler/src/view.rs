@@ -1,7 +1,7 @@
 //! The pinhole camera (Munini §2.1) shared by the GPU's `View` uniform and the CPU reference
 //! tracer, so both trace exactly the same rays.
 
-use crate::layout::{VIEW_BYTES, VIEW_FIELDS};
+use crate::layout::{VIEW_BYTES, view_field};
 use crate::scene::Camera;
 use glam::DVec3;
 
@@ -99,21 +99,13 @@ impl View {
             }
         }
         for (j, c) in [tile_x, tile_y, self.width, self.height].iter().enumerate() {
-            let at = 16 * field("offset") + 4 * j;
+            let at = 16 * view_field("offset") + 4 * j;
             out[at..at + 4].copy_from_slice(&c.to_le_bytes());
         }
         for (j, c) in pass.iter().enumerate() {
-            let at = 16 * field("handoff") + 4 * j;
+            let at = 16 * view_field("handoff") + 4 * j;
             out[at..at + 4].copy_from_slice(&c.to_le_bytes());
         }
         out
     }
-}
-
-/// The index of a field of the `View` uniform.
-fn field(name: &str) -> usize {
-    VIEW_FIELDS
-        .iter()
-        .position(|f| *f == name)
-        .expect("a View field")
 }

@@ -48,10 +48,10 @@ pub(super) fn storage_array(
     )
 }
 
-/// Loads member `i` of the view uniform.
-pub(super) fn view_field(b: &mut FnBuilder, view: Handle<naga::GlobalVariable>, i: u32) -> Ex {
+/// Loads the view uniform's field `name` (`layout::VIEW_FIELDS`).
+pub(super) fn view_field(b: &mut FnBuilder, view: Handle<naga::GlobalVariable>, name: &str) -> Ex {
     let g = b.expr(Expression::GlobalVariable(view));
-    let ptr = b.at(g, i);
+    let ptr = b.at(g, layout::view_field(name) as u32);
     b.load(ptr)
 }
 
@@ -64,8 +64,8 @@ pub(super) fn add_camera_ray(
     let v3 = mb.vec3();
     let mut b = FnBuilder::new(mb, "camera_ray", &[("pixel", v2)], Some(v3));
     let pixel = b.arg(0);
-    let [right, up, forward, size] = [1, 2, 3, 4].map(|i| {
-        let v = view_field(&mut b, view, i);
+    let [right, up, forward, size] = ["right", "up", "forward", "size"].map(|name| {
+        let v = view_field(&mut b, view, name);
         b.swizzle(v, &[0, 1, 2])
     });
     let size = b.swizzle(size, &[0, 1]);

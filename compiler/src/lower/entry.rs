@@ -126,7 +126,7 @@ fn hit_bit(b: &mut FnBuilder, result: Ex) -> Ex {
 /// in it the ray passes through: the pixel's corner plus `(right.w, up.w)`).
 fn compute_pixel(b: &mut FnBuilder, fns: &Fns) -> (Ex, Ex) {
     let gid = b.arg(0);
-    let offset = view_field(b, fns.view(), 5);
+    let offset = view_field(b, fns.view(), "offset");
     let gxy = b.swizzle(gid, &[0, 1]);
     let oxy = b.swizzle(offset, &[0, 1]);
     let pxy = b.add(gxy, oxy);
@@ -142,8 +142,8 @@ fn compute_pixel(b: &mut FnBuilder, fns: &Fns) -> (Ex, Ex) {
     let pf = b.cast(pxy, ScalarKind::Float);
     // Where in the pixel the ray passes: `right.w`, `up.w` (the centre, 0.5, unless
     // anti-aliasing samples move it).
-    let right = view_field(b, fns.view(), 1);
-    let up = view_field(b, fns.view(), 2);
+    let right = view_field(b, fns.view(), "right");
+    let up = view_field(b, fns.view(), "up");
     let (jx, jy) = (b.at(right, 3), b.at(up, 3));
     let jitter = b.vec2(jx, jy);
     (index, b.add(pf, jitter))

@@ -124,9 +124,9 @@ pub(super) fn trace_pixel(
     pass: Option<Pass>,
 ) -> (Ex, Ex, Ex, Ex) {
     let rd = b.call(fns.camera.expect("a camera entry").0, vec![pixel]);
-    let eye = view_field(b, fns.view(), 0);
+    let eye = view_field(b, fns.view(), "eye");
     let ro = b.swizzle(eye, &[0, 1, 2]);
-    let size = view_field(b, fns.view(), 4);
+    let size = view_field(b, fns.view(), "size");
     let px = b.at(size, 2);
     let result = fns.tracer.call(b, ro, rd, px, pass);
     b.name(result, "traced");

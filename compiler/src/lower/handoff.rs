@@ -59,7 +59,7 @@ fn previous_pass(
     pixel: Ex,
     pass_in: Handle<naga::GlobalVariable>,
 ) -> (Pass, Ex) {
-    let pv = view_field(b, fns.view(), 6);
+    let pv = view_field(b, fns.view(), "handoff");
     let cone = b.at(pv, 0);
     let budget = b.at(pv, 1);
     let budget = b.cast(budget, ScalarKind::Uint);
@@ -74,7 +74,7 @@ fn previous_pass(
     b.if_(
         earlier,
         |b| {
-            let size = view_field(b, fns.view(), 4);
+            let size = view_field(b, fns.view(), "size");
             let here = b.swizzle(size, &[0, 1]);
             let there = b.swizzle(pv, &[2, 3]);
             let q = b.mul(pixel, there);

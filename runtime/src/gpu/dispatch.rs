@@ -2,7 +2,7 @@
 //! then a frame as one submission (timed) or tile by tile (with progress).
 
 use super::{Error, Prepared};
-use sdfc_compiler::layout::VIEW_FIELDS;
+use sdfc_compiler::layout::view_field;
 use sdfc_compiler::view::View;
 
 /// How long one frame took.
@@ -133,9 +133,5 @@ impl Prepared {
 /// The byte offset in the `View` uniform of the jitter in `field`'s fourth component (`right.w`
 /// and `up.w` hold where in its pixel the ray passes: `View::uniform`).
 fn jitter_at(field: &str) -> usize {
-    let k = VIEW_FIELDS
-        .iter()
-        .position(|f| *f == field)
-        .expect("a field of the View uniform");
-    16 * k + 12
+    16 * view_field(field) + 12
 }

@@ -98,12 +98,6 @@ impl Error {
     }
 }
 
-impl From<Error> for String {
-    fn from(e: Error) -> String {
-        e.to_string()
-    }
-}
-
 fn no_adapter(choice: BackendChoice) -> &'static str {
     match choice {
         BackendChoice::Auto => {
