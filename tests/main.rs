@@ -16,4 +16,5 @@ mod lipschitz;
 mod lipschitz_cases;
 mod lipschitz_params;
 mod lipschitz_sampler;
+mod literals;
 mod tidy;

@@ -1,25 +1,11 @@
 //! Tidy checks: every Rust source opens with a one-line `//!` module doc, no trailing whitespace.
 
-use std::path::Path;
-
-fn rust_files(dir: &Path, out: &mut Vec<std::path::PathBuf>) {
-    for entry in std::fs::read_dir(dir).unwrap() {
-        let path = entry.unwrap().path();
-        let name = path.file_name().unwrap().to_string_lossy().to_string();
-        if path.is_dir() && name != "target" && !name.starts_with('.') && name != "snapshots" {
-            rust_files(&path, out);
-        } else if name.ends_with(".rs") {
-            out.push(path);
-        }
-    }
-}
-
 #[test]
 fn sources_are_tidy() {
     let root = sdfc_tests::root();
     let mut files = Vec::new();
     for dir in ["compiler", "runtime", "tests"] {
-        rust_files(&root.join(dir), &mut files);
+        sdfc_tests::rust_files(&root.join(dir), &mut files);
     }
     assert!(files.len() > 10);
     let mut problems = Vec::new();

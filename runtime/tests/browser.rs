@@ -6,7 +6,7 @@
 //! `examples/hosts/webgpu/test`), which `.ci/run` installs; without them the test says
 //! SKIPPED loudly, and fails instead when `SDFC_REQUIRE_BROWSER=1` (as `.ci/run` sets).
 
-use crate::common::{compile, gpu, off_by, render, root, scratch, sdfc};
+use crate::common::{compile, examples, gpu, off_by, render, root, scratch, sdfc};
 use sdfc_compiler::view::View;
 use std::collections::HashMap;
 use std::process::Command;
@@ -126,13 +126,8 @@ fn every_example_compiles_in_chromes_webgpu() {
         return;
     };
     let dir = scratch("chrome-compile");
-    let examples: Vec<_> = std::fs::read_dir(root().join("examples"))
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e == "sdf"))
-        .collect();
     let mut written = 0;
-    for path in &examples {
+    for path in &examples() {
         let scene = compile(&std::fs::read_to_string(path).unwrap());
         let stem = path.file_stem().unwrap().to_string_lossy().to_string();
         for (trees, tag) in [(BoundingVolumes::Large, ""), (BoundingVolumes::All, "-bvh")] {

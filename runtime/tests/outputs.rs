@@ -1,6 +1,7 @@
 //! What commands write and say: `-o -` to standard output, anti-aliasing samples at the
 //! output's size, one line on success (none with `-q`), `error:` first on every error, output
-//! extensions checked, `--version`, shell completions and the man page.
+//! extensions checked, `--version`, shell completions (and the README's lines installing them)
+//! and the man page, the material channel.
 
 use crate::common::{root, scratch, sdfc};
 use std::process::Command;
@@ -110,6 +111,24 @@ fn success_is_one_line_and_wrong_extensions_are_refused() {
     );
     let o = sdfc(&["--quiet", "emit", scene, "-o", wgsl.to_str().unwrap()]);
     assert_eq!((o.status.code(), o.stderr.len()), (Some(0), 0));
+    // To standard output (`-o -`, or no `-o`) the line still goes to standard error, with the
+    // bytes standard output received; `-q` keeps it quiet there too.
+    for args in [&["-o", "-"][..], &[][..]] {
+        let o = sdfc(&[&["emit", scene][..], args].concat());
+        let err = String::from_utf8_lossy(&o.stderr);
+        let said = format!(
+            "wrote standard output — WGSL, compute entry, {} bytes",
+            o.stdout.len()
+        );
+        assert_eq!(
+            (o.status.code(), err.trim_end()),
+            (Some(0), said.as_str()),
+            "{args:?}"
+        );
+        assert!(String::from_utf8_lossy(&o.stdout).contains("fn map("));
+    }
+    let o = sdfc(&["emit", scene, "-o", "-", "-q"]);
+    assert_eq!((o.status.code(), o.stderr.len()), (Some(0), 0));
     let refused: [(&[&str], &str); 3] = [
         (
             &["render", scene, "-o", "x.jpg"],
@@ -186,6 +205,44 @@ fn version_completions_and_man_page() {
         "{page}"
     );
     let _ = std::fs::remove_dir_all(dir);
+}
+
+/// The README's lines that install the bash completions work on a fresh machine (a home
+/// without `~/.local/share/bash-completion`), run as written with `sdfc` on the path.
+#[test]
+fn the_readmes_completions_lines_work_in_a_fresh_home() {
+    let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
+    let lines: Vec<&str> = readme
+        .lines()
+        .filter(|l| l.contains("bash-completion/completions"))
+        .map(|l| l.split("   #").next().unwrap().trim())
+        .collect();
+    assert!(!lines.is_empty(), "the README names no completions file");
+    let home = scratch("fresh-home");
+    let _ = std::fs::remove_dir_all(&home);
+    std::fs::create_dir_all(&home).unwrap();
+    let bin = std::path::Path::new(env!("CARGO_BIN_EXE_sdfc"))
+        .parent()
+        .unwrap();
+    let path = format!(
+        "{}:{}",
+        bin.display(),
+        std::env::var("PATH").unwrap_or_default()
+    );
+    let out = Command::new("bash")
+        .args(["-euc", &lines.join("\n")])
+        .env("HOME", &home)
+        .env("PATH", path)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let script = home.join(".local/share/bash-completion/completions/sdfc");
+    let text = std::fs::read_to_string(&script).unwrap();
+    assert!(text.contains("_sdfc()"), "{}", &text[..text.len().min(200)]);
 }
 
 /// `--glsl-version 300es` writes GLSL ES 3.00 for the fragment entry and refuses the compute
