@@ -34,11 +34,16 @@ fn describe(
     entry: Entry,
     prefix: Option<&str>,
 ) -> serde_json::Value {
+    let info = emit::validate(m).unwrap_or_else(|e| panic!("{}", e.0));
+    let settings = emit::Settings::default();
+    let (code, reflection) =
+        emit::write_reflected(m, &info, Target::Wgsl, entry, &settings).unwrap();
     let origin = Origin {
         scene: "scene.sdf",
         target: "wgsl",
         entry,
         prefix,
+        written: Some((&code, &reflection)),
     };
     manifest::manifest(scene, m, &origin)
 }

@@ -240,6 +240,41 @@ pub fn write_with(
     entry: Entry,
     settings: &Settings,
 ) -> Result<Output, InternalError> {
+    write_reflected(module, info, target, entry, settings).map(|(out, _)| out)
+}
+
+/// What a back end wrote besides the code: the names a host binds by that only the back end
+/// knows.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Reflection {
+    /// GLSL: each uniform or storage block's name as written (`View_block_0Fragment`), by
+    /// binding — numbered in the order the writer met them, so a WebGL2 host, which binds
+    /// blocks by name, must read them here. Empty for the other targets.
+    pub blocks: Vec<(u32, String)>,
+}
+
+/// [`write_with`], and what the back end named ([`Reflection`]).
+pub fn write_reflected(
+    module: &naga::Module,
+    info: &ModuleInfo,
+    target: Target,
+    entry: Entry,
+    settings: &Settings,
+) -> Result<(Output, Reflection), InternalError> {
+    if target == Target::Glsl {
+        return write_glsl_reflected(module, info, entry, settings);
+    }
+    write_text_or_words(module, info, target, entry, settings).map(|o| (o, Reflection::default()))
+}
+
+/// A target other than GLSL (whose writer has nothing to reflect that a host needs).
+fn write_text_or_words(
+    module: &naga::Module,
+    info: &ModuleInfo,
+    target: Target,
+    entry: Entry,
+    settings: &Settings,
+) -> Result<Output, InternalError> {
     let err =
         |e: &dyn std::fmt::Display| InternalError(format!("the {target:?} back end failed: {e}"));
     let stage = match entry {
@@ -247,11 +282,11 @@ pub fn write_with(
         _ => naga::ShaderStage::Fragment,
     };
     match target {
-        // SPIR-V for Vulkan and GLSL need an entry point: add an empty compute `main` (an
-        // empty fragment one for GLSL ES 3.00, which has no compute); the library functions are
-        // written beside it.
-        Target::Glsl | Target::Spirv if entry == Entry::Library => {
-            write_library_with_main(module, target, settings)
+        // SPIR-V for Vulkan needs an entry point: add an empty compute `main`; the library
+        // functions are written beside it.
+        Target::Spirv if entry == Entry::Library => {
+            let (m, info) = with_main(module, target, settings)?;
+            write_text_or_words(&m, &info, target, Entry::Compute, settings)
         }
         Target::Wgsl => back::wgsl::write_string(module, info, back::wgsl::WriterFlags::empty())
             .map(Output::Text)
@@ -269,7 +304,7 @@ pub fn write_with(
                 .map(Output::Binary)
                 .map_err(|e| err(&e))
         }
-        Target::Glsl => write_glsl(module, info, stage, settings).map_err(|e| err(&e)),
+        Target::Glsl => write_glsl_reflected(module, info, entry, settings).map(|(o, _)| o),
         Target::Msl => {
             let options = back::msl::Options {
                 per_entry_point_map: msl_bindings(module),
@@ -292,14 +327,44 @@ pub fn write_with(
     }
 }
 
-/// A library for SPIR-V or GLSL, which need an entry point: written with an empty compute
-/// `main` (an empty fragment one for GLSL ES 3.00, which has no compute) touching every global;
-/// the library functions are written beside it.
-fn write_library_with_main(
+/// GLSL and the names of its blocks; a library is written with an empty `main`, as SPIR-V's.
+fn write_glsl_reflected(
+    module: &naga::Module,
+    info: &ModuleInfo,
+    entry: Entry,
+    settings: &Settings,
+) -> Result<(Output, Reflection), InternalError> {
+    let err = |e: &dyn std::fmt::Display| InternalError(format!("the Glsl back end failed: {e}"));
+    if entry == Entry::Library {
+        let (m, info) = with_main(module, Target::Glsl, settings)?;
+        let stage = match settings.glsl_version.has_compute() {
+            true => Entry::Compute,
+            false => Entry::Fragment,
+        };
+        return write_glsl_reflected(&m, &info, stage, settings);
+    }
+    let stage = match entry {
+        Entry::Fragment => naga::ShaderStage::Fragment,
+        _ => naga::ShaderStage::Compute,
+    };
+    let (text, reflection) = write_glsl(module, info, stage, settings).map_err(|e| err(&e))?;
+    let mut blocks: Vec<(u32, String)> = reflection
+        .uniforms
+        .iter()
+        .filter_map(|(h, name)| Some((module.global_variables[*h].binding?.binding, name.clone())))
+        .collect();
+    blocks.sort();
+    Ok((Output::Text(text), Reflection { blocks }))
+}
+
+/// A library for SPIR-V or GLSL, which need an entry point: the module with an empty compute
+/// `main` (an empty fragment one for GLSL ES 3.00, which has no compute) touching every global,
+/// validated; the library functions are written beside it.
+fn with_main(
     module: &naga::Module,
     target: Target,
     settings: &Settings,
-) -> Result<Output, InternalError> {
+) -> Result<(naga::Module, ModuleInfo), InternalError> {
     let mut m = module.clone();
     let fragment = target == Target::Glsl && !settings.glsl_version.has_compute();
     m.entry_points.push(naga::EntryPoint {
@@ -318,21 +383,17 @@ fn write_library_with_main(
         incoming_ray_payload: None,
     });
     let info = validate(&m)?;
-    let as_entry = if fragment {
-        Entry::Fragment
-    } else {
-        Entry::Compute
-    };
-    write_with(&m, &info, target, as_entry, settings)
+    Ok((m, info))
 }
 
-/// GLSL of the dialect `settings` asks for, its one entry point `main` of `stage`.
+/// GLSL of the dialect `settings` asks for, its one entry point `main` of `stage`, and what
+/// the writer named.
 fn write_glsl(
     module: &naga::Module,
     info: &ModuleInfo,
     stage: naga::ShaderStage,
     settings: &Settings,
-) -> Result<Output, back::glsl::Error> {
+) -> Result<(String, back::glsl::ReflectionInfo), back::glsl::Error> {
     let options = back::glsl::Options {
         version: settings.glsl_version.naga(),
         binding_map: glsl_bindings(module),
@@ -344,7 +405,7 @@ fn write_glsl(
         multiview: None,
     };
     let mut s = String::new();
-    back::glsl::Writer::new(
+    let reflection = back::glsl::Writer::new(
         &mut s,
         module,
         info,
@@ -352,6 +413,6 @@ fn write_glsl(
         &pipeline,
         naga::proc::BoundsCheckPolicies::default(),
     )
-    .and_then(|mut w| w.write().map(|_| ()))?;
-    Ok(Output::Text(s))
+    .and_then(|mut w| w.write())?;
+    Ok((s, reflection))
 }

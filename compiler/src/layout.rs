@@ -51,6 +51,16 @@ pub fn view_field(name: &str) -> usize {
         .unwrap_or_else(|| panic!("`{name}` is not a field of the View uniform"))
 }
 
+/// Where the fragment entry reads its origin convention: `size.w` (field, component). 0: pixel
+/// coordinates with y down, as WebGPU's, Vulkan's, Metal's and Direct3D's `position`; 1: y up,
+/// as GL's `gl_FragCoord` (the entry flips y itself). Every other entry ignores it.
+pub const FRAGMENT_Y_UP: (&str, usize) = ("size", 3);
+
+/// Where the fragment entry reads its output encoding: `forward.w` (field, component). 0: linear
+/// light, for an sRGB render target; 1: clamped to 0…1 and sRGB-encoded, for a plain 8-bit
+/// target (a WebGL2 canvas). Every other entry ignores it.
+pub const FRAGMENT_SRGB: (&str, usize) = ("forward", 3);
+
 /// The `View` uniform's size in bytes with every field (a module without passes declares the
 /// first six, 96 bytes; a host may always bind all of them).
 pub const VIEW_BYTES: usize = 16 * VIEW_FIELDS.len();

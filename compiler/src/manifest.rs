@@ -2,6 +2,7 @@
 //! drive it (bindings, uniform layouts, parameters, entry points, functions, materials, the
 //! scene's camera and lights), read from the validated module itself. Format: docs/interface.md.
 
+use crate::emit::{Output, Reflection};
 use crate::lower::Entry;
 use crate::scene::{LightKind, Scene, Shadow};
 use naga::{AddressSpace, Module, ScalarKind, TypeInner, VectorSize};
@@ -24,6 +25,9 @@ pub struct Origin<'a> {
     pub entry: Entry,
     /// The `--prefix`, if any.
     pub prefix: Option<&'a str>,
+    /// What the back end wrote, when the manifest describes written code: the functions'
+    /// declarations and GLSL's block names are read from it.
+    pub written: Option<(&'a Output, &'a Reflection)>,
 }
 
 /// The manifest of `module` (already prefixed, if it is) compiled from `scene`.
@@ -40,10 +44,12 @@ pub fn manifest(scene: &Scene, module: &Module, origin: &Origin) -> Value {
         "prefix": origin.prefix,
         "entry_points": entry_points(module),
         "functions": functions(module, origin),
-        "bindings": bindings(module),
+        "bindings": bindings(module, origin),
         "structs": structs(module),
+        "view": view_section(module, origin.prefix),
         "params": params_section(module, origin.prefix, params, size),
         "materials": materials(scene, origin),
+        "fragment": fragment(origin.entry),
         "camera": {
             "eye": c.eye.to_array(),
             "target": c.target.to_array(),
@@ -83,14 +89,19 @@ fn entry_points(module: &Module) -> Vec<Value> {
         .collect()
 }
 
-/// Every bound global, sorted by group and binding.
-fn bindings(module: &Module) -> Vec<Value> {
+/// Every bound global, sorted by group and binding, with GLSL's name of its block.
+fn bindings(module: &Module, origin: &Origin) -> Vec<Value> {
+    let blocks = origin.written.map_or(&[][..], |(_, r)| &r.blocks[..]);
     let mut bindings: Vec<(u32, u32, Value)> = module
         .global_variables
         .iter()
         .filter_map(|(_, g)| {
             let b = g.binding.as_ref()?;
-            Some((b.group, b.binding, binding(module, g, b)))
+            let mut v = binding(module, g, b);
+            if let Some((_, block)) = blocks.iter().find(|(n, _)| *n == b.binding) {
+                v["glsl_block"] = json!(block);
+            }
+            Some((b.group, b.binding, v))
         })
         .collect();
     bindings.sort_by_key(|(g, b, _)| (*g, *b));
@@ -168,9 +179,85 @@ fn functions(module: &Module, origin: &Origin) -> Vec<Value> {
                 .map(|a| json!({"name": a.name, "type": type_name(module, a.ty)}))
                 .collect();
             let result = f.result.as_ref().map(|r| type_name(module, r.ty));
-            Some(json!({"name": full, "arguments": args, "result": result}))
+            let written = origin.written.and_then(|(out, _)| match out {
+                Output::Text(code) => declaration(code, &full),
+                Output::Binary(_) => None,
+            });
+            Some(json!({"name": full, "arguments": args, "result": result, "declaration": written}))
         })
         .collect()
+}
+
+/// The declaration of the function `name` as `code` spells it, up to its body, on one line:
+/// `float map(metal::float3 p, constant Params& params)` in MSL, where naga passes the globals a
+/// function reads as arguments. `None` when no line declares it.
+pub fn declaration(code: &str, name: &str) -> Option<String> {
+    let call = format!("{name}(");
+    let start = code.lines().scan(0, |at, line| {
+        let here = *at;
+        *at += line.len() + 1;
+        Some((here, line))
+    });
+    let (at, _) = start
+        .filter(|(_, l)| !l.starts_with(char::is_whitespace) && !l.trim_end().ends_with(';'))
+        .find(|(_, l)| {
+            l.find(&call)
+                .is_some_and(|i| i > 0 && l[..i].ends_with([' ', '&']))
+        })?;
+    let rest = &code[at..];
+    let open = rest.find(&call)? + call.len() - 1;
+    let mut depth = 0;
+    let close = rest[open..].char_indices().find_map(|(i, c)| {
+        depth += match c {
+            '(' => 1,
+            ')' => -1,
+            _ => 0,
+        };
+        (depth == 0).then_some(open + i)
+    })?;
+    let end = close + rest[close..].find('{')?;
+    let one_line = rest[..end].split_whitespace().collect::<Vec<_>>().join(" ");
+    Some(one_line.replace("( ", "(").replace(" )", ")"))
+}
+
+/// The fragment entry's host conventions (`crate::layout::FRAGMENT_Y_UP`, `FRAGMENT_SRGB`):
+/// which `View` component flips y for GL's origin and which encodes the output to sRGB.
+fn fragment(entry: Entry) -> Value {
+    if entry != Entry::Fragment {
+        return Value::Null;
+    }
+    let flag = |(field, comp): (&str, usize)| json!({"field": field, "component": comp});
+    json!({
+        "output_location": 0,
+        "y_up": flag(crate::layout::FRAGMENT_Y_UP),
+        "srgb": flag(crate::layout::FRAGMENT_SRGB),
+        "writes": "linear light, or sRGB-encoded (clamped to 0..1) when the srgb flag is 1",
+    })
+}
+
+/// The names of the parameters each of a material's or light's settings reads (`syms`
+/// indexed as the settings are in `names`); null when none reads one.
+fn reads(scene: &Scene, syms: &crate::catalog::ArgSyms, names: &[&str]) -> Value {
+    let mut out = serde_json::Map::new();
+    for (name, sym) in names.iter().zip(syms) {
+        let mut read: Vec<String> = Vec::new();
+        for field in sym.iter().flatten() {
+            field.params(&mut |r| {
+                let n = &scene.params[r.index].name;
+                if !read.contains(n) {
+                    read.push(n.clone());
+                }
+            });
+        }
+        if !read.is_empty() {
+            out.insert(name.to_string(), json!(read));
+        }
+    }
+    if out.is_empty() {
+        Value::Null
+    } else {
+        Value::Object(out)
+    }
 }
 
 /// The scene's parameters, each at its offset in the `Params` struct.
@@ -219,6 +306,7 @@ fn materials(scene: &Scene, origin: &Origin) -> Vec<Value> {
             "reflect": m.reflect,
             "transparent": m.transparent,
             "ior": m.ior,
+            "params": reads(scene, &m.sym, &["color", "specular"]),
         });
         if let Some(pt) = &m.pattern {
             let kind = crate::reference::texture::PATTERNS
@@ -253,6 +341,7 @@ fn lights(scene: &Scene) -> Vec<Value> {
                 LightKind::Directional(d) => ("directional", "direction", d),
                 LightKind::Point(p) => ("point", "position", p),
             };
+            let params = reads(scene, &l.sym, &[place, "color", "intensity"]);
             let shadow = match l.shadow {
                 Shadow::None => json!("none"),
                 Shadow::Hard => json!("hard"),
@@ -264,6 +353,7 @@ fn lights(scene: &Scene) -> Vec<Value> {
                 "color": l.color.to_array(),
                 "intensity": l.intensity,
                 "shadow": shadow,
+                "params": params,
             })
         })
         .collect()
@@ -297,6 +387,21 @@ fn params_section(module: &Module, prefix: Option<&str>, fields: Vec<Value>, siz
         _ => Value::Null,
     };
     json!({"struct": name, "binding": binding, "size": size, "fields": fields})
+}
+
+/// The `View` uniform (the camera entries'): its struct's name and binding; null when the
+/// module has none (the library).
+fn view_section(module: &Module, prefix: Option<&str>) -> Value {
+    let name = prefixed(prefix, "View");
+    module
+        .global_variables
+        .iter()
+        .find(|(_, g)| module.types[g.ty].name.as_deref() == Some(name.as_str()))
+        .and_then(|(_, g)| g.binding.as_ref())
+        .map_or(
+            Value::Null,
+            |b| json!({"struct": name, "binding": {"group": b.group, "binding": b.binding}}),
+        )
 }
 
 fn prefixed(prefix: Option<&str>, name: &str) -> String {

@@ -105,21 +105,21 @@ fn main_image(scene: &Scene) -> String {
          \x20   vec3 target = {target};\n\
          \x20   vec3 offset = {eye} - target;\n\
          \x20   float r = length(offset);\n\
-         \x20   float yaw = 0.0;\n\
-         \x20   float pitch = 0.0;\n\
+         \x20   vec3 eye = {eye};\n\
          \x20   if (iMouse.z > 0.0) {{\n\
-         \x20       yaw = (iMouse.x / iResolution.x - 0.5) * 6.2831853;\n\
-         \x20       pitch = (iMouse.y / iResolution.y - 0.5) * 3.0;\n\
+         \x20       float yaw = (iMouse.x / iResolution.x - 0.5) * 6.2831853;\n\
+         \x20       float pitch = (iMouse.y / iResolution.y - 0.5) * 3.0;\n\
+         \x20       float azimuth = atan(offset.x, offset.z) + yaw;\n\
+         \x20       float elevation = clamp(asin(offset.y / r) + pitch, -1.5, 1.5);\n\
+         \x20       eye = target + r * vec3(cos(elevation) * sin(azimuth), sin(elevation), cos(elevation) * cos(azimuth));\n\
          \x20   }}\n\
-         \x20   float azimuth = atan(offset.x, offset.z) + yaw;\n\
-         \x20   float elevation = clamp(asin(offset.y / r) + pitch, -1.5, 1.5);\n\
-         \x20   vec3 eye = target + r * vec3(cos(elevation) * sin(azimuth), sin(elevation), cos(elevation) * cos(azimuth));\n\
          \x20   vec3 forward = normalize(target - eye);\n\
          \x20   vec3 right = normalize(cross(forward, {up}));\n\
          \x20   vec3 up = cross(right, forward);\n\
          \x20   float t = {tan};\n\
-         \x20   vec2 uv = (2.0 * fragCoord - iResolution.xy) / iResolution.y;\n\
-         \x20   vec3 rd = normalize(forward + (right * uv.x + up * uv.y) * t);\n\
+         \x20   // The ray of `sdfc render`'s camera (docs/interface.md); fragCoord's y grows upwards.\n\
+         \x20   vec2 uv = 2.0 * fragCoord / iResolution.xy - 1.0;\n\
+         \x20   vec3 rd = normalize(forward + right * (t * iResolution.x / iResolution.y) * uv.x + up * t * uv.y);\n\
          \x20   vec4 c = color(eye, rd, t / iResolution.y);\n\
          \x20   vec3 lin = clamp(c.rgb, 0.0, 1.0);\n\
          \x20   vec3 srgb = mix(lin * 12.92, 1.055 * pow(lin, vec3(1.0 / 2.4)) - 0.055, step(0.0031308, lin));\n\

@@ -1,7 +1,7 @@
 //! The pinhole camera (Munini §2.1) shared by the GPU's `View` uniform and the CPU reference
 //! tracer, so both trace exactly the same rays.
 
-use crate::layout::{VIEW_BYTES, view_field};
+use crate::layout::{FRAGMENT_SRGB, FRAGMENT_Y_UP, VIEW_BYTES, view_field};
 use crate::scene::Camera;
 use glam::DVec3;
 
@@ -25,6 +25,21 @@ pub struct View {
     /// Where in its pixel the compute entry's ray passes, in pixels from the pixel's corner
     /// (x right, y down): (0.5, 0.5) the centre; other points for anti-aliasing samples.
     pub jitter: [f64; 2],
+    /// The fragment entry's host conventions (`layout::FRAGMENT_Y_UP`, `layout::FRAGMENT_SRGB`):
+    /// GL's origin (y up) and an sRGB-encoded output. Both off for every other host.
+    pub fragment: Fragment,
+}
+
+// Both flags are `w` components, which `View::uniform` writes from its `vecs`.
+const _: () = assert!(FRAGMENT_Y_UP.1 == 3 && FRAGMENT_SRGB.1 == 3);
+
+/// How the fragment entry meets its host: where y starts and what it writes.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Fragment {
+    /// Window y grows upwards (GL's `gl_FragCoord`), not downwards.
+    pub y_up: bool,
+    /// The colour is written sRGB-encoded (for a plain 8-bit target), not linear.
+    pub srgb: bool,
 }
 
 impl View {
@@ -44,6 +59,7 @@ impl View {
             height,
             pixel: t / height as f64,
             jitter: [0.5, 0.5],
+            fragment: Fragment::default(),
         }
     }
 
@@ -82,7 +98,7 @@ impl View {
     /// and `up.w` hold the jitter (x and y).
     pub fn uniform(&self, tile_x: u32, tile_y: u32, pass: [f32; 4]) -> [u8; VIEW_BYTES] {
         let mut out = [0u8; VIEW_BYTES];
-        let vecs = [
+        let mut vecs = [
             (self.eye, 0.0),
             (self.right, self.jitter[0]),
             (self.up, self.jitter[1]),
@@ -92,6 +108,13 @@ impl View {
                 0.0,
             ),
         ];
+        let flag = |on: bool| if on { 1.0 } else { 0.0 };
+        for ((field, _), on) in [
+            (FRAGMENT_Y_UP, self.fragment.y_up),
+            (FRAGMENT_SRGB, self.fragment.srgb),
+        ] {
+            vecs[view_field(field)].1 = flag(on);
+        }
         for (i, (v, w)) in vecs.iter().enumerate() {
             for (j, c) in [v.x, v.y, v.z, *w].iter().enumerate() {
                 let at = 16 * i + 4 * j;

@@ -73,6 +73,7 @@ pub fn render(job: &Job) -> Result<Vec<u8>, String> {
         target: "wgsl",
         entry: Entry::Library,
         prefix: None,
+        written: None,
     };
     let manifest = sdfc_compiler::manifest::manifest(&scene, &module, &origin);
     let params = params_bytes(&manifest, job.values)?;

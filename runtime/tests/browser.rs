@@ -3,7 +3,7 @@
 //! `sdfc render` draws on lavapipe, at the defaults and at other parameter values.
 //!
 //! Needs `chromium-headless-shell` and the page's test driver (`npm ci` in
-//! `examples/hosts/webgpu/test`), which `.ci/run` installs; without them the test says
+//! `examples/hosts/test`), which `.ci/run` installs; without them the test says
 //! SKIPPED loudly, and fails instead when `SDFC_REQUIRE_BROWSER=1` (as `.ci/run` sets).
 
 use crate::common::{compile, examples, gpu, off_by, render, root, scratch, sdfc};
@@ -13,9 +13,9 @@ use std::process::Command;
 
 /// Chromium and the page's test driver, or `None` (said loudly) when they are missing and
 /// `SDFC_REQUIRE_BROWSER` is not set.
-fn browser() -> Option<(String, std::path::PathBuf)> {
+pub(crate) fn browser() -> Option<(String, std::path::PathBuf)> {
     let chrome = std::env::var("CHROME").unwrap_or("/usr/bin/chromium-headless-shell".into());
-    let driver = root().join("examples/hosts/webgpu/test");
+    let driver = root().join("examples/hosts/test");
     let ready = std::path::Path::new(&chrome).exists()
         && driver.join("node_modules/puppeteer-core").exists()
         && Command::new("node").arg("--version").output().is_ok();
@@ -67,7 +67,7 @@ fn the_webgpu_page_draws_what_render_draws() {
         let values: HashMap<String, Vec<f64>> = serde_json::from_str(json).unwrap();
         let raw = dir.join("out.rgba");
         let run = Command::new("node")
-            .arg(driver.join("render.mjs"))
+            .arg(driver.join("webgpu-render.mjs"))
             .args([
                 dir.to_str().unwrap(),
                 "lamp",
@@ -116,7 +116,7 @@ fn the_webgpu_page_draws_what_render_draws() {
 /// Every example's WGSL, for each of the compute, fragment, library and trace entries, with
 /// the default bounding volumes and with every union's tree (`--bvh`), compiled by Chrome's
 /// own WebGPU (Tint's front end, then a compute or render pipeline made of each entry on
-/// SwiftShader; `examples/hosts/webgpu/test/compile.mjs`): none refused. naga's validator
+/// SwiftShader; `examples/hosts/test/webgpu-compile.mjs`): none refused. naga's validator
 /// had passed modules Chrome refuses (`f32::MAX` printed above f32's range, issue 30).
 #[test]
 fn every_example_compiles_in_chromes_webgpu() {
@@ -150,7 +150,7 @@ fn every_example_compiles_in_chromes_webgpu() {
         }
     }
     let run = Command::new("node")
-        .arg(driver.join("compile.mjs"))
+        .arg(driver.join("webgpu-compile.mjs"))
         .arg(&dir)
         .env("CHROME", &chrome)
         .output()

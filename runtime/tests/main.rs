@@ -26,3 +26,4 @@ mod streams;
 mod textures;
 mod tracers;
 mod view;
+mod webgl2;

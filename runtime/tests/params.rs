@@ -21,7 +21,7 @@ const LEVELS: i32 = 2;
 /// axis and about another), an axis parameter, a `mix` weight, an `implicit` body, a
 /// material's colour and specular strength, a light's direction, colour and intensity, and a
 /// colour computed from a parameter.
-const SCENE: &str = "\
+pub(crate) const SCENE: &str = "\
 camera { eye (0, 2.5, -6)  target (0, 0.6, 0) }
 param sun = (-0.4, 1, -0.5) in (-1, 0.5, -1)..(1, 1, 1)
 param warmth = #ffffff

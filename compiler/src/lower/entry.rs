@@ -305,11 +305,31 @@ pub(super) fn add_fragment(
         per_primitive: false,
     });
     let pos = b.arg(0);
-    let pixel = b.swizzle(pos, &[0, 1]);
+    // The host's conventions (`layout::FRAGMENT_Y_UP`, `layout::FRAGMENT_SRGB`): GL's window
+    // origin is bottom-left, and a plain 8-bit target wants sRGB.
+    let size = view_field(&mut b, fns.view(), layout::FRAGMENT_Y_UP.0);
+    let forward = view_field(&mut b, fns.view(), layout::FRAGMENT_SRGB.0);
+    let half = b.f(0.5);
+    let y_up = b.at(size, layout::FRAGMENT_Y_UP.1 as u32);
+    let y_up = b.bin(naga::BinaryOperator::Greater, y_up, half);
+    let srgb = b.at(forward, layout::FRAGMENT_SRGB.1 as u32);
+    let srgb = b.bin(naga::BinaryOperator::Greater, srgb, half);
+    let (x, y, height) = (b.at(pos, 0), b.at(pos, 1), b.at(size, 1));
+    let flipped = b.sub(height, y);
+    let y = b.select(y_up, flipped, y);
+    let v2 = b.m.vec(VectorSize::Bi);
+    let pixel = b.compose(v2, vec![x, y]);
     let traced = trace_pixel(&mut b, fns, pixel, None);
     let s = shade_hit(&mut b, scene, fns, options, floor, traced);
-    let [r, g, bl] = b.xyz(s.color);
-    let one = b.f(1.0);
+    let (zero, one) = (b.f(0.0), b.f(1.0));
+    let (z3, o3) = (
+        b.splat(zero, VectorSize::Tri),
+        b.splat(one, VectorSize::Tri),
+    );
+    let clamped = b.clamp(s.color, z3, o3);
+    let encoded = encode_srgb(&mut b, clamped);
+    let c = b.select(srgb, encoded, s.color);
+    let [r, g, bl] = b.xyz(c);
     let out = b.compose(v4, vec![r, g, bl, one]);
     b.ret(Some(out));
     let f = b.finish();

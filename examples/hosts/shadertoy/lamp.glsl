@@ -355,21 +355,21 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord) {
     vec3 target = vec3(0.0, 1.2, 0.0);
     vec3 offset = vec3(2.5, 3.0, -6.0) - target;
     float r = length(offset);
-    float yaw = 0.0;
-    float pitch = 0.0;
+    vec3 eye = vec3(2.5, 3.0, -6.0);
     if (iMouse.z > 0.0) {
-        yaw = (iMouse.x / iResolution.x - 0.5) * 6.2831853;
-        pitch = (iMouse.y / iResolution.y - 0.5) * 3.0;
+        float yaw = (iMouse.x / iResolution.x - 0.5) * 6.2831853;
+        float pitch = (iMouse.y / iResolution.y - 0.5) * 3.0;
+        float azimuth = atan(offset.x, offset.z) + yaw;
+        float elevation = clamp(asin(offset.y / r) + pitch, -1.5, 1.5);
+        eye = target + r * vec3(cos(elevation) * sin(azimuth), sin(elevation), cos(elevation) * cos(azimuth));
     }
-    float azimuth = atan(offset.x, offset.z) + yaw;
-    float elevation = clamp(asin(offset.y / r) + pitch, -1.5, 1.5);
-    vec3 eye = target + r * vec3(cos(elevation) * sin(azimuth), sin(elevation), cos(elevation) * cos(azimuth));
     vec3 forward = normalize(target - eye);
     vec3 right = normalize(cross(forward, vec3(0.0, 1.0, 0.0)));
     vec3 up = cross(right, forward);
     float t = 0.41421357;
-    vec2 uv = (2.0 * fragCoord - iResolution.xy) / iResolution.y;
-    vec3 rd = normalize(forward + (right * uv.x + up * uv.y) * t);
+    // The ray of `sdfc render`'s camera (docs/interface.md); fragCoord's y grows upwards.
+    vec2 uv = 2.0 * fragCoord / iResolution.xy - 1.0;
+    vec3 rd = normalize(forward + right * (t * iResolution.x / iResolution.y) * uv.x + up * t * uv.y);
     vec4 c = color(eye, rd, t / iResolution.y);
     vec3 lin = clamp(c.rgb, 0.0, 1.0);
     vec3 srgb = mix(lin * 12.92, 1.055 * pow(lin, vec3(1.0 / 2.4)) - 0.055, step(0.0031308, lin));

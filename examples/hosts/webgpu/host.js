@@ -204,7 +204,7 @@ async function main() {
       offset = scale(offset, Math.exp(e.deltaY * 0.001));
     };
     const started = performance.now();
-    // What the page is doing, for its test (examples/hosts/webgpu/test/render.mjs).
+    // What the page is doing, for its test (examples/hosts/test/render.mjs).
     window.sdfcLive = { frames: 0, eye: null };
     const frame = () => {
       const time = m.params.fields.find((f) => f.name === "time");

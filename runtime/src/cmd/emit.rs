@@ -141,21 +141,23 @@ fn compile(
         let info = emit::validate(&m)?;
         Ok((m, info))
     })?;
+    let (out, reflection) = emit::write_reflected(&m, &info, target, entry, &plan.settings)?;
     let described = args.manifest.is_some().then(|| {
         let origin = sdfc_compiler::manifest::Origin {
             scene: name,
             target: target_name(target),
             entry,
             prefix,
+            written: Some((&out, &reflection)),
         };
         sdfc_compiler::manifest::manifest(scene, &m, &origin)
     });
-    let out = emit::write_with(&m, &info, target, entry, &plan.settings).map(|out| match out {
+    let out = match out {
         Output::Text(library) if plan.shadertoy => {
             Output::Text(sdfc_compiler::shadertoy::wrap(&library, scene))
         }
         other => other,
-    })?;
+    };
     Ok((out, described))
 }
 

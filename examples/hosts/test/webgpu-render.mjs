@@ -1,42 +1,17 @@
 // Renders a scene with the WebGPU host page in headless Chromium (WebGPU on SwiftShader) and
 // writes the RGBA8 pixels: what runtime/tests/browser.rs compares with `sdfc render`.
 //
-//   node render.mjs SCENE_DIR NAME WIDTH HEIGHT VALUES_JSON OUT.rgba
+//   node webgpu-render.mjs SCENE_DIR NAME WIDTH HEIGHT VALUES_JSON OUT.rgba
 //
 // SCENE_DIR holds NAME.wgsl and NAME.json (`sdfc emit --entry library --manifest`); the page
-// and host.js are served from this directory's parent. CHROME names the browser
+// and host.js are served from ../webgpu. CHROME names the browser
 // (default /usr/bin/chromium-headless-shell).
-import puppeteer from "puppeteer-core";
-import http from "node:http";
 import fs from "node:fs";
-import path from "node:path";
-import { fileURLToPath } from "node:url";
+import { hostDir, launch, serve } from "./browser.mjs";
 
 const [sceneDir, name, width, height, valuesJson, out] = process.argv.slice(2);
-const pageDir = path.dirname(path.dirname(fileURLToPath(import.meta.url)));
-const types = { ".html": "text/html", ".js": "text/javascript", ".wgsl": "text/plain", ".json": "application/json" };
-const server = http.createServer((req, res) => {
-  const url = decodeURIComponent(new URL(req.url, "http://x").pathname);
-  const file = url.startsWith("/scene/")
-    ? path.join(sceneDir, path.basename(url))
-    : path.join(pageDir, path.basename(url === "/" ? "index.html" : url));
-  fs.readFile(file, (err, data) => {
-    if (err) {
-      res.writeHead(404);
-      res.end();
-      return;
-    }
-    res.writeHead(200, { "content-type": types[path.extname(file)] ?? "application/octet-stream" });
-    res.end(data);
-  });
-});
-await new Promise((ok) => server.listen(0, "127.0.0.1", ok));
-const port = server.address().port;
-const browser = await puppeteer.launch({
-  executablePath: process.env.CHROME ?? "/usr/bin/chromium-headless-shell",
-  headless: "shell",
-  args: ["--no-sandbox", "--enable-unsafe-webgpu", "--enable-features=Vulkan", "--use-angle=swiftshader", "--use-webgpu-adapter=swiftshader"],
-});
+const { server, port } = await serve(hostDir("webgpu"), sceneDir);
+const browser = await launch();
 let code = 0;
 try {
   const page = await browser.newPage();

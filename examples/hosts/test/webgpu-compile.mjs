@@ -1,34 +1,25 @@
 // Compiles WGSL modules with Chrome's own WebGPU (Tint, then SwiftShader's pipeline compiler)
 // in headless Chromium: what runtime/tests/browser.rs checks for every emitted module.
 //
-//   node compile.mjs DIR
+//   node webgpu-compile.mjs DIR
 //
 // Every DIR/*.wgsl is given to `createShaderModule` and its `getCompilationInfo` read; a file
 // named *.compute.wgsl or *.trace.wgsl is also made a compute pipeline of its `main`, and a
 // *.fragment.wgsl a render pipeline of a full-screen triangle and its `main` (rgba8unorm).
 // Prints one line per file (`ok NAME` or `error NAME: message`) and a summary; exits 1 if any
 // file was refused. CHROME names the browser (default /usr/bin/chromium-headless-shell).
-import puppeteer from "puppeteer-core";
-import http from "node:http";
 import fs from "node:fs";
 import path from "node:path";
+import { launch, serve } from "./browser.mjs";
 
 const [dir] = process.argv.slice(2);
 const files = fs.readdirSync(dir).filter((f) => f.endsWith(".wgsl")).sort();
-const server = http.createServer((req, res) => {
-  res.writeHead(200, { "content-type": "text/html" });
-  res.end("<!doctype html><title>sdfc compile</title>");
-});
-await new Promise((ok) => server.listen(0, "127.0.0.1", ok));
-const browser = await puppeteer.launch({
-  executablePath: process.env.CHROME ?? "/usr/bin/chromium-headless-shell",
-  headless: "shell",
-  args: ["--no-sandbox", "--enable-unsafe-webgpu", "--enable-features=Vulkan", "--use-angle=swiftshader", "--use-webgpu-adapter=swiftshader"],
-});
+const { server, port } = await serve(null, null);
+const browser = await launch();
 let refused = 0;
 try {
   const page = await browser.newPage();
-  await page.goto(`http://127.0.0.1:${server.address().port}/`);
+  await page.goto(`http://127.0.0.1:${port}/`);
   await page.evaluate(async () => {
     const adapter = await navigator.gpu.requestAdapter();
     window.device = await adapter.requestDevice({

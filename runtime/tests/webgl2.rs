@@ -1,0 +1,281 @@
+//! sdfc's GLSL ES 3.00 in Chrome's WebGL2 (ANGLE on SwiftShader), as a web page would use it:
+//! every example's fragment entry, library and Shadertoy shader compiles and links, and the
+//! WebGL2 host (`examples/hosts/webgl2`, driven by the manifest alone) draws what `sdfc
+//! render` draws — through both of GL's render targets (a plain RGBA8 one, where the entry
+//! encodes sRGB, and an SRGB8_ALPHA8 one, where GL does), with GL's origin flag and without it.
+//!
+//! Needs what `browser.rs` needs (Chromium and `npm ci` in `examples/hosts/test`).
+
+use crate::browser::browser;
+use crate::common::{compile, examples, gpu, off_by, render, root, scratch, sdfc};
+use sdfc_compiler::view::View;
+use std::collections::HashMap;
+use std::path::Path;
+use std::process::Command;
+
+/// Most 8-bit levels a channel may differ by, and the share of pixels that must be within it.
+const LEVELS: i32 = 2;
+const SHARE: f64 = 0.999;
+
+/// Every example's GLSL ES 3.00 — the fragment entry and the library (whole shaders: the
+/// library has its placeholder `main`), each with the default bounding volumes and every
+/// union's tree (`--bvh`), and the Shadertoy shader inside Shadertoy's prelude — compiled and
+/// linked by Chrome's WebGL2: none refused.
+#[test]
+fn every_example_links_in_chromes_webgl2() {
+    let Some((chrome, driver)) = browser() else {
+        return;
+    };
+    let dir = scratch("webgl2-link");
+    let mut written = 0;
+    for path in &examples() {
+        let stem = path.file_stem().unwrap().to_string_lossy().to_string();
+        let file = path.to_str().unwrap();
+        for (entry, bvh) in [
+            ("fragment", false),
+            ("fragment", true),
+            ("library", false),
+            ("library", true),
+        ] {
+            let out = dir.join(format!(
+                "{stem}.{entry}{}.frag",
+                if bvh { "-bvh" } else { "" }
+            ));
+            let mut args = vec!["emit", file, "--target", "glsl", "--glsl-version", "300es"];
+            args.extend(["--entry", entry, "-q", "-o", out.to_str().unwrap()]);
+            if bvh {
+                args.push("--bvh");
+            }
+            emitted(&args);
+            written += 1;
+        }
+        let toy = dir.join(format!("{stem}.shadertoy.glsl"));
+        emitted(&[
+            "emit",
+            file,
+            "--entry",
+            "shadertoy",
+            "-q",
+            "-o",
+            toy.to_str().unwrap(),
+        ]);
+        written += 1;
+    }
+    let run = node(&chrome, &driver, &["compile", dir.to_str().unwrap()]);
+    let said = String::from_utf8_lossy(&run.stdout).to_string();
+    let refused: Vec<&str> = said.lines().filter(|l| l.starts_with("error")).collect();
+    println!("{}", said.lines().last().unwrap_or(""));
+    assert!(
+        run.status.success() && refused.is_empty(),
+        "WebGL2 refused {} of {written} shaders:\n{}{}",
+        refused.len(),
+        refused.join("\n"),
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let ok = said.lines().filter(|l| l.starts_with("ok ")).count();
+    assert_eq!(ok, written, "{said}");
+    assert!(written >= 16 * 5, "{written}");
+}
+
+/// One picture the page draws and what it must equal.
+struct Job {
+    json: serde_json::Value,
+    scene: String,
+    values: HashMap<String, Vec<f64>>,
+    /// The page drew with y down (the origin flag off in a GL host): the picture is upside down.
+    flipped: bool,
+    /// Alpha is the library's hit flag (the host writes `color`'s `w`).
+    hit_alpha: bool,
+}
+
+/// Five examples (one with parameters, the lamp; some with unions of five parts and more) and a
+/// scene whose material colour, specular, lights and shapes read parameters: each drawn by the
+/// WebGL2 host from its fragment entry into an RGBA8 and an SRGB8_ALPHA8 target, with the
+/// origin flag off (upside down, as a GL host without the flag sees it), from its library, and
+/// as a Shadertoy shader; the parametric ones also at other values. Each equals `sdfc render`
+/// within 2 levels on 99.9% of pixels; the library's hit mask (its alpha) equals render's.
+#[test]
+fn webgl2_draws_what_render_draws() {
+    let Some((chrome, driver)) = browser() else {
+        return;
+    };
+    let dir = scratch("webgl2-draw");
+    let (w, h) = (96u32, 64u32);
+    std::fs::write(dir.join("parametric.sdf"), crate::params::SCENE).unwrap();
+    let mut scenes: Vec<(String, String)> =
+        ["lamp", "composition", "primitives", "shapes", "village"]
+            .iter()
+            .map(|n| {
+                (
+                    n.to_string(),
+                    root()
+                        .join(format!("examples/{n}.sdf"))
+                        .display()
+                        .to_string(),
+                )
+            })
+            .collect();
+    scenes.push((
+        "parametric".into(),
+        dir.join("parametric.sdf").display().to_string(),
+    ));
+    let other: HashMap<&str, &str> = HashMap::from([
+        (
+            "lamp",
+            r#"{"reach": [1.0], "height": [1.7], "time": [2.0]}"#,
+        ),
+        (
+            "parametric",
+            r#"{"tint": [0.2, 0.5, 0.9], "shine": [0.9], "power": [1.4], "sun": [0.6, 0.8, -0.4], "tilt": [0.5], "r": [1.1], "time": [1.5]}"#,
+        ),
+    ]);
+    let mut jobs: Vec<Job> = Vec::new();
+    for (name, file) in &scenes {
+        let at = |s: &str| dir.join(s).display().to_string();
+        let es = ["--target", "glsl", "--glsl-version", "300es"];
+        let mut fragment = vec!["emit", file, "--entry", "fragment", "-q", "-o"];
+        let (frag, json) = (at(&format!("{name}.frag")), at(&format!("{name}.json")));
+        fragment.extend([frag.as_str(), "--manifest", json.as_str()]);
+        fragment.extend(es);
+        emitted(&fragment);
+        let (lib, lib_json) = (
+            at(&format!("{name}-lib.glsl")),
+            at(&format!("{name}-lib.json")),
+        );
+        let mut library = vec!["emit", file, "--entry", "library", "-q", "-o", lib.as_str()];
+        library.extend(["--manifest", lib_json.as_str()]);
+        library.extend(es);
+        emitted(&library);
+        let toy = at(&format!("{name}.shadertoy.glsl"));
+        emitted(&["emit", file, "--entry", "shadertoy", "-q", "-o", &toy]);
+        let source = std::fs::read_to_string(file).unwrap();
+        let scene = compile(&source);
+        let time = scene
+            .params
+            .iter()
+            .find(|p| p.name == "time")
+            .map_or(0.0, |p| p.default.x);
+        let settings = std::iter::once("{}").chain(other.get(name.as_str()).copied());
+        for (k, values) in settings.enumerate() {
+            let parsed: HashMap<String, Vec<f64>> = serde_json::from_str(values).unwrap();
+            let v: serde_json::Value = serde_json::from_str(values).unwrap();
+            let mut add = |json: serde_json::Value, flipped, hit_alpha| {
+                jobs.push(Job {
+                    json,
+                    scene: source.clone(),
+                    values: parsed.clone(),
+                    flipped,
+                    hit_alpha,
+                })
+            };
+            let base = serde_json::json!({"width": w, "height": h, "values": v});
+            let with = |extra: serde_json::Value| {
+                let mut j = base.clone();
+                j.as_object_mut()
+                    .unwrap()
+                    .extend(extra.as_object().unwrap().clone());
+                j
+            };
+            add(
+                with(serde_json::json!({"name": name, "target": "rgba8"})),
+                false,
+                false,
+            );
+            add(
+                with(serde_json::json!({"name": name, "target": "srgb8"})),
+                false,
+                false,
+            );
+            add(
+                with(serde_json::json!({"name": format!("{name}-lib"), "kind": "library"})),
+                false,
+                true,
+            );
+            if k == 0 {
+                add(
+                    with(serde_json::json!({"name": name, "yUp": false})),
+                    true,
+                    false,
+                );
+                add(
+                    with(serde_json::json!({"name": name, "kind": "shadertoy", "time": time})),
+                    false,
+                    false,
+                );
+            }
+        }
+    }
+    let list = serde_json::Value::Array(jobs.iter().map(|j| j.json.clone()).collect());
+    let run = node(
+        &chrome,
+        &driver,
+        &[
+            "render",
+            dir.to_str().unwrap(),
+            &list.to_string(),
+            dir.to_str().unwrap(),
+        ],
+    );
+    assert!(
+        run.status.success(),
+        "the WebGL2 page failed: {}{}",
+        String::from_utf8_lossy(&run.stdout),
+        String::from_utf8_lossy(&run.stderr)
+    );
+    println!("{}", String::from_utf8_lossy(&run.stdout).trim());
+    let gpu = gpu();
+    for (i, job) in jobs.iter().enumerate() {
+        let page = std::fs::read(dir.join(format!("{i}.rgba"))).unwrap();
+        assert_eq!(page.len(), (4 * w * h) as usize);
+        let here = compile(&job.scene).with_values(&job.values);
+        let frame = render(&gpu, &here, &View::new(&here.camera, w, h));
+        let at = |x: usize, y: usize| {
+            4 * (if job.flipped { h as usize - 1 - y } else { y } * w as usize + x)
+        };
+        let (mut within, mut worst, mut masks) = (0, 0, 0);
+        for (k, &px) in frame.color.iter().enumerate() {
+            let c = &page[at(k % w as usize, k / w as usize)..][..4];
+            let d = off_by(px, [c[0].into(), c[1].into(), c[2].into()]);
+            worst = worst.max(d);
+            within += u32::from(d <= LEVELS);
+            masks += u32::from(!job.hit_alpha || (c[3] > 127) == (frame.depth[k] >= 0.0));
+        }
+        let n = frame.color.len() as f64;
+        let (share, mask) = (f64::from(within) / n, f64::from(masks) / n);
+        println!(
+            "{}: within {LEVELS} levels of sdfc render on {:.2}% of pixels (worst {worst}), hit mask equal on {:.2}%",
+            job.json,
+            share * 100.0,
+            mask * 100.0
+        );
+        assert!(
+            share >= SHARE && mask >= SHARE,
+            "{}: {:.2}% / {:.2}%",
+            job.json,
+            share * 100.0,
+            mask * 100.0
+        );
+    }
+}
+
+/// Runs `sdfc` with `args`, which must succeed.
+fn emitted(args: &[&str]) {
+    let out = sdfc(args);
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "sdfc {}: {}",
+        args.join(" "),
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+/// The WebGL2 driver (`examples/hosts/test/webgl2.mjs`) with `args`.
+fn node(chrome: &str, driver: &Path, args: &[&str]) -> std::process::Output {
+    Command::new("node")
+        .arg(driver.join("webgl2.mjs"))
+        .args(args)
+        .env("CHROME", chrome)
+        .output()
+        .unwrap()
+}
