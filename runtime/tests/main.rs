@@ -11,6 +11,7 @@ mod cli;
 mod device;
 mod extremes;
 mod field;
+mod fragment;
 mod golden;
 mod host;
 mod hostile;
