@@ -188,6 +188,22 @@ pub fn have(tool: &str) -> bool {
     ok
 }
 
+/// Appends `line` to `target/real-clients.log`, the tally of every module each real compiler
+/// or client accepted, which `.ci/run` prints after the tests (the test harness hides a
+/// passing test's output).
+pub fn report(line: &str) {
+    use std::io::Write;
+    println!("{line}");
+    let path = root().join("target/real-clients.log");
+    if let Ok(mut f) = std::fs::OpenOptions::new()
+        .create(true)
+        .append(true)
+        .open(path)
+    {
+        let _ = writeln!(f, "{line}");
+    }
+}
+
 /// Runs `tool` on `file` with `args`; fails the test with its output if it refuses.
 pub fn run_tool(tool: &str, args: &[&str], file: &Path, what: &str) {
     let out = std::process::Command::new(tool)

@@ -205,6 +205,22 @@ pub fn sdfc(args: &[&str]) -> Output {
         .expect("run sdfc")
 }
 
+/// Appends `line` to `target/real-clients.log`, the tally of what each real client (Chrome's
+/// WebGPU and WebGL2, the Vulkan driver) accepted and drew, which `.ci/run` prints after the
+/// tests (the harness hides a passing test's output).
+pub fn report(line: &str) {
+    use std::io::Write;
+    println!("{line}");
+    let path = root().join("target/real-clients.log");
+    if let Ok(mut f) = std::fs::OpenOptions::new()
+        .create(true)
+        .append(true)
+        .open(path)
+    {
+        let _ = writeln!(f, "{line}");
+    }
+}
+
 /// The workspace root.
 pub fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
