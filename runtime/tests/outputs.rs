@@ -204,7 +204,49 @@ fn version_completions_and_man_page() {
         page.contains(".TH sdfc") && page.contains("render"),
         "{page}"
     );
+    // Every page sdfc(1) points to exists: `sdfc man --dir` writes one per subcommand.
+    let pages = dir.join("man1");
+    let o = sdfc(&["man", "--dir", pages.to_str().unwrap()]);
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let named: Vec<String> = page
+        .split("sdfc\\-")
+        .skip(1)
+        .filter_map(|rest| rest.split_once("(1)").map(|(n, _)| format!("sdfc-{n}.1")))
+        .collect();
+    assert!(named.len() >= 6, "sdfc(1) names {named:?}");
+    for file in &named {
+        let text = std::fs::read_to_string(pages.join(file)).unwrap_or_default();
+        let sub = file.trim_end_matches(".1");
+        assert!(text.contains(&format!(".TH {sub}")), "{file}: {text:.200}");
+    }
+    let o = sdfc(&["man", "render"]);
+    assert!(String::from_utf8_lossy(&o.stdout).contains(".TH sdfc-render"));
+    let o = sdfc(&["man", "renderr"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("is no subcommand"));
     let _ = std::fs::remove_dir_all(dir);
+}
+
+/// The README's `render` synopsis is the one the command line's definition gives (`sdfc man
+/// render --synopsis`): every flag there, in its order, none missing.
+#[test]
+fn the_readmes_render_synopsis_is_the_clis() {
+    let o = sdfc(&["man", "render", "--synopsis"]);
+    let synopsis = String::from_utf8_lossy(&o.stdout).to_string();
+    assert!(synopsis.starts_with("sdfc render FILE"), "{synopsis}");
+    for flag in ["--param", "--time", "--frames", "--watch", "--channel"] {
+        assert!(synopsis.contains(flag), "{flag}: {synopsis}");
+    }
+    let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
+    assert!(
+        readme.contains(&format!("```sh\n{synopsis}```")),
+        "the README's render synopsis is stale: replace it with `sdfc man render --synopsis`:\n{synopsis}"
+    );
 }
 
 /// The README's lines that install the bash completions work on a fresh machine (a home
@@ -214,7 +256,7 @@ fn the_readmes_completions_lines_work_in_a_fresh_home() {
     let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
     let lines: Vec<&str> = readme
         .lines()
-        .filter(|l| l.contains("bash-completion/completions"))
+        .filter(|l| l.contains("bash-completion/completions") || l.starts_with("sdfc man --dir"))
         .map(|l| l.split("   #").next().unwrap().trim())
         .collect();
     assert!(!lines.is_empty(), "the README names no completions file");
@@ -243,6 +285,12 @@ fn the_readmes_completions_lines_work_in_a_fresh_home() {
     let script = home.join(".local/share/bash-completion/completions/sdfc");
     let text = std::fs::read_to_string(&script).unwrap();
     assert!(text.contains("_sdfc()"), "{}", &text[..text.len().min(200)]);
+    let page = home.join(".local/share/man/man1/sdfc-render.1");
+    assert!(
+        page.exists(),
+        "the README's man line wrote no {}",
+        page.display()
+    );
 }
 
 /// `--glsl-version 300es` writes GLSL ES 3.00 for the fragment entry and refuses the compute

@@ -298,3 +298,55 @@ fn frames_stay_in_the_range_of_time() {
     );
     assert!(!out.exists());
 }
+
+/// `--param` takes what the parameter's declared kind takes: an angle needs its unit (a bare
+/// number was read as radians behind the user's back), any other kind takes none, and only a
+/// colour takes `#rrggbb`; each refusal names the parameter and how to write it.
+#[test]
+fn param_units_follow_the_declared_kind() {
+    let dir = common::scratch("param-units");
+    let scene = common::write(&dir, "scene.sdf", SCENE);
+    let out = dir.join("out.png");
+    let run = |param: &str| {
+        let args = [
+            "render", &scene, "--size", "16x12", "-q", "--param", param, "-o",
+        ];
+        common::sdfc(&[&args[..], &[out.to_str().unwrap()]].concat())
+    };
+    for (param, said) in [
+        (
+            "tilt=0.5",
+            "`tilt` is an angle: give its unit\nhelp: `tilt=0.5deg` or `tilt=0.5rad`",
+        ),
+        (
+            "r=30deg",
+            "`r` is a number, not an angle: write it without `deg` or `rad`",
+        ),
+        ("lift=0,1rad,0", "`lift` is a vector, not an angle"),
+        (
+            "r=#ff0000",
+            "`r` is a number, not a colour: `#rrggbb` is for colours",
+        ),
+    ] {
+        let o = run(param);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(1), "--param {param}: {err}");
+        assert!(err.contains(said), "--param {param}: {err}");
+        assert!(!err.contains("panicked"), "{err}");
+    }
+    for param in [
+        "tilt=0.5rad",
+        "tilt=20deg",
+        "tint=#ff8800",
+        "tint=1,0.5,0",
+        "r=1",
+    ] {
+        let o = run(param);
+        assert_eq!(
+            o.status.code(),
+            Some(0),
+            "--param {param}: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+    }
+}

@@ -25,21 +25,38 @@ fn xvfb() -> bool {
     ok
 }
 
-/// `sdfc view` under a fresh Xvfb display, its standard error in `log`.
+/// `sdfc view` under a fresh Xvfb display, its standard error in `log`; while it runs, the X
+/// server's window titles are read from outside (`xwininfo`, five times a second) into
+/// `log` + `.titles`.
 fn view(args: &[&str], log: &Path) -> Child {
+    // (xvfb-run runs one command: a shell that starts the viewer, polls the titles, and exits
+    // with the viewer's status.)
+    let script = format!(
+        "\"$@\" & pid=$!; while kill -0 $pid 2>/dev/null; do xwininfo -root -tree 2>/dev/null | grep -o '\"[^\"]*\"' >> '{}'; sleep 0.2; done; wait $pid",
+        titles(log).display()
+    );
     Command::new("xvfb-run")
         .args([
             "-a",
             "-s",
             "-screen 0 1280x1024x24",
-            env!("CARGO_BIN_EXE_sdfc"),
-            "view",
+            "sh",
+            "-c",
+            &script,
+            "sh",
         ])
+        .arg(env!("CARGO_BIN_EXE_sdfc"))
+        .arg("view")
         .args(args)
         .stdout(Stdio::null())
         .stderr(std::fs::File::create(log).unwrap())
         .spawn()
         .unwrap()
+}
+
+/// Where [`view`] keeps the window titles it saw.
+fn titles(log: &Path) -> std::path::PathBuf {
+    log.with_extension("titles")
 }
 
 /// Waits for `file` to appear (whole: a rename) or the child to end.
@@ -230,7 +247,18 @@ fn the_window_follows_the_file() {
         "the window closed on a broken save"
     );
     std::fs::remove_file(&scene).unwrap();
-    std::thread::sleep(Duration::from_millis(500));
+    // The title says the viewer waits for the file (read from the X server, from outside).
+    let name = scene.display().to_string();
+    wait_until(
+        "a title that waits",
+        &mut child,
+        &log,
+        Duration::from_secs(20),
+        || {
+            std::fs::read_to_string(titles(&log))
+                .is_ok_and(|t| t.contains(&format!("waiting for {name}")))
+        },
+    );
     let third = BASE.replace("sphere(0.8)", "capsule(1, 0.4)");
     std::fs::write(&scene, &third).unwrap();
     wait_for(&shot(3), &mut child, &log);
@@ -246,6 +274,12 @@ fn the_window_follows_the_file() {
     for needle in ["error: unclosed", "scene.sdf:1:7", "deleted", "reloaded"] {
         assert!(said.contains(needle), "`{needle}` not said:\n{said}");
     }
+    let seen = std::fs::read_to_string(titles(&log)).unwrap();
+    let last = seen.lines().rfind(|l| l.contains("evals/px")).unwrap();
+    assert!(
+        last.contains(" ms, ") && !last.contains("waiting"),
+        "the title once the file is back: {last}"
+    );
     println!("{said}");
 }
 
@@ -454,5 +488,52 @@ fn watch_follows_imported_files() {
             .contains("fn sd_capsule(")
     );
     let _ = child.kill();
+    let _ = child.wait();
+}
+
+/// `--quit-after` counts finished pictures whether or not they are saved: a still scene with a
+/// one-step script makes two and closes by itself at `--quit-after 2`; asked for three, it
+/// says it will wait for a save of the file to make the third.
+#[test]
+fn quit_after_counts_pictures_without_screenshots() {
+    if !xvfb() {
+        return;
+    }
+    let dir = scratch("view-quit");
+    let (scene, log) = (dir.join("scene.sdf"), dir.join("view.log"));
+    std::fs::write(&scene, BASE).unwrap();
+    let file = scene.to_str().unwrap();
+    let common = [
+        file,
+        "--size",
+        "64x48",
+        "--script",
+        "zoom 2",
+        "--quit-after",
+    ];
+    let mut child = view(&[&common[..], &["2"]].concat(), &log);
+    let start = Instant::now();
+    let status = loop {
+        if let Some(status) = child.try_wait().unwrap() {
+            break status;
+        }
+        assert!(
+            start.elapsed() < Duration::from_secs(90),
+            "`--quit-after 2` did not close the window:\n{}",
+            std::fs::read_to_string(&log).unwrap_or_default()
+        );
+        std::thread::sleep(Duration::from_millis(50));
+    };
+    assert!(
+        status.success(),
+        "{}",
+        std::fs::read_to_string(&log).unwrap()
+    );
+    let mut child = view(&[&common[..], &["3"]].concat(), &log);
+    let note = "note: `--quit-after 3`: this still scene makes 2 pictures";
+    wait_until(note, &mut child, &log, Duration::from_secs(90), || {
+        std::fs::read_to_string(&log).is_ok_and(|s| s.contains(note))
+    });
+    child.kill().unwrap();
     let _ = child.wait();
 }

@@ -123,10 +123,15 @@ pub struct RenderArgs {
     /// The scene file (`-` for standard input).
     pub file: PathBuf,
     /// Output file: `.png`, or `.npy` for raw f32 depth (`-`: a PNG to standard output).
-    #[arg(short = 'o', long = "output", visible_alias = "out")]
+    #[arg(
+        short = 'o',
+        long = "output",
+        visible_alias = "out",
+        value_name = "OUT"
+    )]
     pub output: PathBuf,
     /// Image size.
-    #[arg(long, default_value = "1280x720")]
+    #[arg(long, default_value = "1280x720", value_name = "WxH")]
     pub size: String,
     #[command(flatten)]
     pub tracer: TracerArgs,
@@ -139,19 +144,20 @@ pub struct RenderArgs {
     /// Samples per pixel for anti-aliasing: a square number (a stratified grid), accumulated
     /// at the output's size. Default: 4 for `--channel color` (1 when the scene's tracer
     /// does Hart's cone anti-aliasing), 1 for the other channels.
-    #[arg(long)]
+    #[arg(long, value_name = "N")]
     pub samples: Option<u32>,
     /// Render a shader larger than the driver compiles in reasonable time (more than
     /// 4 096 calls of distance functions; docs/stability.md).
     #[arg(long)]
     pub allow_slow_compile: bool,
-    /// Set a scene parameter: `NAME=VALUE` (a number, an angle with `deg`, `x,y,z` or
-    /// `#rrggbb`); repeat for several. It must be within the parameter's range.
+    /// Set a scene parameter: `NAME=VALUE` (a number; an angle with its unit, `30deg` or
+    /// `0.5rad`; `x,y,z`; a colour as `#rrggbb` or `r,g,b`); repeat for several. It must be
+    /// within the parameter's range.
     #[arg(long = "param", value_name = "NAME=VALUE")]
     pub params: Vec<String>,
     /// The scene's `time`, in seconds (default 0); with `--frames`, added to each frame
     /// k's k/fps.
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_hyphen_values = true, value_name = "T")]
     pub time: Option<f64>,
     /// Render an animation of `time`: frames START to END (excluded), each `1/fps` s
     /// after the one before, to an animated GIF (`-o anim.gif`) or numbered PNGs
@@ -159,7 +165,7 @@ pub struct RenderArgs {
     #[arg(long, value_name = "START..END")]
     pub frames: Option<String>,
     /// Frames per second of `--frames`.
-    #[arg(long, default_value_t = 30, requires = "frames")]
+    #[arg(long, default_value_t = 30, requires = "frames", value_name = "N")]
     pub fps: u32,
     /// Render again on every save of the scene file, until interrupted.
     #[arg(long)]
@@ -186,7 +192,8 @@ pub struct ViewArgs {
     /// Input to replay, one step per finished picture: `drag DX DY; pan DX DY; zoom N; key K`.
     #[arg(long)]
     pub script: Option<String>,
-    /// Close after this many screenshots.
+    /// Close after this many finished pictures, saved or not (a still scene makes one, then one
+    /// per script step and per save of its file; a running `time` makes one per frame).
     #[arg(long, value_name = "N")]
     pub quit_after: Option<u32>,
     /// Hold the scene's `time` at T seconds (space lets it run); it runs with the clock
@@ -268,6 +275,15 @@ pub struct CompletionsArgs {
 /// `sdfc man`'s arguments.
 #[derive(Args)]
 pub struct ManArgs {
+    /// A subcommand's page (`sdfc man render`: sdfc-render(1)) instead of sdfc(1).
+    pub subcommand: Option<String>,
+    /// Write every page — sdfc.1 and one per subcommand, sdfc-render.1… — into this folder
+    /// (created if missing), for `man -M` or a MANPATH entry.
+    #[arg(long, value_name = "DIR", conflicts_with_all = ["subcommand", "output"])]
+    pub dir: Option<PathBuf>,
+    /// The subcommand's synopsis as plain text (the README's is this), not a page.
+    #[arg(long, requires = "subcommand")]
+    pub synopsis: bool,
     /// Output file (default, or `-`: standard output).
     #[arg(short, long)]
     pub output: Option<PathBuf>,

@@ -27,7 +27,58 @@ pub fn exit_code(result: Result<(), Error>) -> i32 {
 
 /// Reads and checks a scene, printing diagnostics; `None` (after printing) when it has errors.
 pub fn load_scene(path: &Path) -> Option<(Sources, sdfc_compiler::scene::Scene)> {
-    load_scene_with(path, &std::collections::HashMap::new())
+    load_scene_with(path, &ParamArgs::default())
+}
+
+/// How a `--param` value was written: what its parameter's kind must accept.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Written {
+    /// Numbers without a unit.
+    Plain,
+    /// Numbers with `deg` or `rad`.
+    Angle,
+    /// `#rrggbb`.
+    Hex,
+}
+
+/// The `--param`s and `--time` of a command: the values (angles in radians) and how each was
+/// written, which the parameter's declared kind must accept.
+#[derive(Clone, Debug, Default)]
+pub struct ParamArgs {
+    /// Values by name.
+    pub values: std::collections::HashMap<String, Vec<f64>>,
+    /// How each `--param` was written, in the order given.
+    pub written: Vec<(String, String, Written)>,
+}
+
+/// A `--param` written in a way its parameter's kind does not take: an angle needs its unit
+/// (`30deg`, `0.5rad`: a bare number is not read as radians behind the user's back), any other
+/// kind takes none, and only a colour takes `#rrggbb`.
+fn unit_error(scene: &sdfc_compiler::scene::Scene, args: &ParamArgs) -> Option<String> {
+    use sdfc_compiler::scene::ParamKind;
+    args.written.iter().find_map(|(name, text, written)| {
+        let p = scene.params.iter().find(|p| &p.name == name)?;
+        let why = match (p.kind, written) {
+            (ParamKind::Angle, Written::Plain) => format!(
+                "`{name}` is an angle: give its unit\nhelp: `{name}={}deg` or `{name}={}rad`",
+                text.trim(),
+                text.trim()
+            ),
+            (ParamKind::Angle, Written::Angle) | (_, Written::Plain) => return None,
+            (ParamKind::Color, Written::Hex) => return None,
+            (kind, Written::Angle) => format!(
+                "`{name}` is a {}, not an angle: write it without `deg` or `rad`",
+                kind.name()
+            ),
+            (kind, Written::Hex) => {
+                format!(
+                    "`{name}` is a {}, not a colour: `#rrggbb` is for colours",
+                    kind.name()
+                )
+            }
+        };
+        Some(format!("error: `--param {name}={}`: {why}", text.trim()))
+    })
 }
 
 /// [`load_scene`] with `values` for parameters (`sdfc render --param`): they are checked as
@@ -36,8 +87,9 @@ pub fn load_scene(path: &Path) -> Option<(Sources, sdfc_compiler::scene::Scene)>
 /// uniform only.
 pub fn load_scene_with(
     path: &Path,
-    values: &std::collections::HashMap<String, Vec<f64>>,
+    args: &ParamArgs,
 ) -> Option<(Sources, sdfc_compiler::scene::Scene)> {
+    let values = &args.values;
     let (name, source) = match read_source(path) {
         Ok(x) => x,
         Err(e) => {
@@ -52,6 +104,12 @@ pub fn load_scene_with(
     } = compile(&name, &source, &std::collections::HashMap::new());
     if let Some(scene) = &scene {
         diagnostics.extend(lipschitz::verify_annotations(scene, Effort::Fast));
+    }
+    if let Some(e) = scene.as_ref().and_then(|s| unit_error(s, args))
+        && !diagnostics.iter().any(|d| d.is_error())
+    {
+        say!("{e}");
+        return None;
     }
     if scene.is_some() && !values.is_empty() {
         // The values must be valid: the diagnostics of the scene checked at them (its
@@ -121,11 +179,9 @@ pub fn compile(
 
 /// `--param NAME=VALUE`s and `--time T` as values for [`load_scene_with`]: a VALUE is a number
 /// (an angle in radians, or with `deg`), `x,y,z` for a vector, or `#rrggbb` for a colour.
-pub fn param_values(
-    params: &[String],
-    time: Option<f64>,
-) -> Result<std::collections::HashMap<String, Vec<f64>>, Error> {
+pub fn param_values(params: &[String], time: Option<f64>) -> Result<ParamArgs, Error> {
     let mut out = std::collections::HashMap::new();
+    let mut written = Vec::new();
     for p in params {
         let bad = |why: &str| {
             format!(
@@ -135,6 +191,17 @@ pub fn param_values(
         let (name, value) = p.split_once('=').ok_or_else(|| bad("no `=`"))?;
         let name = name.trim();
         let value = value.trim();
+        let how = if value.starts_with('#') {
+            Written::Hex
+        } else if value
+            .split(',')
+            .any(|x| x.trim().ends_with("deg") || x.trim().ends_with("rad"))
+        {
+            Written::Angle
+        } else {
+            Written::Plain
+        };
+        written.push((name.to_string(), value.to_string(), how));
         let parsed: Vec<f64> = if let Some(hex) = value.strip_prefix('#') {
             let digits: Option<Vec<u32>> = hex.chars().map(|c| c.to_digit(16)).collect();
             match (digits, hex.len()) {
@@ -177,7 +244,10 @@ pub fn param_values(
             return Err("error: give the time with `--time` or `--param time=`, not both".into());
         }
     }
-    Ok(out)
+    Ok(ParamArgs {
+        values: out,
+        written,
+    })
 }
 
 /// Reads a scene file or standard input; the error is a message for the user. At most the

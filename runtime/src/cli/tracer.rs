@@ -10,42 +10,42 @@ use sdfc_compiler::lower::tracer::BoundingVolumes;
 #[derive(Args, Debug, Default)]
 pub struct TracerArgs {
     /// Tracer to use instead of the scene's: basic, relaxed, enhanced, hybrid, auto.
-    #[arg(long)]
+    #[arg(long, value_name = "NAME")]
     pub tracer: Option<String>,
     /// Step budget (evaluations of the field per ray).
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_hyphen_values = true, value_name = "N")]
     pub steps: Option<String>,
     /// Hit threshold: a distance, or `pixel` for the pixel footprint.
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_hyphen_values = true, value_name = "E|pixel")]
     pub epsilon: Option<String>,
     /// Rays stop beyond this distance.
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_hyphen_values = true, value_name = "D")]
     pub max_distance: Option<String>,
     /// Relaxation ω (relaxed: [1, 2); enhanced: [0.5, 2)).
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_hyphen_values = true, value_name = "W")]
     pub omega: Option<String>,
     /// Weight of the slope average (auto).
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_hyphen_values = true, value_name = "B")]
     pub beta: Option<String>,
     /// Linear-search step in units of ε (hybrid).
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_hyphen_values = true, value_name = "K")]
     pub linear: Option<String>,
     /// Regula falsi iterations (hybrid).
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_hyphen_values = true, value_name = "N")]
     pub refine: Option<String>,
     /// Discontinuity-reduction iterations after a hit (Keinert §3.4).
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_hyphen_values = true, value_name = "N")]
     pub discontinuity: Option<String>,
     /// Hart's cone anti-aliasing (`cone`, basic tracer) or `none`.
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_hyphen_values = true, value_name = "cone|none")]
     pub antialias: Option<String>,
     /// After a failed relaxed step: `keep` ω (Bálint & Valasek Alg. 2) or `reset` it to 1
     /// (Keinert Listing 2); relaxed tracer.
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_hyphen_values = true, value_name = "reset|keep")]
     pub fallback: Option<String>,
     /// Multi-resolution passes (Bálint §4): 2 (1/2 then full resolution), 4 or 6; 1 is a
     /// single pass. Compute entry only.
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, value_name = "1|2|4|6")]
     pub passes: u32,
     /// Ignore the scene's `bound` block (trace every ray from the camera).
     #[arg(long)]

@@ -26,7 +26,7 @@ pub fn run() -> i32 {
     messages::configure(cli.message_format, cli.color, cli.quiet);
     match cli.command {
         Command::Completions(args) => shell::completions(args.shell, args.output.as_deref()),
-        Command::Man(args) => shell::man(args.output.as_deref()),
+        Command::Man(args) => shell::man(&args),
         Command::Check(args) => check::run(&args),
         Command::Emit(args) => emit::run(&args),
         Command::Render(args) => render::run(&args),

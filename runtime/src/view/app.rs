@@ -34,6 +34,10 @@ pub struct App {
     script: VecDeque<Step>,
     /// Whether the file on disk has errors (the picture is the last good one).
     broken: bool,
+    /// Whether the file is gone (deleted or moved away): the title says the viewer waits.
+    pub(super) missing: bool,
+    /// When the title last changed: it follows the frame time while the picture moves.
+    titled: std::cell::Cell<Option<Instant>>,
     watcher: SceneWatcher,
     /// The window and what draws to it, once it is open.
     pub(super) started: Option<Started>,
@@ -94,6 +98,8 @@ impl App {
             saved: 0,
             script,
             broken: false,
+            missing: false,
+            titled: std::cell::Cell::new(None),
             watcher,
             started: None,
         }
@@ -142,7 +148,25 @@ impl App {
             live,
         });
         self.title();
+        self.say_what_quits();
         Ok(())
+    }
+
+    /// With `--quit-after N`, says when fewer than N pictures will come by themselves: a still
+    /// scene makes one picture, then one per script step and per save of its file.
+    fn say_what_quits(&self) {
+        let (Some(n), Some(started)) = (self.args.quit_after, &self.started) else {
+            return;
+        };
+        let coming = 1 + self.script.len() as u32;
+        if started.live.animated() || n <= coming {
+            return;
+        }
+        say!(
+            "note: `--quit-after {n}`: this still scene makes {coming} picture{} (one, then one per script step); the window closes after {n}, counting a new picture at each save of {}",
+            if coming == 1 { "" } else { "s" },
+            self.args.file.display()
+        );
     }
 
     pub(super) fn title(&self) {
@@ -153,11 +177,14 @@ impl App {
         let method = sdfc_compiler::check::tracer::method_entry(live.method()).0;
         let (s, evals) = live.stats;
         let (width, height) = live.size();
-        let status = if self.broken {
-            " — error, see terminal"
+        let status = if self.missing {
+            format!(" — waiting for {}", self.args.file.display())
+        } else if self.broken {
+            " — error, see terminal".to_string()
         } else {
-            ""
+            String::new()
         };
+        self.titled.set(Some(Instant::now()));
         let param = live
             .scene
             .params
@@ -196,8 +223,15 @@ impl App {
             gpu.configure(&started.surface, &started.config);
             started.window.request_redraw();
         }
-        if picture.finished {
+        // While the picture moves, the frame time in the title four times a second.
+        let stale = self
+            .titled
+            .get()
+            .is_none_or(|t| t.elapsed() >= std::time::Duration::from_millis(250));
+        if picture.finished || stale {
             self.title();
+        }
+        if picture.finished {
             self.screenshot(event_loop, &picture)?;
             if let Some(step) = self.script.pop_front() {
                 self.apply(event_loop, step);
@@ -211,20 +245,20 @@ impl App {
         event_loop: &ActiveEventLoop,
         picture: &Picture,
     ) -> Result<(), Error> {
-        let Some(dir) = &self.args.screenshots else {
-            return Ok(());
-        };
-        let path = dir.join(format!("{:03}.png", self.shots));
-        let bytes = sdfc::images::png(picture.rgba.clone(), picture.size.0, picture.size.1)?;
-        write_file(&path, &bytes)?;
-        let (seconds, evals) = self.started.as_ref().map_or((0.0, 0.0), |s| s.live.stats);
-        say!(
-            "screenshot {} ({}×{}, last frame {:.1} ms, {evals:.1} evaluations per pixel)",
-            path.display(),
-            picture.size.0,
-            picture.size.1,
-            seconds * 1000.0
-        );
+        // Every finished picture counts for `--quit-after`, saved or not.
+        if let Some(dir) = &self.args.screenshots {
+            let path = dir.join(format!("{:03}.png", self.shots));
+            let bytes = sdfc::images::png(picture.rgba.clone(), picture.size.0, picture.size.1)?;
+            write_file(&path, &bytes)?;
+            let (seconds, evals) = self.started.as_ref().map_or((0.0, 0.0), |s| s.live.stats);
+            say!(
+                "screenshot {} ({}×{}, last frame {:.1} ms, {evals:.1} evaluations per pixel)",
+                path.display(),
+                picture.size.0,
+                picture.size.1,
+                seconds * 1000.0
+            );
+        }
         self.shots += 1;
         if self.args.quit_after.is_some_and(|n| self.shots >= n) {
             event_loop.exit();
@@ -263,6 +297,7 @@ impl App {
             Some((scene, options)) => match live.replace(scene, options) {
                 Ok(()) => {
                     self.broken = false;
+                    self.missing = false;
                     say!(
                         "reloaded {} in {:.0} ms",
                         self.args.file.display(),
@@ -277,6 +312,7 @@ impl App {
             None => {
                 // The diagnostics are printed; the last good picture stays.
                 self.broken = true;
+                self.missing = !self.args.file.exists();
                 say!("the picture is the last one that checked; fix the file and save again");
                 let (rgba, size) = (live.last_picture(), live.size());
                 let picture = Picture {

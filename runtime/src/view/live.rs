@@ -164,7 +164,8 @@ impl Live {
             || self.animated()
     }
 
-    fn animated(&self) -> bool {
+    /// Whether `time` runs: every frame is then a new picture.
+    pub fn animated(&self) -> bool {
         self.paused.is_none() && self.scene.params.iter().any(|p| p.name == TIME)
     }
 

@@ -24,10 +24,14 @@ impl ApplicationHandler<Watched> for App {
     fn user_event(&mut self, _: &ActiveEventLoop, event: Watched) {
         match event {
             Watched::Changed => self.reload_at = Some(Instant::now() + SETTLE),
-            Watched::Gone => say!(
-                "`{}` was deleted or moved away; watching for it to come back",
-                self.args.file.display()
-            ),
+            Watched::Gone => {
+                say!(
+                    "`{}` was deleted or moved away; watching for it to come back",
+                    self.args.file.display()
+                );
+                self.missing = true;
+                self.title();
+            }
         }
     }
 

@@ -145,7 +145,7 @@ fn prepare(args: &RenderArgs, (w, h): (u32, u32), started: Instant) -> Result<Jo
     let calls = check_driver_size(&module, (&sources, &scene), args.allow_slow_compile)?;
     let gpu = Gpu::new(args.backend.into())?;
     // The defaults' module, the values in its uniform only (as a host sets them).
-    let valued = scene.with_values(&values);
+    let valued = scene.with_values(&values.values);
     gpu.set_params(&sdfc_compiler::lower::params::bytes(&valued.params));
     if calls >= SLOW_COMPILE {
         // The driver compiles the shader at pipeline creation, silently.
