@@ -1,15 +1,17 @@
-// Renders a scene with the WebGPU host page in headless Chromium (WebGPU on SwiftShader) and
-// writes the RGBA8 pixels: what runtime/tests/browser.rs compares with `sdfc render`.
+// Renders scenes with the WebGPU host page in headless Chromium (WebGPU on SwiftShader) and
+// writes their RGBA8 pixels: what runtime/tests/browser.rs compares with `sdfc render`.
 //
-//   node webgpu-render.mjs SCENE_DIR NAME WIDTH HEIGHT VALUES_JSON OUT.rgba
+//   node webgpu-render.mjs SCENE_DIR JOBS_JSON OUT_DIR LIVE_NAME
 //
-// SCENE_DIR holds NAME.wgsl and NAME.json (`sdfc emit --entry library --manifest`); the page
-// and host.js are served from ../webgpu. CHROME names the browser
-// (default /usr/bin/chromium-headless-shell).
+// JOBS_JSON is a list of {name, width, height, values}: each draws NAME.wgsl with NAME.json
+// (`sdfc emit --entry library --manifest`, in SCENE_DIR) into OUT_DIR/I.rgba (rows with y
+// down). Then the live page is opened on LIVE_NAME: sliders, frames, a drag. The page and
+// host.js are served from ../webgpu. CHROME names the browser (default
+// /usr/bin/chromium-headless-shell).
 import fs from "node:fs";
 import { hostDir, launch, serve } from "./browser.mjs";
 
-const [sceneDir, name, width, height, valuesJson, out] = process.argv.slice(2);
+const [sceneDir, jobsJson, outDir, name] = process.argv.slice(2);
 const { server, port } = await serve(hostDir("webgpu"), sceneDir);
 const browser = await launch();
 let code = 0;
@@ -19,23 +21,23 @@ try {
   page.on("console", (m) => logs.push(m.text()));
   page.on("pageerror", (e) => logs.push(String(e)));
   await page.goto(`http://127.0.0.1:${port}/index.html?test`);
-  const pixels = await page.evaluate(
-    async (name, w, h, values) => {
-      const host = await import("./host.js");
-      const px = await host.renderPixels(`scene/${name}`, w, h, values);
-      return Array.from(px);
-    },
-    name,
-    Number(width),
-    Number(height),
-    JSON.parse(valuesJson),
-  );
-  fs.writeFileSync(out, Buffer.from(pixels));
+  const jobs = JSON.parse(jobsJson);
+  for (const [i, job] of jobs.entries()) {
+    const pixels = await page.evaluate(
+      async (job) => {
+        const host = await import("./host.js");
+        const px = await host.renderPixels(`scene/${job.name}`, job.width, job.height, job.values ?? {});
+        return Array.from(px);
+      },
+      job,
+    );
+    fs.writeFileSync(`${outDir}/${i}.rgba`, Buffer.from(pixels));
+  }
   const adapter = await page.evaluate(async () => {
     const a = await navigator.gpu.requestAdapter();
     return a?.info ? `${a.info.vendor} ${a.info.architecture} ${a.info.description}`.trim() : "unknown";
   });
-  console.log(`rendered ${width}x${height} with WebGPU (${adapter})`);
+  console.log(`rendered ${jobs.length} pictures with WebGPU (${adapter})`);
   // The interactive page on the same scene: a slider per parameter component, frames drawn,
   // no error shown, and dragging turns the camera (the picture changes).
   const live = await browser.newPage();

@@ -73,7 +73,8 @@ function paramsBytes(manifest, values) {
  * manifest declares it) and encodes sRGB.
  */
 function libraryShader(code, manifest) {
-  const color = manifest.functions.find((f) => f.name.endsWith("color"));
+  const color = manifest.functions.find((f) => f.name === (manifest.prefix ? `${manifest.prefix}_color` : "color"));
+  if (!color?.declaration) throw new Error("the manifest declares no `color`: emit with --entry library");
   const name = color.declaration.match(/(\w+)\(/)[1];
   const body = code.replace(/\nvoid main\(\) \{[\s\S]*\n\}\s*$/, "\n");
   if (body === code) throw new Error("the library has no placeholder main");

@@ -6,7 +6,9 @@
 // Files it loads, written by:  sdfc emit SCENE.sdf --entry library -o scene.wgsl --manifest scene.json
 // (the page's `?scene=NAME` loads NAME.wgsl and NAME.json instead).
 
-const HOST_WGSL = /* wgsl */ `
+// The host's own shader: a full-screen triangle, and the pixel's ray given to the library's
+// `color` (its name from the manifest, so a `--prefix`ed library works too).
+const HOST_WGSL = (color) => /* wgsl */ `
 struct HostCamera {
   eye: vec4<f32>,
   right: vec4<f32>,
@@ -32,7 +34,7 @@ fn host_fragment(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f3
   let u = 2.0 * position.x / camera.size.x - 1.0;
   let v = 1.0 - 2.0 * position.y / camera.size.y;
   let rd = normalize(camera.forward.xyz + camera.right.xyz * u + camera.up.xyz * v);
-  let c = color(camera.eye.xyz, rd, camera.size.z);
+  let c = ${color}(camera.eye.xyz, rd, camera.size.z);
   // The canvas is not sRGB: encode here (the library's colours are linear).
   return vec4<f32>(host_srgb(c.rgb), 1.0);
 }
@@ -83,7 +85,9 @@ export async function createHost(base, format) {
   const adapter = await navigator.gpu.requestAdapter();
   if (!adapter) throw new Error("no WebGPU adapter");
   const device = await adapter.requestDevice();
-  const module = device.createShaderModule({ code: library + "\n" + HOST_WGSL });
+  const color = manifest.functions.find((f) => f.name === (manifest.prefix ? `${manifest.prefix}_color` : "color"));
+  if (!color) throw new Error("the manifest lists no `color`: emit with --entry library");
+  const module = device.createShaderModule({ code: library + "\n" + HOST_WGSL(color.name) });
   const info = await module.getCompilationInfo();
   const errors = info.messages.filter((m) => m.type === "error");
   if (errors.length) throw new Error(errors.map((m) => `${m.lineNum}:${m.linePos} ${m.message}`).join("\n"));
