@@ -328,7 +328,8 @@ fn let_names_cannot_collide_with_reserved_words() {
 }
 
 /// `--spirv-version`: every example, every entry, SPIR-V 1.0 (Vulkan 1.0; storage buffers by
-/// SPV_KHR_storage_buffer_storage_class), 1.3 (Vulkan 1.1) and 1.6 (Vulkan 1.3), each through
+/// SPV_KHR_storage_buffer_storage_class), 1.3 (Vulkan 1.1), 1.5 (Vulkan 1.2) and 1.6 (Vulkan
+/// 1.3), each through
 /// `spirv-val` for the matching environment.
 #[test]
 fn every_spirv_version_validates_for_its_vulkan() {
@@ -346,6 +347,7 @@ fn every_spirv_version_validates_for_its_vulkan() {
             for (version, env) in [
                 ((1, 0), "vulkan1.0"),
                 ((1, 3), "vulkan1.1"),
+                ((1, 5), "vulkan1.2"),
                 ((1, 6), "vulkan1.3"),
             ] {
                 let settings = emit::Settings {
@@ -374,7 +376,7 @@ fn every_spirv_version_validates_for_its_vulkan() {
         }
     }
     sdfc_tests::report(&format!(
-        "spirv-val, SPIR-V 1.0/1.3/1.6 for vulkan1.0/1.1/1.3: {checked} modules, 0 refused"
+        "spirv-val, SPIR-V 1.0/1.3/1.5/1.6 for vulkan1.0/1.1/1.2/1.3: {checked} modules, 0 refused"
     ));
     assert!(checked >= 100, "only {checked}");
 }

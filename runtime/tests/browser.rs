@@ -186,6 +186,18 @@ fn every_example_compiles_in_chromes_webgpu() {
             }
         }
     }
+    // And the scenes the suites aim at the edges: the compute and fragment entries.
+    for (stem, scene) in crate::common::edge_scenes() {
+        let options = Options::from_scene(&scene);
+        for (entry, name) in [(Entry::Compute, "compute"), (Entry::Fragment, "fragment")] {
+            let (m, info) = emit::module(&scene, entry, &options).unwrap();
+            let Output::Text(code) = emit::write(&m, &info, Target::Wgsl, entry).unwrap() else {
+                unreachable!("WGSL is text")
+            };
+            std::fs::write(dir.join(format!("{stem}.{name}.wgsl")), code).unwrap();
+            written += 1;
+        }
+    }
     let run = Command::new("node")
         .arg(driver.join("webgpu-compile.mjs"))
         .arg(&dir)
@@ -205,7 +217,7 @@ fn every_example_compiles_in_chromes_webgpu() {
     let ok = said.lines().filter(|l| l.starts_with("ok ")).count();
     assert_eq!(ok, written, "{said}");
     crate::common::report(&format!(
-        "Chrome's WebGPU (Tint + SwiftShader pipelines): {ok} of {written} WGSL modules (every example x compute/fragment/library/trace x default/--bvh), 0 refused"
+        "Chrome's WebGPU (Tint + SwiftShader pipelines): {ok} of {written} WGSL modules (every example x compute/fragment/library/trace x default/--bvh; hostile and extremes scenes x compute/fragment), 0 refused"
     ));
-    assert!(written >= 16 * 8, "{written}");
+    assert!(written >= 16 * 8 + 2 * 20, "{written}");
 }

@@ -8,7 +8,7 @@
 //! are printed (`--nocapture`) and, with `SDFC_STABILITY_DOC=path`, written into that file
 //! between its markers (`bash scripts/stability.sh`).
 
-mod cases;
+pub(crate) mod cases;
 use crate::common::{compile, gpu};
 use cases::{Case, cases};
 use glam::DVec3;

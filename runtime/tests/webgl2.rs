@@ -61,6 +61,24 @@ fn every_example_links_in_chromes_webgl2() {
         ]);
         written += 1;
     }
+    // And the scenes the suites aim at the edges: the fragment entry.
+    let es300 = sdfc_compiler::emit::Settings {
+        glsl_version: sdfc_compiler::emit::GlslVersion::Es300,
+        ..Default::default()
+    };
+    for (stem, scene) in crate::common::edge_scenes() {
+        use sdfc_compiler::emit::{self, Output, Target};
+        use sdfc_compiler::lower::{Entry, tracer::Options};
+        let (m, info) =
+            emit::module(&scene, Entry::Fragment, &Options::from_scene(&scene)).unwrap();
+        let Output::Text(code) =
+            emit::write_with(&m, &info, Target::Glsl, Entry::Fragment, &es300).unwrap()
+        else {
+            unreachable!("GLSL is text")
+        };
+        std::fs::write(dir.join(format!("{stem}.fragment.frag")), code).unwrap();
+        written += 1;
+    }
     let run = node(&chrome, &driver, &["compile", dir.to_str().unwrap()]);
     let said = String::from_utf8_lossy(&run.stdout).to_string();
     let refused: Vec<&str> = said.lines().filter(|l| l.starts_with("error")).collect();
@@ -75,9 +93,9 @@ fn every_example_links_in_chromes_webgl2() {
     let ok = said.lines().filter(|l| l.starts_with("ok ")).count();
     assert_eq!(ok, written, "{said}");
     crate::common::report(&format!(
-        "Chrome's WebGL2 (ANGLE): {ok} of {written} GLSL ES 3.00 shaders (every example x fragment/library x default/--bvh, Shadertoy) compiled and linked, 0 refused"
+        "Chrome's WebGL2 (ANGLE): {ok} of {written} GLSL ES 3.00 shaders (every example x fragment/library x default/--bvh, Shadertoy; hostile and extremes scenes' fragment entries) compiled and linked, 0 refused"
     ));
-    assert!(written >= 16 * 5, "{written}");
+    assert!(written >= 16 * 5 + 20, "{written}");
 }
 
 /// One picture the page draws and what it must equal.

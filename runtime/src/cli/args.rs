@@ -89,8 +89,9 @@ pub struct EmitArgs {
     /// Output file (default, or `-`: standard output; SPIR-V only when it is not a terminal).
     #[arg(short, long)]
     pub output: Option<PathBuf>,
-    /// SPIR-V version to write: 1.0 (Vulkan 1.0; the compute entry's storage buffers through
-    /// the SPV_KHR_storage_buffer_storage_class extension) to 1.6.
+    /// SPIR-V version to write: 1.0 (Vulkan 1.0; the compute entry's storage buffers then need
+    /// the VK_KHR_storage_buffer_storage_class device extension) to 1.6. 1.3 by default: Vulkan
+    /// 1.1, where storage buffers need no extension.
     #[arg(long, value_enum, default_value = "1.3")]
     pub spirv_version: SpirvVersion,
     /// GLSL dialect: 450 (desktop core, Vulkan-style bindings), 310es (OpenGL ES 3.1) or

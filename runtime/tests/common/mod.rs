@@ -205,6 +205,35 @@ pub fn sdfc(args: &[&str]) -> Output {
         .expect("run sdfc")
 }
 
+/// Scenes the suites aim at the edges, for the real clients: every hostile scene that checks
+/// (`tests/hostile/`) and every case of the extremes suite (scales from 1e-4 to 1e4, tiny ε,
+/// huge budgets…), by name.
+pub fn edge_scenes() -> Vec<(String, Scene)> {
+    let dir = root().join("runtime/tests/hostile");
+    let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "sdf"))
+        .collect();
+    files.sort();
+    let hostile = files.into_iter().filter_map(|p| {
+        let text = String::from_utf8(std::fs::read(&p).ok()?).ok()?;
+        let scene = sdfc_compiler::check::compile(&text).scene?;
+        Some((
+            format!("hostile-{}", p.file_stem()?.to_string_lossy()),
+            scene,
+        ))
+    });
+    let extremes = crate::extremes::cases::cases()
+        .into_iter()
+        .enumerate()
+        .filter_map(|(i, c)| {
+            let scene = sdfc_compiler::check::compile(&c.source).scene?;
+            Some((format!("extremes-{i:02}"), scene))
+        });
+    hostile.chain(extremes).collect()
+}
+
 /// Appends `line` to `target/real-clients.log`, the tally of what each real client (Chrome's
 /// WebGPU and WebGL2, the Vulkan driver) accepted and drew, which `.ci/run` prints after the
 /// tests (the harness hides a passing test's output).
