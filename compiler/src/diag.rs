@@ -147,7 +147,8 @@ pub fn render_sources(diagnostics: &[Diagnostic], sources: &Sources, color: bool
     };
     let config = term::Config::default();
     let mut out = String::new();
-    for d in diagnostics.iter().take(MAX_SHOWN) {
+    let (shown, totals) = shown(diagnostics);
+    for d in shown.iter().copied() {
         let (id, range) = place(d.span);
         let (name, source) = match sources.files.get(id) {
             Some(f) => (f.name.as_str(), f.text.as_str()),
@@ -182,16 +183,56 @@ pub fn render_sources(diagnostics: &[Diagnostic], sources: &Sources, color: bool
         .with_notes(d.notes.iter().map(|n| shorten(n)).collect());
         emit(&mut out, &config, &files, &diagnostic, color);
     }
-    if diagnostics.len() > MAX_SHOWN {
-        let rest = &diagnostics[MAX_SHOWN..];
-        let errors = rest.iter().filter(|d| d.is_error()).count();
-        out += &format!(
-            "… and {} more ({errors} errors, {} warnings) not shown\n",
-            rest.len(),
-            rest.len() - errors
-        );
+    if let Some(line) = totals.rest() {
+        out += &line;
+        out.push('\n');
     }
     out
+}
+
+/// What a report holds: how many errors and warnings there are and how many it shows.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Totals {
+    /// Errors in all.
+    pub errors: usize,
+    /// Warnings in all.
+    pub warnings: usize,
+    /// Errors shown.
+    pub errors_shown: usize,
+    /// Warnings shown.
+    pub warnings_shown: usize,
+}
+
+impl Totals {
+    /// The line that counts what is not shown, if anything is not.
+    pub fn rest(&self) -> Option<String> {
+        let errors = self.errors - self.errors_shown;
+        let warnings = self.warnings - self.warnings_shown;
+        (errors + warnings > 0).then(|| {
+            format!(
+                "… and {} more ({errors} errors, {warnings} warnings) not shown",
+                errors + warnings
+            )
+        })
+    }
+}
+
+/// The diagnostics a report shows, in the order it shows them — every error before any
+/// warning (a file of 19 700 warnings hid its one error behind the first hundred), each kind in
+/// the order found — at most [`MAX_SHOWN`]; and the totals. Every format shows the same ones.
+pub fn shown(diagnostics: &[Diagnostic]) -> (Vec<&Diagnostic>, Totals) {
+    let errors = diagnostics.iter().filter(|d| d.is_error());
+    let warnings = diagnostics.iter().filter(|d| !d.is_error());
+    let shown: Vec<&Diagnostic> = errors.chain(warnings).take(MAX_SHOWN).collect();
+    let errors_shown = shown.iter().filter(|d| d.is_error()).count();
+    let errors = diagnostics.iter().filter(|d| d.is_error()).count();
+    let totals = Totals {
+        errors,
+        warnings: diagnostics.len() - errors,
+        errors_shown,
+        warnings_shown: shown.len() - errors_shown,
+    };
+    (shown, totals)
 }
 
 /// A message, label or note cut to [`MAX_LINE`] characters (a 100 000-character name quoted

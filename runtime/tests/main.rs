@@ -9,6 +9,7 @@ mod blends;
 mod browser;
 mod cli;
 mod device;
+mod diagnostics;
 mod extremes;
 mod field;
 mod fragment;

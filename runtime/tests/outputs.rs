@@ -346,7 +346,9 @@ fn diagnostics_as_json_and_in_colour() {
         .lines()
         .map(|l| serde_json::from_str(l).unwrap_or_else(|e| panic!("{e}: {l}")))
         .collect();
-    assert_eq!(lines.len(), 2, "{lines:?}");
+    // Two errors and the summary object.
+    assert_eq!(lines.len(), 3, "{lines:?}");
+    assert_eq!(lines[2]["summary"]["errors"], 2, "{lines:?}");
     let colour = &lines[0];
     assert_eq!(colour["file"], file);
     assert_eq!(colour["severity"], "error");

@@ -1,6 +1,7 @@
 //! How diagnostics reach the user: codespan's report, coloured on a terminal (`--color`,
 //! honouring `NO_COLOR`), or one JSON object per diagnostic (`--message-format json`) for
-//! editors and CI. (Only the scene's diagnostics: other errors — a file that cannot be read,
+//! editors and CI, then one `{"summary": …}` object with the totals; both show the same
+//! diagnostics: errors first, at most `diag::MAX_SHOWN`. (Only the scene's diagnostics: other errors — a file that cannot be read,
 //! a bad flag — stay `error: …` lines.) And the one line of success, unless `--quiet`.
 
 use sdfc_compiler::diag::{self, Diagnostic, Severity, Span};
@@ -60,10 +61,25 @@ pub fn report(diagnostics: &[Diagnostic], sources: &Sources) -> String {
     let (format, colored) = STYLE.get().copied().unwrap_or((Format::Human, false));
     match format {
         Format::Human => diag::render_sources(diagnostics, sources, colored),
-        Format::Json => diagnostics
-            .iter()
-            .map(|d| json(d, sources).to_string() + "\n")
-            .collect(),
+        Format::Json => {
+            // The same diagnostics as the human report, in its order and with its cap, then a
+            // summary object with the totals.
+            let (shown, totals) = diag::shown(diagnostics);
+            let mut out: String = shown
+                .iter()
+                .map(|d| json(d, sources).to_string() + "\n")
+                .collect();
+            if !diagnostics.is_empty() {
+                let summary = serde_json::json!({"summary": {
+                    "errors": totals.errors,
+                    "warnings": totals.warnings,
+                    "errors_shown": totals.errors_shown,
+                    "warnings_shown": totals.warnings_shown,
+                }});
+                out += &(summary.to_string() + "\n");
+            }
+            out
+        }
     }
 }
 
