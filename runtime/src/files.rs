@@ -26,6 +26,13 @@ pub fn write_file(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
     };
+    if !dir.is_dir() {
+        // (Said plainly: the temporary file's error would name a path the user never gave.)
+        return Err(std::io::Error::new(
+            std::io::ErrorKind::NotFound,
+            format!("the folder `{}` does not exist", dir.display()),
+        ));
+    }
     // Created with 0666 less the umask, as any new file; a replaced file keeps its mode.
     #[cfg(unix)]
     let mode = {

@@ -6,6 +6,7 @@ mod common;
 
 mod bench;
 mod blends;
+mod bounded;
 mod browser;
 mod cli;
 mod device;

@@ -55,6 +55,7 @@ fn hostile_streams_end_cleanly() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(1), "{err}");
     assert!(err.contains("larger than the source limit"), "{err}");
+    assert!(err.contains("/dev/zero:1:1:"), "{err}");
     // Invalid UTF-8 is located by line and column.
     let bad = d.join("bad.sdf");
     std::fs::write(&bad, b"sphere(1)\nsphere(2) \xff\n").unwrap();

@@ -177,6 +177,10 @@ pub fn compile(
     check::compile_file(name, source, values, &sdfc_compiler::syntax::FsLoader)
 }
 
+/// The largest `--time` (or `--param time=`) in seconds, either side of 0: f32 resolves it to
+/// 1/16 s there (`docs/language.md`).
+pub const MAX_TIME: f64 = 1e6;
+
 /// `--param NAME=VALUE`s and `--time T` as values for [`load_scene_with`]: a VALUE is a number
 /// (an angle in radians, or with `deg`), `x,y,z` for a vector, or `#rrggbb` for a colour.
 pub fn param_values(params: &[String], time: Option<f64>) -> Result<ParamArgs, Error> {
@@ -229,13 +233,19 @@ pub fn param_values(params: &[String], time: Option<f64>) -> Result<ParamArgs, E
                 })
                 .collect::<Result<_, _>>()?
         };
+        if name == sdfc_compiler::check::TIME && parsed.iter().any(|t| t.abs() > MAX_TIME) {
+            return Err(bad(&format!(
+                "give a time within ±{MAX_TIME:e} seconds (the shader computes in f32)"
+            ))
+            .into());
+        }
         if out.insert(name.to_string(), parsed).is_some() {
             return Err(format!("error: `--param {name}` is given twice").into());
         }
     }
     if let Some(t) = time {
-        if !t.is_finite() {
-            return Err(format!("error: `--time {t}` is not a finite number of seconds").into());
+        if !t.is_finite() || t.abs() > MAX_TIME {
+            return Err(format!("error: `--time {}`: give a time within ±{MAX_TIME:e} seconds\nnote: the shader computes in f32: at 1e6 s its time steps are 1/16 s, and at 1e39 it overflows (the shape vanished)", if t.abs() >= 1e6 { format!("{t:e}") } else { t.to_string() }).into());
         }
         if out
             .insert(sdfc_compiler::check::TIME.to_string(), vec![t])
@@ -267,7 +277,7 @@ pub fn read_source(path: &Path) -> Result<(String, String), Error> {
     let bytes = sdfc_compiler::syntax::read_limited(reader)
         .map_err(|e| format!("error: cannot read `{name}`: {e}"))?
         .ok_or_else(|| {
-            format!("error: `{name}` is larger than the source limit of {limit} bytes (4 MiB)")
+            format!("error: {name}:1:1: the file is larger than the source limit of {limit} bytes (4 MiB)")
         })?;
     let text = sdfc_compiler::syntax::decode(bytes)
         .map_err(|why| format!("error: cannot read `{name}`: {why}"))?;

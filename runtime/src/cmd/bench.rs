@@ -58,11 +58,7 @@ fn bench(args: &BenchArgs) -> Result<(), Error> {
     let (w, h) = parse_size(&args.size)?;
     check_flags(args)?;
     let reference = match args.reference.as_deref() {
-        Some(p) => Some((
-            std::fs::read_to_string(p)
-                .map_err(|e| format!("error: cannot read the reference `{}`: {e}", p.display()))?,
-            p.display().to_string(),
-        )),
+        Some(p) => Some((read_reference(p)?, p.display().to_string())),
         None => None,
     };
     check_passes(args.passes)?;
@@ -109,10 +105,40 @@ fn bench(args: &BenchArgs) -> Result<(), Error> {
     print(args, &report)
 }
 
+/// The most bytes `--reference` reads: a bench's JSON is a few kilobytes (`/dev/zero` was read
+/// for 3.6 GB before failing).
+const MAX_REFERENCE_BYTES: u64 = 16 << 20;
+
+/// The most rounds `--repeat` runs (each times every cell once; a billion ran until killed).
+const MAX_REPEAT: u32 = 1000;
+
+/// The `--reference` file's text, read at most [`MAX_REFERENCE_BYTES`].
+fn read_reference(p: &std::path::Path) -> Result<String, Error> {
+    use std::io::Read;
+    let bad = |why: String| format!("error: cannot read the reference `{}`: {why}", p.display());
+    let file = std::fs::File::open(p).map_err(|e| bad(e.to_string()))?;
+    let mut bytes = Vec::new();
+    file.take(MAX_REFERENCE_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .map_err(|e| bad(e.to_string()))?;
+    if bytes.len() as u64 > MAX_REFERENCE_BYTES {
+        return Err(bad(format!(
+            "it is larger than {} MiB, and a `sdfc bench --json` output is a few kilobytes",
+            MAX_REFERENCE_BYTES >> 20
+        ))
+        .into());
+    }
+    String::from_utf8(bytes).map_err(|_| bad("it is not UTF-8 text".into()).into())
+}
+
 /// Refuses flags out of their ranges.
 fn check_flags(args: &BenchArgs) -> Result<(), Error> {
-    if args.repeat == 0 {
-        return Err("error: `--repeat` must be at least 1".into());
+    if args.repeat == 0 || args.repeat > MAX_REPEAT {
+        return Err(format!(
+            "error: `--repeat {}`: give 1 to {MAX_REPEAT} rounds (each times every cell once)",
+            args.repeat
+        )
+        .into());
     }
     if let Some(e) = args.target_error
         && !(e > 0.0 && e.is_finite())

@@ -29,6 +29,22 @@ pub fn write_output(path: Option<&Path>, bytes: &[u8], binary: bool) -> i32 {
     }
 }
 
+/// Whether `path` (a file, or `-` for standard output) can be written as far as can be known
+/// before writing: its folder exists. The error says which folder is missing.
+pub fn writable(path: &Path) -> Result<(), String> {
+    if path == Path::new("-") {
+        return Ok(());
+    }
+    match path.parent() {
+        Some(dir) if !dir.as_os_str().is_empty() && !dir.is_dir() => Err(format!(
+            "error: cannot write `{}`: the folder `{}` does not exist",
+            path.display(),
+            dir.display()
+        )),
+        _ => Ok(()),
+    }
+}
+
 /// Writes a whole file, printing the error; the exit code.
 pub fn write_whole(path: &Path, bytes: &[u8]) -> i32 {
     match write_file(path, bytes) {

@@ -1,6 +1,6 @@
 //! `sdfc emit`: a scene to WGSL, SPIR-V, GLSL, MSL or HLSL, written whole or not at all.
 
-use super::common::{write_output, write_whole};
+use super::common::write_output;
 use crate::cli::input::load_scene;
 use crate::cli::values::{EntryArg, TargetArg};
 use crate::cli::{EmitArgs, Error};
@@ -168,11 +168,36 @@ fn write(args: &EmitArgs, plan: &Plan, out: &Output, manifest: Option<serde_json
         Output::Binary(words) => words.iter().flat_map(|w| w.to_le_bytes()).collect(),
     };
     let output = args.output.as_deref();
-    let code = write_output(output, &bytes, matches!(out, Output::Binary(_)));
-    if let (0, Some(path), Some(m)) = (code, args.manifest.as_deref(), manifest) {
-        let text = serde_json::to_string_pretty(&m).expect("JSON") + "\n";
-        if write_whole(path, text.as_bytes()) != 0 {
+    // Both outputs or neither: every folder is checked before anything is written.
+    let stdout = |p: Option<&Path>| p.is_none_or(|p| p == Path::new("-"));
+    if args.manifest.is_some() && stdout(output) && stdout(args.manifest.as_deref()) {
+        say!(
+            "error: the shader and `--manifest -` would both go to standard output: give one of them a file"
+        );
+        return 1;
+    }
+    for path in [output, args.manifest.as_deref()].into_iter().flatten() {
+        if let Err(e) = super::common::writable(path) {
+            say!("{e}");
             return 1;
+        }
+    }
+    // Standard output first (the write that cannot be foreseen to fail: a full disk, a closed
+    // pipe), so that a failure there leaves no file written.
+    let shader = (output, bytes.as_slice(), matches!(out, Output::Binary(_)));
+    let text = manifest.map(|m| serde_json::to_string_pretty(&m).expect("JSON") + "\n");
+    let described = args
+        .manifest
+        .as_deref()
+        .zip(text.as_deref())
+        .map(|(p, t)| (Some(p), t.as_bytes(), false));
+    let mut writes: Vec<_> = std::iter::once(shader).chain(described).collect();
+    writes.sort_by_key(|(p, _, _)| !stdout(*p));
+    let mut code = 0;
+    for (path, bytes, binary) in writes {
+        code = write_output(path, bytes, binary);
+        if code != 0 {
+            return code;
         }
     }
     if code == 0 {
