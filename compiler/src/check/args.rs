@@ -2,7 +2,7 @@
 
 use super::Checker;
 use crate::catalog::{self, Param, Ty, Val};
-use crate::diag::{Diagnostic, Span, did_you_mean};
+use crate::diag::{Diagnostic, Span};
 use crate::syntax::{Arg, ExprKind};
 
 /// Which arguments of a call or settings block may be computed from parameters.
@@ -190,7 +190,7 @@ impl Checker<'_> {
                         format!("`{what}` has no parameter `{}`", name.name),
                     )
                     .label("unknown parameter");
-                    d = match did_you_mean(&name.name, params.iter().map(|p| p.name)) {
+                    d = match self.did_you_mean(&name.name, params.iter().map(|p| p.name)) {
                         Some(s) => d.help(format!("did you mean `{s}`?")),
                         None => d.help(format!(
                             "the parameters are: {}",

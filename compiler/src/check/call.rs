@@ -4,7 +4,7 @@
 use super::args::RunTime;
 use super::{Binding, Checker, Value};
 use crate::catalog::{self, Arity};
-use crate::diag::{Diagnostic, did_you_mean};
+use crate::diag::Diagnostic;
 use crate::scene::{NodeId, NodeKind};
 use crate::syntax::{Call, Ident};
 
@@ -203,7 +203,7 @@ impl Checker<'_> {
             .map(str::to_string)
             .chain(self.fns.keys().cloned())
             .collect();
-        d = match did_you_mean(name, candidates.iter().map(String::as_str)) {
+        d = match self.did_you_mean(name, candidates.iter().map(String::as_str)) {
             Some(s) => d.help(format!("did you mean `{s}`?")),
             None => d.note("`sdfc check --list` prints the primitives and operators"),
         };
@@ -304,7 +304,7 @@ impl Checker<'_> {
                 let mut d = Diagnostic::error(id.span, format!("unknown material `{}`", id.name))
                     .label("no such material");
                 let names: Vec<&str> = self.materials.iter().map(|m| m.name.as_str()).collect();
-                d = match did_you_mean(&id.name, names) {
+                d = match self.did_you_mean(&id.name, names) {
                     Some(s) => d.help(format!("did you mean `{s}`?")),
                     None => d.help(format!(
                         "declare it: `material {} {{ color #d4af37 }}`",

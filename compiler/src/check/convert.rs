@@ -3,7 +3,7 @@
 
 use super::{Checker, Dim, Value};
 use crate::catalog::{self, Ty, Val};
-use crate::diag::{Diagnostic, did_you_mean};
+use crate::diag::Diagnostic;
 use crate::scene::Field;
 use crate::syntax::{Expr, ExprKind};
 use glam::DVec3;
@@ -61,7 +61,7 @@ impl Checker<'_> {
                             format!("`{param}` must be {}", ty.describe()),
                         )
                         .label(format!("`{}` is not a word it knows", id.name));
-                        if let Some(w) = did_you_mean(&id.name, words.iter().copied()) {
+                        if let Some(w) = self.did_you_mean(&id.name, words.iter().copied()) {
                             d = d.help(format!("did you mean `{w}`?"));
                         }
                         self.diags.push(d);

@@ -5,7 +5,7 @@
 use super::params::{Sym, SymKind};
 use super::{Checker, Dim, MAX_DEPTH, Value};
 use crate::catalog;
-use crate::diag::{Diagnostic, Span, did_you_mean};
+use crate::diag::{Diagnostic, Span};
 use crate::scene::{Field, NodeId};
 use crate::syntax::{BinOp, Expr, ExprKind, Ident};
 use glam::DVec3;
@@ -256,7 +256,7 @@ impl Checker<'_> {
             None => {
                 let mut d = Diagnostic::error(unit.span, format!("unknown unit `{}`", unit.name))
                     .label("not a unit");
-                d = match did_you_mean(&unit.name, UNITS.iter().map(|(u, _)| *u)) {
+                d = match self.did_you_mean(&unit.name, UNITS.iter().map(|(u, _)| *u)) {
                     Some(s) => d.help(format!("did you mean `{s}`?")),
                     None => d.note("the units are `deg` and `rad`; lengths have no unit"),
                 };

@@ -4,7 +4,7 @@
 
 use super::params::SymKind;
 use super::{Checker, Dim, Value};
-use crate::diag::{Diagnostic, Span, did_you_mean};
+use crate::diag::{Diagnostic, Span};
 use crate::scene::NodeId;
 use crate::syntax::{Arg, Call, Expr, ExprKind, FnDef, FnParam};
 
@@ -27,6 +27,9 @@ struct Binding {
     extra_reported: bool,
     /// A misspelt name is likely the missing argument: not reported twice.
     unknown_named: bool,
+    /// The parameters' indices by name, made at the first named argument (a linear search
+    /// per argument made a call with 100 000 named ones quadratic).
+    by_name: Option<std::collections::HashMap<String, usize>>,
 }
 
 impl Checker<'_> {
@@ -47,6 +50,7 @@ impl Checker<'_> {
             seen_named: false,
             extra_reported: false,
             unknown_named: false,
+            by_name: None,
         };
         if let Some(s) = piped {
             if n == 0 {
@@ -85,7 +89,15 @@ impl Checker<'_> {
         match &arg.name {
             Some(a) => {
                 b.seen_named = true;
-                let found = def.params.iter().position(|p| p.name.name == a.name);
+                let by_name = b.by_name.get_or_insert_with(|| {
+                    // (The first of two same-named parameters, as a search would find.)
+                    let mut m = std::collections::HashMap::new();
+                    for (i, p) in def.params.iter().enumerate() {
+                        m.entry(p.name.name.clone()).or_insert(i);
+                    }
+                    m
+                });
+                let found = by_name.get(&a.name).copied();
                 if found.is_none() {
                     let mut d = Diagnostic::error(
                         a.span,
@@ -94,7 +106,7 @@ impl Checker<'_> {
                     .label("unknown parameter")
                     .also(def.name.span, "defined here");
                     let names = def.params.iter().map(|p| p.name.name.as_str());
-                    d = match did_you_mean(&a.name, names) {
+                    d = match self.did_you_mean(&a.name, names) {
                         Some(s) => d.help(format!("did you mean `{s}`?")),
                         None => d.help(format!("the parameters are: {}", signature(def))),
                     };
@@ -274,11 +286,17 @@ fn declared_how(p: &FnParam, ty: &str) -> String {
     }
 }
 
-/// `pillar(h, r = 0.2)` for messages.
+/// The most parameters a signature in a message lists (a function of 100 000 parameters
+/// listed them all in each of its calls' errors).
+const SIGNATURE_PARAMS: usize = 12;
+
+/// `pillar(h, r = 0.2)` for messages; a long list cut after [`SIGNATURE_PARAMS`] with the count.
 pub(super) fn signature(def: &FnDef) -> String {
-    let ps: Vec<String> = def
+    let n = def.params.len();
+    let mut ps: Vec<String> = def
         .params
         .iter()
+        .take(SIGNATURE_PARAMS)
         .map(|p| {
             let mut s = p.name.name.clone();
             if let Some(t) = &p.ty {
@@ -290,5 +308,8 @@ pub(super) fn signature(def: &FnDef) -> String {
             s
         })
         .collect();
+    if n > SIGNATURE_PARAMS {
+        ps.push(format!("… {} more", n - SIGNATURE_PARAMS));
+    }
     format!("{}({})", def.name.name, ps.join(", "))
 }

@@ -4,7 +4,7 @@
 use super::params::{Sym, SymKind};
 use super::{Checker, Dim, Value};
 use crate::catalog::{self};
-use crate::diag::{Diagnostic, Span, did_you_mean};
+use crate::diag::{Diagnostic, Span};
 use crate::lipschitz;
 use crate::scene::{Field, NodeId, NodeKind};
 use crate::syntax::{Arg, Call, Ident};
@@ -161,7 +161,7 @@ impl Checker<'_> {
             let mut d =
                 Diagnostic::error(name.span, format!("unknown annotation `@{}`", name.name))
                     .label("not an annotation");
-            d = match did_you_mean(&name.name, ["lipschitz"]) {
+            d = match self.did_you_mean(&name.name, ["lipschitz"]) {
                 Some(s) => d.help(format!("did you mean `@{s}`?")),
                 None => d.note("the only annotation is `@lipschitz(L)`"),
             };

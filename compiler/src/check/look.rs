@@ -5,7 +5,7 @@ use super::Checker;
 use super::args::RunTime;
 use super::settings::v;
 use crate::catalog::{Param, Ty, Val, opt, req};
-use crate::diag::{Diagnostic, Span, did_you_mean};
+use crate::diag::{Diagnostic, Span};
 use crate::reference::texture::{MAX_OCTAVES, PATTERNS};
 use crate::scene::{Light, LightKind, Material, Occlusion, Pattern, Shadow};
 use crate::syntax::{Arg, Ident};
@@ -241,7 +241,7 @@ impl Checker<'_> {
                 format!("unknown pattern `{}`", call.name.name),
             )
             .label("not a pattern");
-            d = match did_you_mean(&call.name.name, names.clone()) {
+            d = match self.did_you_mean(&call.name.name, names.clone()) {
                 Some(n) => d.help(format!("did you mean `{n}`?")),
                 None => d.note(format!(
                     "a colour is `#rrggbb`, `(r, g, b)` or a pattern: {}",

@@ -4,7 +4,7 @@
 
 use super::{Binding, Checker, Dim, Value, functions};
 use crate::catalog;
-use crate::diag::{Diagnostic, Span, did_you_mean};
+use crate::diag::{Diagnostic, Span};
 use crate::scene::Field;
 use crate::syntax::Ident;
 
@@ -101,10 +101,10 @@ impl Checker<'_> {
         let mut d =
             Diagnostic::error(id.span, format!("unknown name `{}`", id.name)).label("not defined");
         let lets: Vec<&str> = self.lets.keys().map(String::as_str).collect();
-        if let Some(s) = did_you_mean(&id.name, lets) {
+        if let Some(s) = self.did_you_mean(&id.name, lets) {
             d = d.help(format!("did you mean `{s}`?"));
         } else if let Some(k) =
-            did_you_mean(&id.name, super::settings::BLOCK_KEYWORDS.iter().copied())
+            self.did_you_mean(&id.name, super::settings::BLOCK_KEYWORDS.iter().copied())
         {
             d = d.help(format!("did you mean the `{k}` block?"));
             // `matrial gold { … }`: the block's name and settings, read as a call, are

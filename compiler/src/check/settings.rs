@@ -4,7 +4,7 @@
 
 use super::Checker;
 use crate::catalog::{Param, Ty, Val, opt, req};
-use crate::diag::{Diagnostic, Span, did_you_mean};
+use crate::diag::{Diagnostic, Span};
 use crate::scene::{
     BoundShape, Camera, Convex, Fog, Light, LightKind, Material, Method, Node, NodeId, Occlusion,
     Scene, Shadow, Trace,
@@ -289,7 +289,7 @@ impl Checker<'_> {
         let names: Vec<&str> = table.map(|(n, _)| n).collect();
         let mut d = Diagnostic::error(kind.span, format!("unknown {what} kind `{}`", kind.name))
             .label("not known");
-        d = match did_you_mean(&kind.name, names.iter().copied()) {
+        d = match self.did_you_mean(&kind.name, names.iter().copied()) {
             Some(s) => d.help(format!("did you mean `{s}`?")),
             None => d.note(format!("the kinds are: {}", names.join(", "))),
         };
