@@ -106,3 +106,41 @@ fn emit_writes_both_outputs_or_neither() {
     assert_eq!(m["format"], "sdfc-manifest 1");
     assert!(shader.exists());
 }
+
+/// A scene in a folder whose name is not UTF-8 (`café` in Latin-1) imports the file beside it
+/// and renders into that folder: paths stay bytes end to end, only their display is lossy
+/// (the import was looked for under the lossy text of the folder's name).
+#[cfg(unix)]
+#[test]
+fn paths_that_are_not_utf8_are_followed_as_bytes() {
+    use std::os::unix::ffi::OsStrExt;
+    let dir = scratch("latin-1").join(std::ffi::OsStr::from_bytes(b"caf\xe9"));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("lib.sdf"), "let thing = sphere(1)\n").unwrap();
+    std::fs::write(dir.join("main.sdf"), "import \"lib.sdf\"\nthing\n").unwrap();
+    let main = dir.join("main.sdf");
+    let png = dir.join("out.png");
+    for args in [
+        vec!["check".as_ref(), main.as_os_str()],
+        vec![
+            "render".as_ref(),
+            main.as_os_str(),
+            "--size".as_ref(),
+            "16x12".as_ref(),
+            "-o".as_ref(),
+            png.as_os_str(),
+        ],
+    ] {
+        let o = Command::new(env!("CARGO_BIN_EXE_sdfc"))
+            .args(&args)
+            .output()
+            .unwrap();
+        assert_eq!(
+            o.status.code(),
+            Some(0),
+            "{args:?}: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+    }
+    assert!(png.exists());
+}

@@ -89,7 +89,19 @@ pub fn compile_file(
     values: &HashMap<String, Vec<f64>>,
     loader: &dyn syntax::Loader,
 ) -> Checked {
-    let loaded = syntax::load(name, source, loader);
+    compile_file_at(name, std::path::Path::new(name), source, values, loader)
+}
+
+/// [`compile_file`] for the file at `path`, shown as `name` (its imports found beside `path`
+/// itself, whatever its bytes: see [`syntax::load_at`]).
+pub fn compile_file_at(
+    name: &str,
+    path: &std::path::Path,
+    source: &str,
+    values: &HashMap<String, Vec<f64>>,
+    loader: &dyn syntax::Loader,
+) -> Checked {
+    let loaded = syntax::load_at(name, path, source, loader);
     match loaded.file {
         Some(file) => {
             let mut checked = file::check_with_lines(&file, &loaded.sources, values);

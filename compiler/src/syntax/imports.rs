@@ -112,6 +112,12 @@ pub struct Loaded {
 
 /// Parses the main file (`name`, `text`) and every file it imports.
 pub fn load(name: &str, text: &str, loader: &dyn Loader) -> Loaded {
+    load_at(name, Path::new(name), text, loader)
+}
+
+/// [`load`] for the file at `main`, shown as `name`: imports are found beside `main` itself,
+/// so a path that is not UTF-8 (`café` in Latin-1) is never made text on the way.
+pub fn load_at(name: &str, main: &Path, text: &str, loader: &dyn Loader) -> Loaded {
     let mut l = Load {
         sources: Sources::single(name, text),
         diagnostics: Vec::new(),
@@ -130,11 +136,8 @@ pub fn load(name: &str, text: &str, loader: &dyn Loader) -> Loaded {
             };
         }
     };
-    let dir = Path::new(name)
-        .parent()
-        .unwrap_or(Path::new(""))
-        .to_path_buf();
-    let main = normalize(Path::new(name));
+    let dir = main.parent().unwrap_or(Path::new("")).to_path_buf();
+    let main = normalize(main);
     l.included.insert(main.clone());
     let mut chain = vec![(main, name.to_string())];
     let items = l.splice(file.items, &dir, &mut chain, None);

@@ -14,7 +14,7 @@ mod recover;
 mod scan;
 mod shift;
 use errors::syntax_error;
-pub use imports::{FsLoader, Loader, MapLoader, NoFiles, STD, decode, load, read_limited};
+pub use imports::{FsLoader, Loader, MapLoader, NoFiles, STD, decode, load, load_at, read_limited};
 use items::item;
 use scan::{check_comments, check_control, check_nesting};
 

@@ -101,7 +101,7 @@ pub fn load_scene_with(
         scene,
         mut diagnostics,
         sources,
-    } = compile(&name, &source, &std::collections::HashMap::new());
+    } = compile((path, &name), &source, &std::collections::HashMap::new());
     if let Some(scene) = &scene {
         diagnostics.extend(lipschitz::verify_annotations(scene, Effort::Fast));
     }
@@ -114,7 +114,7 @@ pub fn load_scene_with(
     if scene.is_some() && !values.is_empty() {
         // The values must be valid: the diagnostics of the scene checked at them (its
         // warnings are the defaults' already).
-        let at = compile(&name, &source, values);
+        let at = compile((path, &name), &source, values);
         if at.scene.is_none() {
             diagnostics = at.diagnostics;
         }
@@ -156,7 +156,8 @@ pub fn imported_files(path: &Path) -> Vec<std::path::PathBuf> {
     let Ok((name, source)) = read_source(path) else {
         return Vec::new();
     };
-    let loaded = sdfc_compiler::syntax::load(&name, &source, &sdfc_compiler::syntax::FsLoader);
+    let loaded =
+        sdfc_compiler::syntax::load_at(&name, path, &source, &sdfc_compiler::syntax::FsLoader);
     loaded
         .sources
         .files
@@ -168,13 +169,14 @@ pub fn imported_files(path: &Path) -> Vec<std::path::PathBuf> {
         .collect()
 }
 
-/// Checks the file `name` (text `source`) with its imports read from disk relative to it.
+/// Checks the file at `path` (shown as `name`, text `source`) with its imports read from disk
+/// beside `path` itself (not beside its lossy text: a Latin-1 folder name).
 pub fn compile(
-    name: &str,
+    (path, name): (&Path, &str),
     source: &str,
     values: &std::collections::HashMap<String, Vec<f64>>,
 ) -> Checked {
-    check::compile_file(name, source, values, &sdfc_compiler::syntax::FsLoader)
+    check::compile_file_at(name, path, source, values, &sdfc_compiler::syntax::FsLoader)
 }
 
 /// The largest `--time` (or `--param time=`) in seconds, either side of 0: f32 resolves it to

@@ -40,7 +40,7 @@ fn check(path: &Path, effort: Effort) -> i32 {
         scene,
         mut diagnostics,
         sources,
-    } = compile(&name, &source, &std::collections::HashMap::new());
+    } = compile((path, &name), &source, &std::collections::HashMap::new());
     if let Some(scene) = &scene {
         diagnostics.extend(lipschitz::verify_annotations(scene, effort));
     }
