@@ -1,7 +1,8 @@
 //! Random *valid* scenes from the catalog (every primitive and operator, parameters including
 //! extreme ones, nesting): each must compile to a module naga validates, whose SPIR-V passes
 //! `spirv-val` (every 25th case in CI, see `spirv_every`), and whose CPU field is
-//! finite everywhere we look. Fixed seed, so CI runs the same scenes every time.
+//! finite everywhere we look. A new seed each CI run (printed in its log; `tests/lib.rs`
+//! `fuzz_seed`), a fixed one locally.
 
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngSeed};

@@ -70,10 +70,25 @@ pub fn fuzz_cases(default: u32) -> u32 {
     env_number("SDFC_FUZZ_CASES").unwrap_or(default)
 }
 
-/// The fuzzers' seed: `default` in CI (the same inputs every run), `SDFC_FUZZ_SEED` (a
-/// number) to explore others; a failure prints the input, which then becomes a test.
+/// The fuzzers' seed: `SDFC_FUZZ_SEED` (a number) if set; in CI (`CI` set) a new one each run,
+/// written to the real-clients log with how to run it again, so that every CI run explores
+/// new inputs within the same budget; else `default` (the same inputs every local run). A
+/// failure prints the input, which then becomes a test.
 pub fn fuzz_seed(default: u64) -> u64 {
-    env_number("SDFC_FUZZ_SEED").map_or(default, |s: u64| s ^ default)
+    if let Some(s) = env_number::<u64>("SDFC_FUZZ_SEED") {
+        return s ^ default;
+    }
+    if std::env::var_os("CI").is_none() {
+        return default;
+    }
+    let now = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map_or(1, |d| d.as_nanos() as u64);
+    let s = now % 1_000_000_007;
+    report(&format!(
+        "fuzz seed {s} for the fuzzer seeded {default:#x}: rerun with SDFC_FUZZ_SEED={s}"
+    ));
+    s ^ default
 }
 
 /// A small deterministic generator (xorshift) for the fuzzers and samplers; the seed comes from

@@ -149,7 +149,7 @@ fn bench_refuses_bad_input() {
             vec!["--steps", "0"],
             "`--steps` must be a whole number from 1 to 100000",
         ),
-        (vec!["--repeat", "0"], "`--repeat` must be at least 1"),
+        (vec!["--repeat", "0"], "`--repeat 0`: give 1 to 1000 rounds"),
         (
             vec!["--target-error", "-1"],
             "`--target-error -1` must be a number > 0",
