@@ -8,6 +8,7 @@ mod bench;
 mod blends;
 mod bounded;
 mod browser;
+mod budget;
 mod cli;
 mod device;
 mod diagnostics;

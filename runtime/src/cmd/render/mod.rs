@@ -181,6 +181,8 @@ fn still(args: &RenderArgs, job: &Job, wants_npy: bool) -> Result<(), Error> {
     let (w, h) = (job.view.width, job.view.height);
     let mut sum = images::Accumulator::new((w * h) as usize, args.kind == Channel::Color);
     let mut depth = Vec::new();
+    let budget = job.scene.trace.steps;
+    let (mut exhausted, mut rays) = (0usize, 0usize);
     let bar = progress_bar("rendering tiles");
     job.gpu.render_samples(
         &job.module,
@@ -194,6 +196,11 @@ fn still(args: &RenderArgs, job: &Job, wants_npy: bool) -> Result<(), Error> {
             }
         },
         |frame| {
+            // Camera rays that spent the whole budget and hit nothing: measured, not guessed.
+            rays += frame.steps.len();
+            exhausted += (frame.steps.iter().zip(&frame.depth))
+                .filter(|&(&s, &d)| s >= budget && d < 0.0)
+                .count();
             if wants_npy {
                 depth = frame.depth;
             } else {
@@ -225,7 +232,28 @@ fn still(args: &RenderArgs, job: &Job, wants_npy: bool) -> Result<(), Error> {
         job.gpu.info.name,
         job.gpu.backend()
     ));
+    if job.plan.is_none() {
+        warn_exhausted(exhausted, rays, budget);
+    }
     Ok(())
+}
+
+/// The share of camera rays ending on their step budget above which `render` warns: there the
+/// picture is likely missing surfaces (every example stays under it: `runtime/tests/bounded.rs`).
+pub const EXHAUSTED_SHARE: f64 = 0.01;
+
+/// Warns when more than [`EXHAUSTED_SHARE`] of the camera rays spent all `budget` steps
+/// without reaching a surface or the far distance, with the numbers and what to change.
+fn warn_exhausted(exhausted: usize, rays: usize, budget: u32) {
+    let share = exhausted as f64 / rays.max(1) as f64;
+    if share <= EXHAUSTED_SHARE {
+        return;
+    }
+    say!(
+        "warning: {:.1}% of the camera rays ({exhausted} of {rays}) spent all {budget} steps without reaching a surface or `max_distance`: surfaces may be missing there\nhelp: raise the budget (`--steps {}`), loosen ε (`--epsilon`), lower `max_distance`, or check for a `@lipschitz` bound far larger than the field needs (`sdfc check --lipschitz`)",
+        share * 100.0,
+        budget.saturating_mul(4)
+    );
 }
 
 /// What `render` writes, by the output file's extension (`-`: a PNG to standard output).
