@@ -1,6 +1,8 @@
 //! Lipschitz bounds beyond the catalog's rules: inference for `implicit` expressions by interval
-//! arithmetic on the gradient (here), and the check of `@lipschitz` annotations (`verify.rs`).
+//! arithmetic on the gradient (here), the check of `@lipschitz` annotations (`verify.rs`) and of
+//! bounds too large for rays to arrive (`converge.rs`).
 
+mod converge;
 mod verify;
 
 pub use verify::{Effort, verify_annotations};

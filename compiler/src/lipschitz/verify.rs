@@ -65,10 +65,15 @@ const MAX_RECORDED: usize = 20_000;
 /// Most scene-node evaluations the frustum sampling may spend (large scenes get fewer points).
 const WORK: usize = 20_000_000;
 
-/// Warnings for every annotation the sampling shows to be too small.
+/// Warnings for every annotation the sampling shows to be too small, and for every one so
+/// far above the steepest slope sampled that rays cannot arrive within their step budget
+/// (`converge.rs`).
 pub fn verify_annotations(scene: &Scene, effort: Effort) -> Vec<Diagnostic> {
     let budget = effort.budget();
     let reachable = scene.reachable();
+    // (Annotations above the catalog's rule have the checker's own warning, "looser than the
+    // inferred bound".)
+    let mut out: Vec<Diagnostic> = Vec::new();
     // Annotations at or above the catalog's rule need no check: the rule is a proven bound.
     let annotated: Vec<NodeId> = reachable
         .iter()
@@ -76,14 +81,14 @@ pub fn verify_annotations(scene: &Scene, effort: Effort) -> Vec<Diagnostic> {
         .filter(|&id| scene.nodes[id].lambda < scene.nodes[id].inferred_lambda)
         .collect();
     if annotated.is_empty() {
-        return Vec::new();
+        return out;
     }
     let seen = where_rays_evaluate(scene, &annotated, &budget);
-    let mut out = Vec::new();
     for (k, &id) in annotated.iter().enumerate() {
         let mut rng = Rng(0x9e37_79b9_7f4a_7c15 ^ (k as u64 + 1));
-        if let Some(d) = check_node(scene, id, &seen[&id], &budget, &mut rng) {
-            out.push(d);
+        match check_node(scene, id, &seen[&id], &budget, &mut rng) {
+            Err(d) => out.push(d),
+            Ok(slope) => out.extend(super::converge::too_loose(scene, id, slope)),
         }
     }
     out
@@ -132,7 +137,7 @@ fn check_node(
     from_rays: &[DVec3],
     budget: &Budget,
     rng: &mut Rng,
-) -> Option<Diagnostic> {
+) -> Result<f64, Diagnostic> {
     let node = &scene.nodes[id];
     let lambda = node.lambda;
     let field = |p: DVec3| eval::node(scene, id, p).d;
@@ -176,7 +181,7 @@ fn check_node(
         }
     }
     if best.0 <= lambda * MARGIN {
-        return None;
+        return Ok(best.0);
     }
     let (seen, at) = best;
     let safe = proven
@@ -200,7 +205,7 @@ fn check_node(
         )),
         None => d.help(format!("raise the annotation above {}", short_up(seen))),
     };
-    Some(d.note("the point is in the annotated shape's own coordinates"))
+    Err(d.note("the point is in the annotated shape's own coordinates"))
 }
 
 /// |∇f| at `p` by central differences with step `h`; 0 where the field is not finite.
