@@ -1,6 +1,7 @@
-//! Bounds so large that no ray arrives within its step budget are warned about where they are
-//! written, with the slope sampled and the steps needed (issue 31: λ from 2.4·10³ to 10¹⁸ was
-//! accepted silently and the picture was blank); a bound a few times loose is not.
+//! Annotation warnings that reach where the user can act (issue 31): bounds so large that no
+//! ray arrives within its step budget (λ from 2.4·10³ to 10¹⁸ was accepted silently and the
+//! picture was blank; a bound a few times loose is not warned about), and a warning inside a
+//! function body naming the call whose arguments make it.
 
 use sdfc_compiler::check;
 use sdfc_compiler::lipschitz::{Effort, verify_annotations};
@@ -46,4 +47,25 @@ fn bounds_too_large_to_converge_are_warned() {
         let source = format!("{camera}implicit {{ {body} }} @lipschitz({lambda})\n");
         assert!(warnings(&source).is_empty(), "{source}");
     }
+}
+
+/// An annotation inside a function body that only some calls make wrong: the warning points
+/// into the body and names the call whose arguments make it so (as errors do), not the others.
+#[test]
+fn a_warning_in_a_function_names_the_call_that_makes_it() {
+    let source = "camera { eye (0, 1, -8) target (0, 0, 0) }\nfn wave(a) = implicit { y - a * sin(x) } @lipschitz(1.5)\nwave(0.5) at (-2, 0, 0)\nwave(3) at (2, 0, 0)\n";
+    let checked = check::compile(source);
+    let scene = checked.scene.expect("the scene checks");
+    let found = verify_annotations(&scene, Effort::Fast);
+    let too_small: Vec<_> = found
+        .iter()
+        .filter(|d| d.message.contains("too small"))
+        .collect();
+    assert_eq!(too_small.len(), 1, "{found:?}");
+    let calls: Vec<&str> = too_small[0]
+        .secondary
+        .iter()
+        .map(|(s, _)| &source[s.start..s.end])
+        .collect();
+    assert_eq!(calls, ["wave(3)"], "{:?}", too_small[0]);
 }

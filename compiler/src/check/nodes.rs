@@ -52,9 +52,10 @@ impl Checker<'_> {
             NodeKind::Implicit { .. } => ([false; 3], [false; 3]),
         };
         self.note_planar(&kind);
-        self.call_site
-            .push(self.frames.first().map(|f| f.call_span));
+        let call_site = self.frames.first().map(|f| f.call_span);
+        self.call_site.push(call_site);
         self.nodes.push(Node {
+            call_site,
             mirror,
             swap,
             unit_gradient,

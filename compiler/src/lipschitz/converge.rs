@@ -33,7 +33,8 @@ pub fn too_loose(scene: &Scene, id: NodeId, slope: f64) -> Option<Diagnostic> {
     if needed <= budget {
         return None;
     }
-    Some(
+    Some(super::with_call(
+        node,
         Diagnostic::warning(
             node.span,
             "this Lipschitz bound is so large that rays cannot arrive within their step budget",
@@ -54,7 +55,7 @@ pub fn too_loose(scene: &Scene, id: NodeId, slope: f64) -> Option<Diagnostic> {
             short(slope * 1.1),
             short(needed.ceil())
         )),
-    )
+    ))
 }
 
 /// A number printed with three significant digits, in e-notation from 10⁵.

@@ -229,3 +229,14 @@ fn call_grad(
     }
     ((func.range)(&vals), g)
 }
+
+/// `d` with the call that built `node` beside it, when a function's body did: each call
+/// builds its own nodes, so the warning names the call whose arguments make it.
+fn with_call(node: &crate::scene::Node, d: crate::diag::Diagnostic) -> crate::diag::Diagnostic {
+    match node.call_site {
+        Some(call) if !call.contains(node.span) => {
+            d.also(call, "in this call: its arguments make the bound wrong")
+        }
+        _ => d,
+    }
+}

@@ -205,7 +205,7 @@ fn check_node(
         )),
         None => d.help(format!("raise the annotation above {}", short_up(seen))),
     };
-    Err(d.note("the point is in the annotated shape's own coordinates"))
+    Err(super::with_call(node, d).note("the point is in the annotated shape's own coordinates"))
 }
 
 /// |∇f| at `p` by central differences with step `h`; 0 where the field is not finite.

@@ -163,6 +163,9 @@ pub struct Node {
     pub kind: NodeKind,
     /// Where it was written.
     pub span: Span,
+    /// The outermost call of a function whose body built it, if one did: what a message about
+    /// it names besides `span` (which points into the body, shared by every call).
+    pub call_site: Option<Span>,
     /// Lipschitz bound of the node's field (annotation applied).
     pub lambda: f64,
     /// The bound the catalog's rules give, before any annotation.
