@@ -184,3 +184,47 @@ fn repeat_of_an_asymmetric_child_is_the_union_of_its_copies() {
     }
     println!("{report}");
 }
+
+/// An annotation right at the parameters' defaults and too small at an end of a declared range
+/// is found there by `check` (the ends sampled) and by `render` at the values it is asked for,
+/// with a note saying at which values; one good over the whole range is not flagged.
+#[test]
+fn annotations_are_checked_over_the_parameters_ranges() {
+    let dir = crate::common::scratch("lipschitz-ranges");
+    let scene = |lambda: &str| {
+        let file = dir.join(format!("wave-{lambda}.sdf"));
+        std::fs::write(
+            &file,
+            format!("camera {{ eye (0, 1, -8) target (0, 0, 0) }}\nparam a = 1 in 0.5..3\nimplicit {{ y - a * sin(x) }} @lipschitz({lambda})\n"),
+        )
+        .unwrap();
+        file.display().to_string()
+    };
+    let (tight, safe) = (scene("1.5"), scene("3.2"));
+    let said = |args: &[&str]| {
+        let o = crate::common::sdfc(args);
+        assert_eq!(o.status.code(), Some(0));
+        String::from_utf8_lossy(&o.stderr).to_string()
+    };
+    let err = said(&["check", &tight]);
+    assert!(
+        err.contains("too small")
+            && err.contains("found with a = 3 (ends of their declared ranges)"),
+        "{err}"
+    );
+    let png = dir.join("x.png");
+    let png = png.to_str().unwrap();
+    let err = said(&[
+        "render", &tight, "--size", "32x18", "-o", png, "--param", "a=2.5",
+    ]);
+    assert!(
+        err.contains("found with a = 2.5 (the values asked for)"),
+        "{err}"
+    );
+    // (3.2 is just above the rule's 3.1623 over the range: the checker says it is loose.)
+    let err = said(&["check", &safe]);
+    assert!(
+        !err.contains("too small") && !err.contains("found with"),
+        "{err}"
+    );
+}

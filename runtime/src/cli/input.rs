@@ -103,7 +103,11 @@ pub fn load_scene_with(
         sources,
     } = compile((path, &name), &source, &std::collections::HashMap::new());
     if let Some(scene) = &scene {
-        diagnostics.extend(lipschitz::verify_annotations(scene, Effort::Fast));
+        let found = lipschitz::verify_annotations(scene, Effort::Fast);
+        let at = |v: &_| compile((path, &name), &source, v).scene;
+        let more = super::ranges::verify_over_ranges(&at, scene, Effort::Fast, (values, &found));
+        diagnostics.extend(found);
+        diagnostics.extend(more);
     }
     if let Some(e) = scene.as_ref().and_then(|s| unit_error(s, args))
         && !diagnostics.iter().any(|d| d.is_error())

@@ -6,6 +6,7 @@ mod args;
 mod error;
 pub mod input;
 pub mod messages;
+pub mod ranges;
 pub mod tracer;
 pub mod values;
 

@@ -42,7 +42,12 @@ fn check(path: &Path, effort: Effort) -> i32 {
         sources,
     } = compile((path, &name), &source, &std::collections::HashMap::new());
     if let Some(scene) = &scene {
-        diagnostics.extend(lipschitz::verify_annotations(scene, effort));
+        let found = lipschitz::verify_annotations(scene, effort);
+        let none = std::collections::HashMap::new();
+        let at = |v: &_| compile((path, &name), &source, v).scene;
+        let more = crate::cli::ranges::verify_over_ranges(&at, scene, effort, (&none, &found));
+        diagnostics.extend(found);
+        diagnostics.extend(more);
     }
     say_raw!("{}", messages::report(&diagnostics, &sources));
     let Some(scene) = scene else { return 1 };
