@@ -35,11 +35,19 @@ fn view(args: &[&str], log: &Path) -> Child {
         "\"$@\" & pid=$!; while kill -0 $pid 2>/dev/null; do xwininfo -root -tree 2>/dev/null | grep -o '\"[^\"]*\"' >> '{}'; sleep 0.2; done; wait $pid",
         titles(log).display()
     );
+    // Each viewer searches for a free display from its own number: the tests start their Xvfb
+    // servers at once, and two `xvfb-run -a` searching from the same number may pick the same.
+    static NEXT: std::sync::atomic::AtomicU32 = std::sync::atomic::AtomicU32::new(0);
+    let start = 200 + 10 * NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
     Command::new("xvfb-run")
         .args([
             "-a",
+            "-n",
+            &start.to_string(),
             "-s",
-            "-screen 0 1280x1024x24",
+            // (-noreset: the title poller connects and leaves; without it the server resets when
+            // its last client goes, and a viewer connecting then fails — seen in CI.)
+            "-screen 0 1280x1024x24 -noreset",
             "sh",
             "-c",
             &script,
