@@ -261,32 +261,20 @@ pub fn write_reflected(
     entry: Entry,
     settings: &Settings,
 ) -> Result<(Output, Reflection), InternalError> {
-    if target == Target::Glsl {
-        return write_glsl_reflected(module, info, entry, settings);
-    }
-    write_text_or_words(module, info, target, entry, settings).map(|o| (o, Reflection::default()))
-}
-
-/// A target other than GLSL (whose writer has nothing to reflect that a host needs).
-fn write_text_or_words(
-    module: &naga::Module,
-    info: &ModuleInfo,
-    target: Target,
-    entry: Entry,
-    settings: &Settings,
-) -> Result<Output, InternalError> {
     let err =
         |e: &dyn std::fmt::Display| InternalError(format!("the {target:?} back end failed: {e}"));
     let stage = match entry {
         Entry::Compute | Entry::Rays | Entry::Field | Entry::Trace => naga::ShaderStage::Compute,
         _ => naga::ShaderStage::Fragment,
     };
-    match target {
+    // Only GLSL's writer names something a host must bind by (its blocks).
+    let out = match target {
+        Target::Glsl => return write_glsl_reflected(module, info, entry, settings),
         // SPIR-V for Vulkan needs an entry point: add an empty compute `main`; the library
         // functions are written beside it.
         Target::Spirv if entry == Entry::Library => {
             let (m, info) = with_main(module, target, settings)?;
-            write_text_or_words(&m, &info, target, Entry::Compute, settings)
+            return write_reflected(&m, &info, target, Entry::Compute, settings);
         }
         Target::Wgsl => back::wgsl::write_string(module, info, back::wgsl::WriterFlags::empty())
             .map(Output::Text)
@@ -304,7 +292,6 @@ fn write_text_or_words(
                 .map(Output::Binary)
                 .map_err(|e| err(&e))
         }
-        Target::Glsl => write_glsl_reflected(module, info, entry, settings).map(|(o, _)| o),
         Target::Msl => {
             let options = back::msl::Options {
                 per_entry_point_map: msl_bindings(module),
@@ -324,7 +311,8 @@ fn write_text_or_words(
                 .map_err(|e| err(&e))?;
             Ok(Output::Text(s))
         }
-    }
+    };
+    out.map(|o| (o, Reflection::default()))
 }
 
 /// GLSL and the names of its blocks; a library is written with an empty `main`, as SPIR-V's.
