@@ -102,9 +102,16 @@ pub fn load_scene_with(
         mut diagnostics,
         sources,
     } = compile((path, &name), &source, &std::collections::HashMap::new());
+    // The scene checked at the values asked for, once: for the annotations there and to
+    // refuse values it cannot take.
+    let at_values = (scene.is_some() && !values.is_empty())
+        .then(|| compile((path, &name), &source, values));
     if let Some(scene) = &scene {
         let found = lipschitz::verify_annotations(scene, Effort::Fast);
-        let at = |v: &_| compile((path, &name), &source, v).scene;
+        let at = |v: &_| match &at_values {
+            Some(c) if v == values => c.scene.clone(),
+            _ => compile((path, &name), &source, v).scene,
+        };
         let more = super::ranges::verify_over_ranges(&at, scene, Effort::Fast, (values, &found));
         diagnostics.extend(found);
         diagnostics.extend(more);
@@ -115,13 +122,10 @@ pub fn load_scene_with(
         say!("{e}");
         return None;
     }
-    if scene.is_some() && !values.is_empty() {
-        // The values must be valid: the diagnostics of the scene checked at them (its
-        // warnings are the defaults' already).
-        let at = compile((path, &name), &source, values);
-        if at.scene.is_none() {
-            diagnostics = at.diagnostics;
-        }
+    // The values must be valid: the diagnostics of the scene checked at them (its warnings
+    // are the defaults' already).
+    if let Some(at) = at_values.filter(|c| c.scene.is_none()) {
+        diagnostics = at.diagnostics;
     }
     let scene = if diagnostics.iter().any(|d| d.is_error()) {
         None
