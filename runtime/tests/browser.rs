@@ -6,7 +6,7 @@
 //! `examples/hosts/test`), which `.ci/run` installs; without them the test says
 //! SKIPPED loudly, and fails instead when `SDFC_REQUIRE_BROWSER=1` (as `.ci/run` sets).
 
-use crate::common::{compile, examples, gpu, off_by, render, root, scratch, sdfc};
+use crate::common::{compile, examples, gpu, render, root, scratch, sdfc, within_levels};
 use sdfc_compiler::view::View;
 use std::collections::HashMap;
 use std::process::Command;
@@ -33,6 +33,39 @@ pub(crate) fn browser() -> Option<(String, std::path::PathBuf)> {
     Some((chrome, driver))
 }
 
+/// The scenes both browser hosts draw (`webgl2.rs` too): five examples (the lamp with
+/// parameters; unions of five parts and more) and `params::SCENE`, written into `dir` (its
+/// materials, lights and shapes read parameters); each with the settings it is drawn at, as
+/// JSON (angles in radians): `{}` for the defaults, and other values for the parametric ones.
+pub(crate) fn drawn_scenes(
+    dir: &std::path::Path,
+) -> Vec<(String, std::path::PathBuf, Vec<&'static str>)> {
+    std::fs::write(dir.join("parametric.sdf"), crate::params::SCENE).unwrap();
+    let example = |n: &str| root().join(format!("examples/{n}.sdf"));
+    let mut scenes: Vec<(String, std::path::PathBuf, Vec<&'static str>)> =
+        ["composition", "primitives", "shapes", "village"]
+            .iter()
+            .map(|n| (n.to_string(), example(n), vec!["{}"]))
+            .collect();
+    scenes.insert(
+        0,
+        (
+            "lamp".into(),
+            example("lamp"),
+            vec!["{}", r#"{"reach": [1.0], "height": [1.7], "time": [2.0]}"#],
+        ),
+    );
+    scenes.push((
+        "parametric".into(),
+        dir.join("parametric.sdf"),
+        vec![
+            "{}",
+            r#"{"tint": [0.2, 0.5, 0.9], "shine": [0.9], "power": [1.4], "sun": [0.6, 0.8, -0.4], "tilt": [0.5], "r": [1.1], "time": [1.5]}"#,
+        ],
+    ));
+    scenes
+}
+
 /// The page draws five examples (the lamp with parameters, unions of five parts and more) and
 /// a scene whose materials, lights and shapes read parameters, at the defaults and (the
 /// parametric ones) at other values: each within 2 levels of `sdfc render` on 99.5% of pixels.
@@ -44,25 +77,8 @@ fn the_webgpu_page_draws_what_render_draws() {
     };
     let dir = scratch("browser");
     let (w, h) = (96u32, 64u32);
-    std::fs::write(dir.join("parametric.sdf"), crate::params::SCENE).unwrap();
-    let mut files: Vec<(String, std::path::PathBuf)> =
-        ["lamp", "composition", "primitives", "shapes", "village"]
-            .iter()
-            .map(|n| (n.to_string(), root().join(format!("examples/{n}.sdf"))))
-            .collect();
-    files.push(("parametric".into(), dir.join("parametric.sdf")));
-    let other = [
-        (
-            "lamp",
-            r#"{"reach": [1.0], "height": [1.7], "time": [2.0]}"#,
-        ),
-        (
-            "parametric",
-            r#"{"tint": [0.2, 0.5, 0.9], "shine": [0.9], "power": [1.4], "sun": [0.6, 0.8, -0.4], "tilt": [0.5], "r": [1.1], "time": [1.5]}"#,
-        ),
-    ];
     let mut jobs = Vec::new();
-    for (name, file) in &files {
+    for (name, file, settings) in &drawn_scenes(&dir) {
         let (wgsl, json) = (
             dir.join(format!("{name}.wgsl")),
             dir.join(format!("{name}.json")),
@@ -85,9 +101,8 @@ fn the_webgpu_page_draws_what_render_draws() {
             String::from_utf8_lossy(&out.stderr)
         );
         let source = std::fs::read_to_string(file).unwrap();
-        let extra = other.iter().filter(|(n, _)| n == name).map(|(_, v)| *v);
-        for values in std::iter::once("{}").chain(extra) {
-            jobs.push((name.clone(), source.clone(), values));
+        for values in settings {
+            jobs.push((name.clone(), source.clone(), *values));
         }
     }
     let list: Vec<serde_json::Value> = jobs
@@ -128,14 +143,7 @@ fn the_webgpu_page_draws_what_render_draws() {
         assert_eq!(page.len(), (4 * w * h) as usize);
         let here = compile(source).with_values(&values);
         let frame = render(&gpu, &here, &View::new(&here.camera, w, h));
-        let (mut within, mut worst) = (0, 0);
-        for (k, &px) in frame.color.iter().enumerate() {
-            let c = &page[4 * k..4 * k + 3];
-            let d = off_by(px, [c[0].into(), c[1].into(), c[2].into()]);
-            worst = worst.max(d);
-            within += u32::from(d <= 2);
-        }
-        let share = f64::from(within) / frame.color.len() as f64;
+        let (share, worst) = within_levels(&frame.color, &page, 2);
         println!(
             "{name} {json}: the WebGPU page within 2 levels of sdfc render on {:.2}% of pixels (worst {worst})",
             share * 100.0

@@ -5,7 +5,7 @@
 //! front end, then Vulkan or GL), its SPIR-V straight to the Vulkan driver (lavapipe; wgpu's
 //! passthrough, nothing parses it on the way); each picture equals `sdfc render`'s.
 
-use crate::common::{compile, gpu, off_by, render, root};
+use crate::common::{compile, gpu, render, root, within_levels};
 use sdfc_compiler::emit::{self, Output, Target};
 use sdfc_compiler::lower::{Entry, tracer::Options};
 use sdfc_compiler::manifest::{Origin, manifest};
@@ -393,16 +393,7 @@ fn the_fragment_entry_draws_in_a_wgpu_host_from_its_manifest() {
                 let mut view = View::new(&scene.camera, w, h);
                 view.fragment = Fragment { y_up: false, srgb };
                 let px = draw(&dev, (&code, source), &m, &view, &values, format);
-                let (mut within, mut worst) = (0, 0);
-                for (i, &c) in frame.color.iter().enumerate() {
-                    let d = off_by(
-                        c,
-                        [px[4 * i].into(), px[4 * i + 1].into(), px[4 * i + 2].into()],
-                    );
-                    worst = worst.max(d);
-                    within += u32::from(d <= 2);
-                }
-                let share = f64::from(within) / frame.color.len() as f64;
+                let (share, worst) = within_levels(&frame.color, &px, 2);
                 println!(
                     "{label}, {name} {json}, {format:?}: within 2 levels on {:.2}% (worst {worst})",
                     share * 100.0

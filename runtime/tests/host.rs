@@ -9,7 +9,7 @@ use crate::common;
 #[path = "../examples/host.rs"]
 mod example;
 
-use crate::common::{compile, gpu, off_by, render};
+use crate::common::{compile, gpu, render};
 use sdfc_compiler::view::View;
 use std::collections::HashMap;
 
@@ -38,14 +38,7 @@ fn the_example_host_draws_what_render_draws() {
         .unwrap();
         let here = scene.with_values(&values);
         let frame = render(&gpu, &here, &View::new(&here.camera, w, h));
-        let (mut within, mut worst) = (0, 0);
-        for (i, &px) in frame.color.iter().enumerate() {
-            let c = &hosted[4 * i..4 * i + 3];
-            let d = off_by(px, [c[0].into(), c[1].into(), c[2].into()]);
-            worst = worst.max(d);
-            within += u32::from(d <= 2);
-        }
-        let share = f64::from(within) / frame.color.len() as f64;
+        let (share, worst) = common::within_levels(&frame.color, &hosted, 2);
         println!(
             "{values:?}: the host within 2 levels of render on {:.2}% (worst {worst})",
             share * 100.0

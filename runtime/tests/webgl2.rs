@@ -7,7 +7,7 @@
 //! Needs what `browser.rs` needs (Chromium and `npm ci` in `examples/hosts/test`).
 
 use crate::browser::browser;
-use crate::common::{compile, examples, gpu, off_by, render, root, scratch, sdfc};
+use crate::common::{compile, examples, gpu, render, scratch, sdfc, within_levels};
 use sdfc_compiler::view::View;
 use std::collections::HashMap;
 use std::path::Path;
@@ -122,36 +122,9 @@ fn webgl2_draws_what_render_draws() {
     };
     let dir = scratch("webgl2-draw");
     let (w, h) = (96u32, 64u32);
-    std::fs::write(dir.join("parametric.sdf"), crate::params::SCENE).unwrap();
-    let mut scenes: Vec<(String, String)> =
-        ["lamp", "composition", "primitives", "shapes", "village"]
-            .iter()
-            .map(|n| {
-                (
-                    n.to_string(),
-                    root()
-                        .join(format!("examples/{n}.sdf"))
-                        .display()
-                        .to_string(),
-                )
-            })
-            .collect();
-    scenes.push((
-        "parametric".into(),
-        dir.join("parametric.sdf").display().to_string(),
-    ));
-    let other: HashMap<&str, &str> = HashMap::from([
-        (
-            "lamp",
-            r#"{"reach": [1.0], "height": [1.7], "time": [2.0]}"#,
-        ),
-        (
-            "parametric",
-            r#"{"tint": [0.2, 0.5, 0.9], "shine": [0.9], "power": [1.4], "sun": [0.6, 0.8, -0.4], "tilt": [0.5], "r": [1.1], "time": [1.5]}"#,
-        ),
-    ]);
     let mut jobs: Vec<Job> = Vec::new();
-    for (name, file) in &scenes {
+    for (name, file, settings) in &crate::browser::drawn_scenes(&dir) {
+        let file = &file.display().to_string();
         let at = |s: &str| dir.join(s).display().to_string();
         let es = ["--target", "glsl", "--glsl-version", "300es"];
         let mut fragment = vec!["emit", file, "--entry", "fragment", "-q", "-o"];
@@ -176,8 +149,7 @@ fn webgl2_draws_what_render_draws() {
             .iter()
             .find(|p| p.name == "time")
             .map_or(0.0, |p| p.default.x);
-        let settings = std::iter::once("{}").chain(other.get(name.as_str()).copied());
-        for (k, values) in settings.enumerate() {
+        for (k, &values) in settings.iter().enumerate() {
             let parsed: HashMap<String, Vec<f64>> = serde_json::from_str(values).unwrap();
             let v: serde_json::Value = serde_json::from_str(values).unwrap();
             let mut add = |json: serde_json::Value, flipped, hit_alpha| {
@@ -251,19 +223,17 @@ fn webgl2_draws_what_render_draws() {
         assert_eq!(page.len(), (4 * w * h) as usize);
         let here = compile(&job.scene).with_values(&job.values);
         let frame = render(&gpu, &here, &View::new(&here.camera, w, h));
-        let at = |x: usize, y: usize| {
-            4 * (if job.flipped { h as usize - 1 - y } else { y } * w as usize + x)
+        // Upside down when the page drew with the origin flag off: turned upright to compare.
+        let row = 4 * w as usize;
+        let page: Vec<u8> = match job.flipped {
+            true => page.chunks_exact(row).rev().flatten().copied().collect(),
+            false => page,
         };
-        let (mut within, mut worst, mut masks) = (0, 0, 0);
-        for (k, &px) in frame.color.iter().enumerate() {
-            let c = &page[at(k % w as usize, k / w as usize)..][..4];
-            let d = off_by(px, [c[0].into(), c[1].into(), c[2].into()]);
-            worst = worst.max(d);
-            within += u32::from(d <= LEVELS);
-            masks += u32::from(!job.hit_alpha || (c[3] > 127) == (frame.depth[k] >= 0.0));
-        }
-        let n = frame.color.len() as f64;
-        let (share, mask) = (f64::from(within) / n, f64::from(masks) / n);
+        let (share, worst) = within_levels(&frame.color, &page, LEVELS);
+        let masks = (page.chunks_exact(4).zip(&frame.depth))
+            .filter(|(c, d)| !job.hit_alpha || (c[3] > 127) == (**d >= 0.0))
+            .count();
+        let mask = masks as f64 / frame.color.len() as f64;
         println!(
             "{}: within {LEVELS} levels of sdfc render on {:.2}% of pixels (worst {worst}), hit mask equal on {:.2}%",
             job.json,

@@ -104,8 +104,8 @@ pub fn load_scene_with(
     } = compile((path, &name), &source, &std::collections::HashMap::new());
     // The scene checked at the values asked for, once: for the annotations there and to
     // refuse values it cannot take.
-    let at_values = (scene.is_some() && !values.is_empty())
-        .then(|| compile((path, &name), &source, values));
+    let at_values =
+        (scene.is_some() && !values.is_empty()).then(|| compile((path, &name), &source, values));
     if let Some(scene) = &scene {
         let found = lipschitz::verify_annotations(scene, Effort::Fast);
         let at = |v: &_| match &at_values {

@@ -288,6 +288,19 @@ pub fn off_by(px: u32, want: [i32; 3]) -> i32 {
         .unwrap()
 }
 
+/// How closely RGBA8 pixels from another client (`rgba`, row-major, 4 bytes each) match a
+/// frame's packed colours: the share of pixels within `levels` on every channel, and the
+/// largest difference.
+pub fn within_levels(color: &[u32], rgba: &[u8], levels: i32) -> (f64, i32) {
+    let (mut within, mut worst) = (0u32, 0);
+    for (px, c) in color.iter().zip(rgba.chunks_exact(4)) {
+        let d = off_by(*px, [c[0].into(), c[1].into(), c[2].into()]);
+        worst = worst.max(d);
+        within += u32::from(d <= levels);
+    }
+    (f64::from(within) / color.len().max(1) as f64, worst)
+}
+
 /// `scene` rendered on `gpu` by the compute entry with the scene's own settings.
 pub fn render(gpu: &Gpu, scene: &Scene, view: &sdfc_compiler::view::View) -> sdfc::gpu::Frame {
     let (module, _) = emit::module(scene, Entry::Compute, &Options::from_scene(scene))
