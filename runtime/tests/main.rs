@@ -30,4 +30,5 @@ mod streams;
 mod textures;
 mod tracers;
 mod view;
+mod watch;
 mod webgl2;
