@@ -425,9 +425,9 @@ impl<'m> FnBuilder<'m> {
         self.store(pointer, v1);
     }
 
-    /// A counted loop: `var name = 0u; loop { if name >= count { break; } body(name); name += 1u; }`.
-    /// The body may `break` early.
-    pub fn repeat(&mut self, name: &str, count: Ex, body: impl FnOnce(&mut Self)) {
+    /// A counted loop: `var name = 0u; loop { if name >= count { break; } body(name); name += 1u; }`,
+    /// the body given the index's value. The body may `break` early.
+    pub fn repeat(&mut self, name: &str, count: Ex, body: impl FnOnce(&mut Self, Ex)) {
         let u32t = self.m.u32();
         let zero = self.u(0);
         let i = self.local(name, u32t, Some(zero));
@@ -435,7 +435,7 @@ impl<'m> FnBuilder<'m> {
             let iv = b.load(i);
             let done = b.ge(iv, count);
             b.break_if(done);
-            body(b);
+            body(b, iv);
             let one = b.u(1);
             let next = b.add(iv, one);
             b.store(i, next);

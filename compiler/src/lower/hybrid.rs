@@ -114,7 +114,7 @@ pub(super) fn regula_falsi(
     let fc = b.local("f_hi", f32t, Some(d));
     if iterations > 0 {
         let limit = b.u(iterations);
-        b.repeat("k", limit, |b| {
+        b.repeat("k", limit, |b, _| {
             let tm = falsi(b, a, fa, c, fc);
             let fm = cx.field(b, tm);
             narrow(b, (a, fa, c, fc), (tm, fm));

@@ -25,19 +25,43 @@ pub(super) fn add_normal(mb: &mut ModuleBuilder, map: Handle<Function>) -> Handl
     super::count::count(&mut b, crate::reference::eval::TETRAHEDRON.len() as u32);
     let third = b.f(1.0 / 3f64.sqrt());
     let e = b.mul(h, third);
-    let mut g = None;
-    for k in crate::reference::eval::TETRAHEDRON {
-        let corner = b.vec3_lit(k);
+    // One call of `map` in a loop over the corners rather than four: the driver inlines every
+    // call, so four calls compile `map` four times (docs/stability.md, the compile cost). The
+    // corner of index i is (((i + 3) >> 1) & 1, (i >> 1) & 1, i & 1) · 2 − 1, TETRAHEDRON's order;
+    // the sum runs in the same order from zero, so the result is the same to the bit.
+    let zero = b.splat3(0.0);
+    let sum = b.local("gradient", v3, Some(zero));
+    let four = b.u(crate::reference::eval::TETRAHEDRON.len() as u32);
+    b.repeat("corner", four, |b, i| {
+        let bit = |b: &mut FnBuilder, shift: u32, plus: u32| {
+            let mut j = i;
+            if plus > 0 {
+                let add = b.u(plus);
+                j = b.add(j, add);
+            }
+            if shift > 0 {
+                let sh = b.u(shift);
+                j = b.bin(naga::BinaryOperator::ShiftRight, j, sh);
+            }
+            let one = b.u(1);
+            let j = b.bin(naga::BinaryOperator::And, j, one);
+            b.cast(j, ScalarKind::Float)
+        };
+        let c = [bit(b, 1, 3), bit(b, 1, 0), bit(b, 0, 0)];
+        let unit = b.compose_vec3(c);
+        let two = b.f(2.0);
+        let one = b.splat3(1.0);
+        let twice = b.mul(unit, two);
+        let corner = b.sub(twice, one);
         let off = b.mul(corner, e);
         let q = b.add(p, off);
         let d = b.call(map, vec![q]);
         let term = b.mul(corner, d);
-        g = Some(match g {
-            None => term,
-            Some(sum) => b.add(sum, term),
-        });
-    }
-    let g = g.expect("four corners");
+        let was = b.load(sum);
+        let now = b.add(was, term);
+        b.store(sum, now);
+    });
+    let g = b.load(sum);
     let l = b.length(g);
     let one = b.f(1.0);
     let inv = b.div(one, l);

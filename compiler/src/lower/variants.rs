@@ -373,7 +373,7 @@ fn discontinuity(b: &mut FnBuilder, cx: &Cx) {
         hit,
         |b| {
             let limit = b.u(cx.trace.discontinuity);
-            b.repeat("i", limit, |b| {
+            b.repeat("i", limit, |b, _| {
                 let t = b.load(cx.t);
                 let d = cx.field(b, t);
                 let e = cx.eps(b, t);

@@ -228,18 +228,24 @@ TraceResult trace_basic(vec3 ro, vec3 rd, float pixel) {
 }
 
 vec3 normal(vec3 p_10, float h) {
-    float _e3 = (h * 0.57735026);
-    vec3 _e7 = vec3(1.0, -1.0, -1.0);
-    float _e10 = map((p_10 + (_e7 * _e3)));
-    vec3 _e15 = vec3(-1.0, -1.0, 1.0);
-    float _e18 = map((p_10 + (_e15 * _e3)));
-    vec3 _e24 = vec3(-1.0, 1.0, -1.0);
-    float _e27 = map((p_10 + (_e24 * _e3)));
-    vec3 _e31 = vec3(1.0);
-    float _e34 = map((p_10 + (_e31 * _e3)));
-    vec3 _e36 = ((((_e7 * _e10) + (_e15 * _e18)) + (_e24 * _e27)) + (_e31 * _e34));
-    float _e37 = length(_e36);
-    return ((_e37 > 1e-30) ? (_e36 * (1.0 / _e37)) : vec3(0.0));
+    vec3 gradient = vec3(0.0);
+    uint corner = 0u;
+    gradient = vec3(0.0);
+    corner = 0u;
+    while(true) {
+        uint _e10 = corner;
+        if ((_e10 >= 4u)) {
+            break;
+        }
+        vec3 _e32 = ((vec3(float((((_e10 + 3u) >> 1u) & 1u)), float(((_e10 >> 1u) & 1u)), float((_e10 & 1u))) * 2.0) - vec3(1.0));
+        float _e35 = map((p_10 + (_e32 * (h * 0.57735026))));
+        vec3 _e37 = gradient;
+        gradient = (_e37 + (_e32 * _e35));
+        corner = (_e10 + 1u);
+    }
+    vec3 _e41 = gradient;
+    float _e42 = length(_e41);
+    return ((_e42 > 1e-30) ? (_e41 * (1.0 / _e42)) : vec3(0.0));
 }
 
 float lattice_hash(ivec3 i) {

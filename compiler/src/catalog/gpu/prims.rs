@@ -262,7 +262,7 @@ pub fn mandelbulb(b: &mut FnBuilder, p: Ex, a: &[Ex]) -> Ex {
     let dr = b.local("dr", f32t, Some(one));
     let r0 = b.length(p);
     let r = b.local("r", f32t, Some(r0));
-    b.repeat("i", iterations, |b| {
+    b.repeat("i", iterations, |b, _| {
         let zv = b.load(z);
         // |z|, kept from the end of the last iteration (or |p| at the start), not recomputed.
         let rv = b.load(r);
