@@ -8,7 +8,7 @@ use sdfc_compiler::check::{
     self, MAX_DEPTH, MAX_EVALUATIONS, MAX_LIGHTS, MAX_MATERIALS, MAX_NODES,
 };
 use sdfc_compiler::syntax::{MAX_NESTING, MAX_SOURCE_BYTES};
-use sdfc_compiler::{diag, emit, lower};
+use sdfc_compiler::{cost, diag, emit, lower};
 
 /// Checks `source` on a large stack; returns the rendered diagnostics and whether it compiled.
 fn check(source: String) -> (String, Option<sdfc_compiler::scene::Scene>) {
@@ -274,34 +274,59 @@ fn lights() {
     assert_eq!(accepted(scene(MAX_LIGHTS)).lights.len(), MAX_LIGHTS);
 }
 
-/// What `render` limits (`MAX_DRIVER_CALLS` in the runtime) is counted exactly: a union of n
-/// spheres calls `sd_sphere` n times; a `let` shape used many times is one function in `map`,
-/// and the material function calls it where the shape is in one material, but writes its body
-/// inline at every use where its parts differ in material.
+/// What the compile-cost model (`cost`) counts: the normal's four samples are one call of
+/// `map` in a loop (four calls compiled `map` four times); a shared `let` used three times is
+/// one function written out at each call; the prediction grows with the scene, every example
+/// is under the limit and a flat union of 4 096 spheres far over it.
 #[test]
-fn distance_calls_are_the_call_sites() {
-    let calls = |source: String| {
+fn compile_cost_counts_the_inlined_shader() {
+    let module = |source: String| {
         let scene = accepted(source);
         let options = lower::tracer::Options::from_scene(&scene);
-        let (m, _) = emit::module(&scene, lower::Entry::Compute, &options).unwrap();
-        emit::distance_calls(&m)
+        emit::module(&scene, lower::Entry::Compute, &options)
+            .unwrap()
+            .0
     };
-    assert_eq!(calls(spheres(4096)), 4096);
+    let m = module(spheres(8));
+    let (_, normal) = m
+        .functions
+        .iter()
+        .find(|(_, f)| f.name.as_deref() == Some("normal"))
+        .expect("a normal function");
+    let calls = normal
+        .expressions
+        .iter()
+        .filter(|(_, e)| matches!(e, naga::Expression::CallResult(_)))
+        .count();
+    assert_eq!(calls, 1, "normal calls map once");
     let shared = "let a = union { sphere(1)  box(1) at (2, 0, 0) }\nunion { a  a at (5, 0, 0)  a at (10, 0, 0) }\n";
-    assert_eq!(calls(shared.to_string()), 2);
-    let with_material = format!(
-        "material m {{ color #f00 }}\n{}",
-        shared.replace("union { a ", "union { a : m ")
+    let once = "union { sphere(1)  box(1) at (2, 0, 0) }\n";
+    let (three, one) = (
+        cost::inlined(&module(shared.to_string())),
+        cost::inlined(&module(once.to_string())),
     );
-    // `a : m` is a copy of `a` with a material: a second function (2 more calls). Each use is
-    // in one material (`m` or none), so the material function calls the two functions.
-    assert_eq!(calls(with_material), 2 + 2);
-    let mixed = format!(
-        "material m {{ color #f00 }}\n{}",
-        shared.replace("sphere(1)", "sphere(1) : m")
-    );
-    // The material varies inside `a`: the material function inlines the three uses.
-    assert_eq!(calls(mixed), 2 + 3 * 2);
+    // Three copies of the let's body where the single union has one: 2 more calls of each of
+    // its two shapes per copy of `map` (and 3 of the let's function).
+    assert!(three.calls > one.calls + 4, "{three:?} {one:?}");
+    assert!(three.size > one.size, "{three:?} {one:?}");
+    let predicted = |n| cost::predict(&cost::inlined(&module(spheres(n))));
+    let (small, medium, large) = (predicted(64), predicted(512), predicted(4096));
+    assert!(small.seconds < medium.seconds && medium.seconds < large.seconds);
+    assert!(!small.too_slow(), "{small:?}");
+    assert!(large.too_slow() && large.seconds > 60.0, "{large:?}");
+    for file in sdfc_tests::examples() {
+        let source = std::fs::read_to_string(&file).unwrap();
+        let name = file.to_string_lossy();
+        let loader = sdfc_compiler::syntax::FsLoader;
+        let checked = check::compile_file(&name, &source, &Default::default(), &loader);
+        let scene = checked.scene.expect("an example checks");
+        let options = lower::tracer::Options::from_scene(&scene);
+        let m = emit::module(&scene, lower::Entry::Compute, &options)
+            .unwrap()
+            .0;
+        let p = cost::predict(&cost::inlined(&m));
+        assert!(!p.too_slow(), "{name}: {p:?}");
+    }
 }
 
 /// A function of 100 000 parameters called with as many arguments checks (duplicates were

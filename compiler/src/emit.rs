@@ -50,37 +50,6 @@ pub fn module(
     Ok((module, info))
 }
 
-/// How many times the module's code calls a distance function (`sd_*`), each call site once:
-/// what the size of the driver's compile grows with. In `map` a shared `let` is one function,
-/// its calls counted once; `map_material` and `map_loose` write a `let`'s body at each use
-/// where the tag varies inside it, and call its function where the tag is one constant.
-pub fn distance_calls(module: &naga::Module) -> usize {
-    fn block(module: &naga::Module, b: &naga::Block) -> usize {
-        b.iter()
-            .map(|s| match s {
-                naga::Statement::Call { function, .. } => {
-                    let name = module.functions[*function].name.as_deref().unwrap_or("");
-                    usize::from(name.starts_with("sd_"))
-                }
-                naga::Statement::Block(b) => block(module, b),
-                naga::Statement::If { accept, reject, .. } => {
-                    block(module, accept) + block(module, reject)
-                }
-                naga::Statement::Loop {
-                    body, continuing, ..
-                } => block(module, body) + block(module, continuing),
-                naga::Statement::Switch { cases, .. } => {
-                    cases.iter().map(|c| block(module, &c.body)).sum()
-                }
-                _ => 0,
-            })
-            .sum()
-    }
-    let functions = module.functions.iter().map(|(_, f)| &f.body);
-    let entries = module.entry_points.iter().map(|e| &e.function.body);
-    functions.chain(entries).map(|b| block(module, b)).sum()
-}
-
 /// Runs naga's validator with every check on.
 pub fn validate(module: &naga::Module) -> Result<ModuleInfo, InternalError> {
     Validator::new(ValidationFlags::all(), Capabilities::empty())

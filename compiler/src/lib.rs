@@ -7,6 +7,7 @@ extern crate alloc;
 pub mod catalog;
 pub mod check;
 pub mod color;
+pub mod cost;
 pub mod diag;
 pub mod docs;
 pub mod emit;

@@ -50,6 +50,7 @@ pub fn manifest(scene: &Scene, module: &Module, origin: &Origin) -> Value {
         "params": params_section(module, origin.prefix, params, size),
         "materials": materials(scene, origin),
         "fragment": fragment(origin.entry),
+        "compile": (origin.entry != Entry::Library).then(|| compile_cost(module)),
         "camera": {
             "eye": c.eye.to_array(),
             "target": c.target.to_array(),
@@ -59,6 +60,24 @@ pub fn manifest(scene: &Scene, module: &Module, origin: &Origin) -> Value {
         "lights": lights(scene),
         "background": scene.background.to_array(),
         "colors": "sRGB components in 0..1; shaders compute in linear light",
+    })
+}
+
+/// What the driver's compile of the module is predicted to cost (`crate::cost`): the inlined
+/// shader's counts and lavapipe's seconds with the upper end (not for the library, whose cost
+/// is that of the host's shader around it).
+fn compile_cost(module: &Module) -> Value {
+    let i = crate::cost::inlined(module);
+    let p = crate::cost::predict(&i);
+    json!({
+        "inlined_size": i.size,
+        "calls": i.calls,
+        "branches": i.branches,
+        "transcendental": i.transcendental,
+        "squares": i.squares,
+        "chains": i.chains,
+        "predicted_seconds": p.seconds,
+        "at_most_seconds": p.at_most,
     })
 }
 

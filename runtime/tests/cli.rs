@@ -351,67 +351,6 @@ fn a_wrong_annotation_is_a_warning_on_render_emit_and_check() {
     }
 }
 
-/// A shader past what the driver compiles in reasonable time (4 096 calls of distance
-/// functions; 4 096 took 113 s on lavapipe): `render` and `bench` refuse it at once with the
-/// scene's span and the count, `check` and `emit` take it (other engines' drivers differ).
-#[test]
-fn render_refuses_a_shader_the_driver_cannot_compile_in_time() {
-    let dir = scratch("driver-limit");
-    let parts: String = (0..4097)
-        .map(|i| {
-            format!(
-                "  sphere(0.1) at ({}, 0, {})\n",
-                (i % 64) as f64 * 0.5,
-                (i / 64) as f64 * 0.5
-            )
-        })
-        .collect();
-    let file = write(&dir, "big.sdf", &format!("union {{\n{parts}}}\n"));
-    let out = dir.join("big.png");
-    for args in [
-        vec![
-            "render",
-            &file,
-            "-o",
-            out.to_str().unwrap(),
-            "--size",
-            "8x8",
-        ],
-        vec![
-            "bench",
-            &file,
-            "--size",
-            "8x8",
-            "--tracers",
-            "basic",
-            "--steps",
-            "8",
-        ],
-    ] {
-        let o = sdfc(&args);
-        let err = String::from_utf8_lossy(&o.stderr);
-        assert_eq!(o.status.code(), Some(1), "{args:?}: {err}");
-        assert!(
-            err.contains("too large for the GPU driver to compile in reasonable time")
-                && err.contains("big.sdf:1:1")
-                && err.contains("calls distance functions 4097 times")
-                && err.contains("--allow-slow-compile"),
-            "{args:?}: {err}"
-        );
-    }
-    assert!(!out.exists(), "nothing is written");
-    let wgsl = dir.join("big.wgsl");
-    let o = sdfc(&["emit", &file, "-o", wgsl.to_str().unwrap()]);
-    assert_eq!(
-        o.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&o.stderr)
-    );
-    assert_eq!(sdfc(&["check", &file]).status.code(), Some(0));
-    let _ = std::fs::remove_dir_all(dir);
-}
-
 /// `-o/--output` names the file for every command (`--out` is kept as an alias); the channel
 /// is `--channel`. The old spelling `--output depth` is answered with the new one.
 #[test]

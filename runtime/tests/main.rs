@@ -10,6 +10,7 @@ mod bounded;
 mod browser;
 mod budget;
 mod cli;
+mod compile_cost;
 mod device;
 mod diagnostics;
 mod extremes;

@@ -147,8 +147,10 @@ pub struct RenderArgs {
     /// does Hart's cone anti-aliasing), 1 for the other channels.
     #[arg(long, value_name = "N")]
     pub samples: Option<u32>,
-    /// Render a shader larger than the driver compiles in reasonable time (more than
-    /// 4 096 calls of distance functions; docs/stability.md).
+    /// Render a shader the driver is predicted to take longer than 30 s to compile (the model
+    /// of lavapipe's compile time in docs/stability.md; `check` prints the prediction). Compiled
+    /// shaders are kept in the pipeline cache: `$SDFC_CACHE_DIR`, else `$XDG_CACHE_HOME/sdfc`,
+    /// else `~/.cache/sdfc` (Vulkan; `SDFC_CACHE_DIR=off` for none).
     #[arg(long)]
     pub allow_slow_compile: bool,
     /// Set a scene parameter: `NAME=VALUE` (a number; an angle with its unit, `30deg` or
@@ -201,6 +203,10 @@ pub struct ViewArgs {
     /// otherwise.
     #[arg(long, allow_hyphen_values = true)]
     pub time: Option<f64>,
+    /// Open a scene whose shader the driver is predicted to take longer than 30 s to compile
+    /// (as `render`).
+    #[arg(long)]
+    pub allow_slow_compile: bool,
 }
 
 /// `sdfc bench`'s arguments.

@@ -3,6 +3,7 @@
 //! subcommands (`crate::cmd`) and the viewer (`crate::view`) are built on it.
 
 mod args;
+pub mod driver;
 mod error;
 pub mod input;
 pub mod messages;

@@ -1,7 +1,8 @@
 //! `sdfc bench`: the speed/accuracy table of the tracers on a scene, as text, JSON, CSV and a
 //! plot.
 
-use super::common::{check_driver_size, progress_bar};
+use super::common::progress_bar;
+use crate::cli::driver::driver_module;
 use crate::cli::input::{exit_code, load_scene, print_out};
 use crate::cli::tracer::{bounding_volumes, check_passes};
 use crate::cli::values::parse_size;
@@ -69,17 +70,20 @@ fn bench(args: &BenchArgs) -> Result<(), Error> {
     let mut options = sdfc_compiler::lower::tracer::Options::from_scene(&scene);
     options.bounding_volumes = bvh(args);
     options.fixed_offset = args.fixed_offset;
-    let (module, _) =
-        sdfc_compiler::emit::module(&scene, sdfc_compiler::lower::Entry::Compute, &options)
-            .map_err(|e| Error::Compiler(e.0))?;
-    check_driver_size(&module, (&sources, &scene), args.allow_slow_compile)?;
+    driver_module(&scene, &sources, &mut options, args.allow_slow_compile)?;
     let cells = plan(args, &scene)?;
     let gpu = Gpu::new(args.backend.into())?;
     // A scene with parameters is measured at their defaults, as its ground truth is.
     gpu.set_params(&sdfc_compiler::lower::params::bytes(&scene.params));
     let view = View::new(&scene.camera, w, h);
     let reference = reference.as_ref().map(|(t, p)| (t.as_str(), p.as_str()));
-    let (truth, measured) = measure(args, &gpu, (&scene, &view), &cells, reference)?;
+    let (truth, measured) = measure(
+        (args, options.bounding_volumes),
+        &gpu,
+        (&scene, &view),
+        &cells,
+        reference,
+    )?;
     let fastest = args.target_error.and_then(|e| {
         measured
             .iter()
@@ -192,7 +196,7 @@ fn plan<'a>(args: &'a BenchArgs, scene: &Scene) -> Result<Vec<Planned<'a>>, Erro
 
 /// The ground truth on the CPU, then every cell on the GPU, with a progress bar.
 fn measure(
-    args: &BenchArgs,
+    (args, bvh): (&BenchArgs, sdfc_compiler::lower::tracer::BoundingVolumes),
     gpu: &Gpu,
     (scene, view): (&Scene, &View),
     cells: &[Planned],
@@ -227,7 +231,7 @@ fn measure(
             truth: &depth,
             repeat: args.repeat,
             reference,
-            bvh: bvh(args),
+            bvh,
             fixed_offset: args.fixed_offset,
         };
         measured.push(bench::measure(gpu, &job)?);

@@ -56,5 +56,21 @@ fn check(path: &Path, effort: Effort) -> i32 {
         .filter(|d| !Diagnostic::is_error(d))
         .count();
     let summary = sdfc_compiler::docs::summary(&name, &scene, warnings);
-    print_out(&format!("{summary}\n")).err().unwrap_or(0)
+    let options = sdfc_compiler::lower::tracer::Options::from_scene(&scene);
+    let entry = sdfc_compiler::lower::Entry::Compute;
+    let predicted = match sdfc_compiler::emit::module(&scene, entry, &options) {
+        Ok((module, _)) => sdfc_compiler::cost::predict_module(&module),
+        Err(e) => {
+            say!("internal compiler error: {}", e.0);
+            return 2;
+        }
+    };
+    let compile = format!(
+        "  driver compile: {} predicted on lavapipe (up to {})",
+        crate::cli::driver::seconds(predicted.seconds),
+        crate::cli::driver::seconds(predicted.at_most)
+    );
+    print_out(&format!("{summary}\n{compile}\n"))
+        .err()
+        .unwrap_or(0)
 }

@@ -1,8 +1,6 @@
-//! What several commands share: writing their output, the progress bar, and the limit on the
-//! shaders `render` and `bench` hand to the driver.
+//! What several commands share: writing their output and the progress bar.
 
-use crate::cli::{Error, write_file};
-use sdfc_compiler::emit;
+use crate::cli::write_file;
 use std::io::{IsTerminal, Write};
 use std::path::Path;
 
@@ -54,41 +52,6 @@ pub fn write_whole(path: &Path, bytes: &[u8]) -> i32 {
             1
         }
     }
-}
-
-/// Most calls of distance functions in a shader `render` and `bench` hand to the driver
-/// without `--allow-slow-compile`. Measured on lavapipe (a flat union of spheres at 32×18, the
-/// driver's compile dominating): 256 calls 0.7 s, 1 024 5.9 s, 2 048 21.5 s, 4 096 113 s —
-/// quadratic; 8 192 would take about 8 minutes. In `map` a shared `let` is one function and
-/// costs little (4 096 evaluations through them: 2.4 s), but the material function writes its
-/// body at each use; `sdfc emit` has no such limit.
-pub const MAX_DRIVER_CALLS: usize = 4096;
-
-/// Refuses, with the scene's span, a module too large for the driver to compile in
-/// reasonable time (see [`MAX_DRIVER_CALLS`]); else its calls of distance functions.
-pub fn check_driver_size(
-    module: &naga::Module,
-    (sources, scene): (
-        &sdfc_compiler::source::Sources,
-        &sdfc_compiler::scene::Scene,
-    ),
-    allow: bool,
-) -> Result<usize, Error> {
-    let calls = emit::distance_calls(module);
-    if calls > MAX_DRIVER_CALLS && !allow {
-        let d = sdfc_compiler::diag::Diagnostic::error(
-            scene.root_node().span,
-            "this scene's shader is too large for the GPU driver to compile in reasonable time",
-        )
-        .label(format!("its code calls distance functions {calls} times"))
-        .note(format!(
-            "sdfc renders at most {MAX_DRIVER_CALLS} calls: on lavapipe a flat union of 2 048 shapes took 21 s to compile and 4 096 took 113 s, growing quadratically"
-        ))
-        .help("share repeated shapes with `let` or `repeat`, or pass `--allow-slow-compile` to wait; `sdfc emit` writes the shader for other engines");
-        say_raw!("{}", crate::cli::messages::report(&[d], sources));
-        return Err(Error::Reported);
-    }
-    Ok(calls)
 }
 
 /// A progress bar on standard error, only when it is a terminal.

@@ -6,6 +6,7 @@ use sdfc_compiler::layout::GROUP;
 use std::borrow::Cow;
 use std::sync::{Arc, Mutex};
 
+mod cache;
 mod dispatch;
 mod error;
 mod lists;
@@ -14,6 +15,7 @@ mod prepare;
 mod readback;
 mod render;
 
+pub use cache::{CACHE_ENV, folder as cache_folder};
 pub use dispatch::Timing;
 pub use error::{Consumed, Error};
 pub use prepare::{Layout, MAX_SIDE, Prepared, Source, TILE};
@@ -45,6 +47,8 @@ pub struct Gpu {
     trouble: Arc<Mutex<Trouble>>,
     /// The adapter the device is on.
     adapter: wgpu::Adapter,
+    /// The pipeline cache on disk, where the backend has one.
+    cache: Option<Arc<cache::DiskCache>>,
     /// The bytes of the `Params` uniform the next prepared modules start with
     /// ([`Gpu::set_params`]).
     params: Arc<Mutex<Vec<u8>>>,
@@ -61,8 +65,6 @@ impl Gpu {
         &self.adapter
     }
 
-    /// Sets the scene parameters' values (`sdfc_compiler::lower::params::bytes`) the modules
-    /// prepared from now on read, until set again; a prepared frame changes its own with
     /// The device (to build pipelines of one's own: the viewer's presentation).
     pub fn device(&self) -> &wgpu::Device {
         &self.device
@@ -73,6 +75,8 @@ impl Gpu {
         &self.queue
     }
 
+    /// Sets the scene parameters' values (`sdfc_compiler::lower::params::bytes`) the modules
+    /// prepared from now on read, until set again; a prepared frame changes its own with
     /// `Prepared::set_params`.
     pub fn set_params(&self, bytes: &[u8]) {
         *lock(&self.params) = bytes.to_vec();
@@ -130,7 +134,8 @@ impl Gpu {
         self.features.contains(wgpu::Features::TIMESTAMP_QUERY)
     }
 
-    /// Renders a compiled compute module (`emit` with `Entry::Compute`) for `view`, tile by
+    /// The compute pipeline of a compiled module (the driver compiles it here), through the
+    /// pipeline cache where there is one.
     pub(crate) fn pipeline(&self, module: &naga::Module) -> wgpu::ComputePipeline {
         let shader = self
             .device
@@ -145,7 +150,7 @@ impl Gpu {
                 module: &shader,
                 entry_point: Some("main"),
                 compilation_options: Default::default(),
-                cache: None,
+                cache: self.cache.as_ref().map(|c| &c.cache),
             })
     }
 

@@ -49,8 +49,11 @@ impl Gpu {
     fn open(adapter: &wgpu::Adapter) -> Result<Gpu, Error> {
         let limits = adapter.limits();
         // Timestamps where the adapter has them: `bench` times frames on the GPU with them.
-        let features =
-            adapter.features() & (wgpu::Features::TIMESTAMP_QUERY | wgpu::Features::SUBGROUP);
+        // The pipeline cache where the backend has one (`cache`).
+        let features = adapter.features()
+            & (wgpu::Features::TIMESTAMP_QUERY
+                | wgpu::Features::SUBGROUP
+                | wgpu::Features::PIPELINE_CACHE);
         let desc = wgpu::DeviceDescriptor {
             label: Some("sdfc"),
             required_limits: limits.clone(),
@@ -73,10 +76,17 @@ impl Gpu {
             };
             lock(&keep).lost.get_or_insert(why);
         });
+        let info = adapter.get_info();
+        let cache = features
+            .contains(wgpu::Features::PIPELINE_CACHE)
+            .then(|| super::cache::DiskCache::open(&device, &info))
+            .flatten()
+            .map(Arc::new);
         Ok(Gpu {
+            cache,
             device,
             queue,
-            info: adapter.get_info(),
+            info,
             limits,
             features,
             trouble,

@@ -62,13 +62,17 @@ impl Started {
 
 /// Reads and checks the scene with the tracer overrides; diagnostics printed.
 pub fn load(args: &ViewArgs) -> Option<(Scene, Options)> {
-    let (_, mut scene) = load_scene(&args.file)?;
-    match args.tracer.settle(&mut scene) {
-        Ok(mut options) => {
-            // One pass: the viewer's coarse frames take the passes' place.
-            options.passes = false;
-            Some((scene, options))
-        }
+    let (sources, mut scene) = load_scene(&args.file)?;
+    let options = args.tracer.settle(&mut scene).and_then(|mut options| {
+        // One pass: the viewer's coarse frames take the passes' place.
+        options.passes = false;
+        let allow = args.allow_slow_compile;
+        crate::cli::driver::driver_module(&scene, &sources, &mut options, allow)?;
+        Ok(options)
+    });
+    match options {
+        Ok(options) => Some((scene, options)),
+        Err(crate::cli::Error::Reported) => None,
         Err(e) => {
             say!("{e}");
             None

@@ -3,15 +3,14 @@
 
 mod animate;
 
-use super::common::{check_driver_size, progress_bar, write_output};
+use super::common::{progress_bar, write_output};
+use crate::cli::driver::{driver_module, seconds};
 use crate::cli::input::{exit_code, load_scene_with, param_values};
 use crate::cli::values::parse_size;
 use crate::cli::{Error, RenderArgs, messages::done};
 use crate::view::watch::watching;
 use sdfc::gpu::Gpu;
 use sdfc::images::{self, Channel};
-use sdfc_compiler::emit;
-use sdfc_compiler::lower::Entry;
 use sdfc_compiler::passes::{self, Pass};
 use sdfc_compiler::scene::Scene;
 use sdfc_compiler::view::View;
@@ -34,9 +33,9 @@ pub fn run(args: &RenderArgs) -> i32 {
     })
 }
 
-/// Calls of distance functions in the shader from which `render` says that the driver is
-/// compiling (lavapipe: 256 took 0.7 s, 1 024 took 5.9 s).
-const SLOW_COMPILE: usize = 512;
+/// The predicted compile (seconds, `sdfc_compiler::cost::predict`) from which `render` says
+/// that the driver is compiling.
+const SLOW_COMPILE: f64 = 2.0;
 
 /// What the flags ask for, checked before the scene is read.
 struct Request {
@@ -139,19 +138,20 @@ fn prepare(args: &RenderArgs, (w, h): (u32, u32), started: Instant) -> Result<Jo
     let Some((sources, mut scene)) = load_scene_with(&args.file, &values) else {
         return Err(Error::Reported);
     };
-    let options = args.tracer.settle(&mut scene)?;
-    let (module, _) =
-        emit::module(&scene, Entry::Compute, &options).map_err(|e| Error::Compiler(e.0))?;
-    let calls = check_driver_size(&module, (&sources, &scene), args.allow_slow_compile)?;
+    let mut options = args.tracer.settle(&mut scene)?;
+    let (module, predicted) =
+        driver_module(&scene, &sources, &mut options, args.allow_slow_compile)?;
     let gpu = Gpu::new(args.backend.into())?;
     // The defaults' module, the values in its uniform only (as a host sets them).
     let valued = scene.with_values(&values.values);
     gpu.set_params(&sdfc_compiler::lower::params::bytes(&valued.params));
-    if calls >= SLOW_COMPILE {
+    if predicted.seconds >= SLOW_COMPILE {
         // The driver compiles the shader at pipeline creation, silently.
         say!(
-            "compiling the shader for {} ({calls} calls of distance functions: this can take a while)…",
-            gpu.info.name
+            "compiling the shader for {} (predicted {} on lavapipe, up to {})…",
+            gpu.info.name,
+            seconds(predicted.seconds),
+            seconds(predicted.at_most)
         );
     }
     let view = View::new(&scene.camera, w, h);
