@@ -5,6 +5,8 @@ use sdfc_compiler::diag;
 use sdfc_compiler::scene::Scene;
 use std::path::{Path, PathBuf};
 
+pub mod scenes;
+
 /// The workspace root.
 pub fn root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))

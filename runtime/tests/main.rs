@@ -16,6 +16,7 @@ mod diagnostics;
 mod extremes;
 mod field;
 mod fragment;
+mod fuzz_render;
 mod golden;
 mod host;
 mod hostile;
