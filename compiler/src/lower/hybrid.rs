@@ -63,7 +63,9 @@ pub(super) fn hybrid(b: &mut FnBuilder, cx: &Cx) {
                         cx.stop_if(b, close, HIT);
                         b.store(t_out, t);
                         b.store(f_out, d);
-                        let lin = b.f(cx.trace.linear);
+                        let linear =
+                            crate::reference::trace::hybrid_linear(&cx.trace, cx.loose.is_some());
+                        let lin = b.f(linear);
                         let lin = b.mul(lin, e);
                         let far = cx.far(b);
                         let gone = b.ge(t, far);

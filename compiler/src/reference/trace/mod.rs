@@ -8,6 +8,7 @@ mod careful;
 mod variants;
 pub use careful::{ByScene, CROSSING_REFINE, Confirm, ZONE_STEP, tetra_gradient};
 use careful::{careful, confirmation};
+pub use variants::hybrid_linear;
 use variants::stop;
 
 use crate::reference::eval;
@@ -240,9 +241,12 @@ pub fn march_segment(
     mut f: impl FnMut(f64) -> f64,
     confirm: Option<ByScene>,
 ) -> Traced {
+    // Over a scene with loose parts the hybrid's linear step is capped in every pass, confirmed
+    // or not (as the shader's, whose tracer knows the scene, not the pass).
     let inner = Trace {
         steps: segment.budget,
         max_distance: segment.end - segment.start,
+        linear: variants::hybrid_linear(trace, confirm.is_some()),
         ..*trace
     };
     let shifted = Threshold {

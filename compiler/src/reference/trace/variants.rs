@@ -221,10 +221,24 @@ pub(super) fn auto(trace: &Trace, eps: &Threshold, f: &mut impl FnMut(f64) -> f6
     }
 }
 
+/// The hybrid's linear step in units of ε(t): `trace.linear`, but at most the careful march's
+/// [`super::ZONE_STEP`] in a scene with loose parts (`loose`): a fixed step longer than the
+/// sphere step can hop over a loose part thinner than it before the hit test f < ε ever sees
+/// it (a 0.01-thick ellipsoid disc lost 2.5% of its pixels in bands with `linear` 4), where the
+/// careful march guarantees parts down to ε/4.
+pub fn hybrid_linear(trace: &Trace, loose: bool) -> f64 {
+    if loose {
+        trace.linear.min(super::ZONE_STEP)
+    } else {
+        trace.linear
+    }
+}
+
 /// Sphere tracing / linear search hybrid, Liktor §5.4: sphere steps while f is above
 /// `linear`·ε(t), fixed steps of that length below it (longer than sphere steps near the
-/// surface), a hit when f < ε(t); when a step lands inside (f < 0) the crossing is refined by a
-/// fixed number of regula falsi iterations between the last outside and the inside point.
+/// surface; see [`hybrid_linear`] for a scene with loose parts), a hit when f < ε(t); when a
+/// step lands inside (f < 0) the crossing is refined by a fixed number of regula falsi
+/// iterations between the last outside and the inside point.
 pub(super) fn hybrid(trace: &Trace, eps: &Threshold, f: &mut impl FnMut(f64) -> f64) -> Traced {
     let (mut t, mut t_out, mut f_out) = (0.0, 0.0, 0.0);
     let mut steps = 0;
