@@ -14,6 +14,7 @@ mod compile_cost;
 mod device;
 mod diagnostics;
 mod extremes;
+mod f32_limits;
 mod field;
 mod fragment;
 mod fuzz_render;

@@ -27,6 +27,7 @@ pub(super) fn check_with_lines(
         c.check_bound(root);
         c.check_epsilon();
         c.check_f32_range(root);
+        c.check_implicit_overflow(root);
     }
     c.diags.sort_by_key(|d| (d.span.start, d.span.end));
     // A body's mistake is found at every call: shown once, with the first call.

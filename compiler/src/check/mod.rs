@@ -16,6 +16,7 @@ mod lattice;
 mod look;
 mod names;
 mod nodes;
+mod overflow;
 mod param_args;
 mod param_decl;
 mod params;

@@ -3,8 +3,10 @@
 //! bounds too large for rays to arrive (`converge.rs`).
 
 mod converge;
+mod overflow;
 mod verify;
 
+pub use overflow::may_overflow;
 pub use verify::{Effort, verify_annotations};
 
 use crate::interval::Interval;
@@ -126,6 +128,10 @@ fn binary_grad(
             va.powi(2),
             each(&|x, _| x.mul(va).mul(Interval::point(2.0))),
         ),
+        // −a·a (as `-x*x` parses) is minus a square: ≤ 0.
+        BinOp::Mul if matches!(a, Field::Neg(n) if **n == *b) => {
+            (vb.powi(2).neg(), each(&|x, y| x.mul(vb).add(va.mul(y))))
+        }
         BinOp::Mul => (va.mul(vb), each(&|x, y| x.mul(vb).add(va.mul(y)))),
         BinOp::Div => {
             // A divisor that may be 0 makes the field infinite or NaN (0/0) there.
