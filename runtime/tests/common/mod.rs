@@ -197,12 +197,55 @@ fn inside_length(scene: &Scene, eye: glam::DVec3, rd: glam::DVec3, t: f64, aroun
     s + step - entry
 }
 
-/// Runs the `sdfc` binary with `args`.
+/// Seconds any `sdfc` command of the tests may run before it is called a hang (`timeout` ends
+/// it).
+pub const TIME_CAP: u64 = 300;
+
+/// Most memory any `sdfc` command of the tests may hold at once (KiB, GNU time's maximum
+/// resident set): 2 GiB, issue 32's bound for a first frame.
+pub const PEAK_CAP_KIB: u64 = 2 << 20;
+
+/// Peak files named so far.
+static PEAKS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+
+/// Runs the `sdfc` binary with `args` under [`TIME_CAP`] and [`PEAK_CAP_KIB`]: a command past
+/// either fails the test, so every command line the tests run is bounded work.
 pub fn sdfc(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_sdfc"))
+    let peak = std::env::temp_dir().join(format!(
+        "sdfc-test-peak-{}-{}",
+        std::process::id(),
+        PEAKS.fetch_add(1, std::sync::atomic::Ordering::Relaxed)
+    ));
+    let out = Command::new("timeout")
+        .arg(format!("{TIME_CAP}s"))
+        .arg("/usr/bin/time")
+        .args(["-f", "%M", "-o"])
+        .arg(&peak)
+        .arg(env!("CARGO_BIN_EXE_sdfc"))
         .args(args)
         .output()
-        .expect("run sdfc")
+        .expect("run sdfc under timeout and GNU time (.ci/run installs them)");
+    let text = std::fs::read_to_string(&peak).unwrap_or_default();
+    let _ = std::fs::remove_file(&peak);
+    assert_ne!(
+        out.status.code(),
+        Some(124),
+        "`sdfc {}` ran past {TIME_CAP} s",
+        args.join(" ")
+    );
+    // (The last line: GNU time writes a note first when the command died by a signal.)
+    let kib: u64 = text
+        .lines()
+        .last()
+        .and_then(|l| l.trim().parse().ok())
+        .unwrap_or(0);
+    assert!(
+        kib <= PEAK_CAP_KIB,
+        "`sdfc {}` held {} MiB at its peak",
+        args.join(" "),
+        kib / 1024
+    );
+    out
 }
 
 /// Scenes the suites aim at the edges, for the real clients: every hostile scene that checks
