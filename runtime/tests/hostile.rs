@@ -4,65 +4,24 @@
 //! compiler error) on user input, and a failed command leaves no output file.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output, Stdio};
-use std::time::{Duration, Instant};
+use std::process::Output;
 
 /// Seconds a command may take before the test calls it a hang.
 const TIME_CAP: u64 = 60;
 /// Address space a command may use (KiB), a backstop: Vulkan and LLVM reserve far more than
-/// they touch, so the real bound is on the resident peak below.
+/// they touch, so the real bound is the resident peak `common::bounded` checks (2 GiB, issue
+/// 32's bound for a first frame: the let-sharing render's 7 GB and the 4.2 GB of a 2 434-sphere
+/// compile would fail there).
 const MEMORY_CAP_KIB: u64 = 6 << 20;
-/// Most memory a command may hold at once (KiB, the peak resident set `/usr/bin/time` reports):
-/// 2 GiB, the bound issue 32 sets for a first frame (the let-sharing render's 7 GB and the
-/// 4.2 GB of a 2 434-sphere compile would fail here).
-const PEAK_CAP_KIB: u64 = 2 << 20;
 
 /// Runs `sdfc args` under the caps; the output, or a panic naming a hang or the peak memory
 /// past its cap.
 fn capped(args: &[&str]) -> Output {
-    let limit = format!("--as={}", MEMORY_CAP_KIB * 1024);
-    let peak_file = std::env::temp_dir().join(format!(
-        "sdfc-hostile-peak-{}-{}",
-        std::process::id(),
-        PEAKS.fetch_add(1, std::sync::atomic::Ordering::Relaxed)
-    ));
-    let mut child = Command::new("/usr/bin/time")
-        .args(["-f", "%M", "-o"])
-        .arg(&peak_file)
-        .arg("prlimit")
-        .arg(limit)
-        .arg(env!("CARGO_BIN_EXE_sdfc"))
-        .args(args)
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("run prlimit");
-    let start = Instant::now();
-    loop {
-        if child.try_wait().expect("wait").is_some() {
-            let out = child.wait_with_output().expect("output");
-            let peak = std::fs::read_to_string(&peak_file).unwrap_or_default();
-            let _ = std::fs::remove_file(&peak_file);
-            // (The last line: GNU time writes a note first when the command died by a signal.)
-            let kib: u64 = peak
-                .lines()
-                .last()
-                .and_then(|l| l.trim().parse().ok())
-                .unwrap_or(0);
-            assert!(
-                kib <= PEAK_CAP_KIB,
-                "`sdfc {}` held {} MiB at its peak",
-                args.join(" "),
-                kib / 1024
-            );
-            return out;
-        }
-        if start.elapsed() > Duration::from_secs(TIME_CAP) {
-            let _ = child.kill();
-            panic!("`sdfc {}` ran past {TIME_CAP} s", args.join(" "));
-        }
-        std::thread::sleep(Duration::from_millis(20));
-    }
+    let wrapper = [
+        "prlimit".to_string(),
+        format!("--as={}", MEMORY_CAP_KIB * 1024),
+    ];
+    crate::common::bounded(&wrapper, TIME_CAP, args)
 }
 
 /// Exit 0 or 1, no signal, no panic.
@@ -87,9 +46,6 @@ fn inputs() -> Vec<PathBuf> {
     v.sort();
     v
 }
-
-/// Peak files named so far.
-static PEAKS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
 
 fn scratch() -> PathBuf {
     let d = std::env::temp_dir().join(format!("sdfc-hostile-{}", std::process::id()));

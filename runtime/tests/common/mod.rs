@@ -211,16 +211,23 @@ static PEAKS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::n
 /// Runs the `sdfc` binary with `args` under [`TIME_CAP`] and [`PEAK_CAP_KIB`]: a command past
 /// either fails the test, so every command line the tests run is bounded work.
 pub fn sdfc(args: &[&str]) -> Output {
+    bounded(&[], TIME_CAP, args)
+}
+
+/// Runs `sdfc args` (behind `wrapper`, e.g. `prlimit --as=…`) under `timeout` at `seconds` and
+/// GNU time, and fails the test if it ran past them or held more than [`PEAK_CAP_KIB`].
+pub fn bounded(wrapper: &[String], seconds: u64, args: &[&str]) -> Output {
     let peak = std::env::temp_dir().join(format!(
         "sdfc-test-peak-{}-{}",
         std::process::id(),
         PEAKS.fetch_add(1, std::sync::atomic::Ordering::Relaxed)
     ));
     let out = Command::new("timeout")
-        .arg(format!("{TIME_CAP}s"))
+        .arg(format!("{seconds}s"))
         .arg("/usr/bin/time")
         .args(["-f", "%M", "-o"])
         .arg(&peak)
+        .args(wrapper)
         .arg(env!("CARGO_BIN_EXE_sdfc"))
         .args(args)
         .output()
@@ -230,7 +237,7 @@ pub fn sdfc(args: &[&str]) -> Output {
     assert_ne!(
         out.status.code(),
         Some(124),
-        "`sdfc {}` ran past {TIME_CAP} s",
+        "`sdfc {}` ran past {seconds} s",
         args.join(" ")
     );
     // (The last line: GNU time writes a note first when the command died by a signal.)
