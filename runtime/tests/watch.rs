@@ -111,14 +111,12 @@ fn watch_follows_imported_files() {
     let mut child = start_watch("emit", &scene, &out, &[], &log);
     let said = || std::fs::read_to_string(&log).unwrap_or_default();
     let wrote = |n: usize| move || said().matches("wrote ").count() >= n;
+    // Waits for the n-th output.
+    let rebuilt = |child: &mut std::process::Child, what: &str, n: usize| {
+        wait_until(what, child, &log, Duration::from_secs(60), wrote(n));
+    };
     std::fs::write(&lib, "fn part() = torus(0.7, 0.25)\n").unwrap();
-    wait_until(
-        "a rebuild for the library",
-        &mut child,
-        &log,
-        Duration::from_secs(60),
-        wrote(2),
-    );
+    rebuilt(&mut child, "a rebuild for the library", 2);
     assert!(
         std::fs::read_to_string(&out)
             .unwrap()
@@ -129,21 +127,9 @@ fn watch_follows_imported_files() {
         "import \"lib/parts.sdf\"\nimport \"lib/later.sdf\"\nunion { part() other() }\n",
     )
     .unwrap();
-    wait_until(
-        "a rebuild for the scene",
-        &mut child,
-        &log,
-        Duration::from_secs(60),
-        wrote(3),
-    );
+    rebuilt(&mut child, "a rebuild for the scene", 3);
     std::fs::write(&later, "fn other() = capsule(1, 0.2)\n").unwrap();
-    wait_until(
-        "a rebuild for the new import",
-        &mut child,
-        &log,
-        Duration::from_secs(60),
-        wrote(4),
-    );
+    rebuilt(&mut child, "a rebuild for the new import", 4);
     assert!(
         std::fs::read_to_string(&out)
             .unwrap()

@@ -14,15 +14,8 @@ pub fn driver_module(
     options: &mut sdfc_compiler::lower::tracer::Options,
     allow: bool,
 ) -> Result<(naga::Module, Predicted), Error> {
-    use sdfc_compiler::lower::{Entry, tracer::BoundingVolumes};
-    let compile = |o: &sdfc_compiler::lower::tracer::Options| {
-        emit::module(scene, Entry::Compute, o)
-            .map(|(m, _)| {
-                let p = cost::predict_module(&m);
-                (m, p)
-            })
-            .map_err(|e| Error::Compiler(e.0))
-    };
+    use sdfc_compiler::lower::tracer::BoundingVolumes;
+    let compile = |o: &sdfc_compiler::lower::tracer::Options| compute_module(scene, o);
     let (module, predicted) = compile(options)?;
     if !predicted.too_slow() || allow {
         return Ok((module, predicted));
@@ -59,6 +52,18 @@ pub fn driver_module(
     .help("share repeated shapes with `let` or `repeat`, or pass `--allow-slow-compile` to wait; `sdfc emit` writes the shader for other engines");
     say_raw!("{}", crate::cli::messages::report(&[d], sources));
     Err(Error::Reported)
+}
+
+/// The scene's compute module (what `render` draws with) for `options`, and the driver's
+/// compile predicted for it.
+pub fn compute_module(
+    scene: &sdfc_compiler::scene::Scene,
+    options: &sdfc_compiler::lower::tracer::Options,
+) -> Result<(naga::Module, Predicted), Error> {
+    let (module, _) = emit::module(scene, sdfc_compiler::lower::Entry::Compute, options)
+        .map_err(|e| Error::Compiler(e.0))?;
+    let predicted = cost::predict_module(&module);
+    Ok((module, predicted))
 }
 
 /// Seconds as a person reads them: `0.4 s`, `12 s`, `3 min`, `2.5 h`.

@@ -57,11 +57,10 @@ fn check(path: &Path, effort: Effort) -> i32 {
         .count();
     let summary = sdfc_compiler::docs::summary(&name, &scene, warnings);
     let options = sdfc_compiler::lower::tracer::Options::from_scene(&scene);
-    let entry = sdfc_compiler::lower::Entry::Compute;
-    let predicted = match sdfc_compiler::emit::module(&scene, entry, &options) {
-        Ok((module, _)) => sdfc_compiler::cost::predict_module(&module),
+    let predicted = match crate::cli::driver::compute_module(&scene, &options) {
+        Ok((_, predicted)) => predicted,
         Err(e) => {
-            say!("internal compiler error: {}", e.0);
+            say!("{e}");
             return 2;
         }
     };

@@ -4,7 +4,7 @@
 use std::path::PathBuf;
 
 /// The environment variable that moves the cache (`off` or empty: no cache).
-pub const CACHE_ENV: &str = "SDFC_CACHE_DIR";
+const CACHE_ENV: &str = "SDFC_CACHE_DIR";
 
 /// Largest cache file read back or written: the cache grows with every new shader compiled,
 /// and past this it is dropped to start again (a larger file is ignored).
@@ -12,7 +12,7 @@ const MAX_BYTES: u64 = 256 << 20;
 
 /// The folder the cache lives in: `$SDFC_CACHE_DIR`, else `$XDG_CACHE_HOME/sdfc`, else
 /// `$HOME/.cache/sdfc`; `None` when `SDFC_CACHE_DIR` is `off` or empty, or no folder is known.
-pub fn folder() -> Option<PathBuf> {
+fn folder() -> Option<PathBuf> {
     if let Some(dir) = std::env::var_os(CACHE_ENV) {
         return (!dir.is_empty() && dir != "off").then(|| PathBuf::from(dir));
     }

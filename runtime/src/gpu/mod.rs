@@ -15,7 +15,6 @@ mod prepare;
 mod readback;
 mod render;
 
-pub use cache::{CACHE_ENV, folder as cache_folder};
 pub use dispatch::Timing;
 pub use error::{Consumed, Error};
 pub use prepare::{Layout, MAX_SIDE, Prepared, Source, TILE};
