@@ -18,4 +18,5 @@ mod lipschitz_cases;
 mod lipschitz_params;
 mod lipschitz_sampler;
 mod literals;
+mod mesh;
 mod tidy;

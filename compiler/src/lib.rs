@@ -17,6 +17,7 @@ pub mod layout;
 pub mod lipschitz;
 pub mod lower;
 pub mod manifest;
+pub mod mesh;
 pub mod passes;
 pub mod reference;
 pub mod scene;

@@ -1,5 +1,6 @@
 //! The command line's values (`--spirv-version`, `--glsl-version`, `--backend`, `--target`,
-//! `--entry`, `--size`) and what they stand for in the runtime and the compiler.
+//! `--entry`, `--size`, `sdfc mesh`'s `--format` and `--method`) and what they stand for in the
+//! runtime and the compiler.
 
 use super::Error;
 use sdfc_compiler::emit::{self, Target};
@@ -135,4 +136,32 @@ pub fn parse_size(s: &str) -> Result<(u32, u32), Error> {
         .into());
     }
     Ok((w, h))
+}
+
+/// `sdfc mesh --format`.
+#[derive(Clone, Copy, clap::ValueEnum)]
+pub enum MeshFormatArg {
+    Stl,
+    Obj,
+    Ply,
+    Glb,
+}
+
+impl From<MeshFormatArg> for sdfc_compiler::mesh::formats::Format {
+    fn from(f: MeshFormatArg) -> Self {
+        use sdfc_compiler::mesh::formats::Format;
+        match f {
+            MeshFormatArg::Stl => Format::Stl,
+            MeshFormatArg::Obj => Format::Obj,
+            MeshFormatArg::Ply => Format::Ply,
+            MeshFormatArg::Glb => Format::Glb,
+        }
+    }
+}
+
+/// `sdfc mesh --method`.
+#[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum MeshMethodArg {
+    Sharp,
+    Plain,
 }

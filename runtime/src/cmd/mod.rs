@@ -1,11 +1,12 @@
-//! The subcommands, one module each (`check`, `emit`, `render`, `view`, `bench`, `shell` for
-//! completions and the man page); what two of them share is in `common`, or below in `cli`
-//! and `view`. No command imports another.
+//! The subcommands, one module each (`check`, `emit`, `render`, `view`, `bench`, `mesh`,
+//! `shell` for completions and the man page); what two of them share is in `common`, or below
+//! in `cli` and `view`. No command imports another.
 
 mod bench;
 mod check;
 mod common;
 mod emit;
+mod mesh;
 mod render;
 mod shell;
 mod view;
@@ -32,5 +33,6 @@ pub fn run() -> i32 {
         Command::Render(args) => render::run(&args),
         Command::View(args) => view::run(args),
         Command::Bench(args) => bench::run(&args),
+        Command::Mesh(args) => mesh::run(&args),
     }
 }

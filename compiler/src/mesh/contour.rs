@@ -1,0 +1,253 @@
+//! Triangles from the active cells: the field at their corners, the crossings on their edges,
+//! the segments on their faces chained into one closed polygon per surface sheet in each cell,
+//! and each polygon fanned around a vertex the QEF places (Cubical Marching Squares, Ho et al.
+//! 2005: crossings and face segments shared by neighbours make the mesh closed and 2-manifold
+//! by construction; the QEF vertex and the faces' sharp points keep corners and creases).
+
+use super::faces::{self, Crossing, Face, Segment};
+use super::field::{Field, Grid, inside};
+use super::{par_map, polygons};
+use glam::{DVec3, IVec3};
+use std::collections::HashMap;
+
+/// The mesh of the active cells.
+pub struct Contour {
+    /// Vertex positions: the crossings first, then the faces' sharp points, then the cells'.
+    pub positions: Vec<DVec3>,
+    /// Triangles, counter-clockwise seen from outside.
+    pub triangles: Vec<[u32; 3]>,
+    /// Field evaluations spent.
+    pub evaluations: usize,
+    /// Cells the surface crosses that the pruning had dropped (a bound wrong there).
+    pub added: usize,
+    /// Cells whose segments did not close into polygons (0 unless the field is not a function:
+    /// NaN flickering between calls; such cells are left out and the mesh has a hole there).
+    pub broken: usize,
+}
+
+/// The iterations of the search for a crossing along an edge (Illinois regula falsi; f64
+/// reaches its tolerance in far fewer on a smooth field).
+const ROOT_STEPS: usize = 48;
+
+/// A crossing is kept this fraction of the edge away from its ends, so that a corner exactly
+/// on the surface does not give several crossings the same position.
+const END_GAP: f64 = 1e-4;
+
+/// Contours the surface of `field` through `cells` of `grid`.
+pub fn contour(field: &Field, grid: &Grid, cells: &[IVec3], sharp: bool) -> Contour {
+    let given = cells.len();
+    let (cells, value, mut evaluations) = closed(field, grid, cells);
+    let added = cells.len() - given;
+    let cells = &cells[..];
+    let at = |p: IVec3| value.get(&grid.key(p)).copied().unwrap_or(f64::NAN);
+
+    // Every edge of an active cell that changes side, and where the surface crosses it.
+    let (mut positions, crossings, spent) = crossings(field, grid, cells, &at);
+    evaluations += spent;
+    let crossing_at = |(p, a): (IVec3, usize)| crossings.get(&edge_key(grid, p, a)).copied();
+
+    // The segments on every face of an active cell.
+    let mut face_list: Vec<Face> = cells
+        .iter()
+        .flat_map(|&c| (0..6).map(move |i| Face::of_cell(c, i).0))
+        .collect();
+    face_list.sort_unstable_by_key(|f| edge_key(grid, f.base, f.axis));
+    face_list.dedup();
+    let drawn = par_map(&face_list, |&f| {
+        faces::segments(field, grid, f, at, crossing_at, sharp)
+    });
+    let mut segments: HashMap<Face, Vec<Vec<u32>>> = HashMap::new();
+    for (&f, (list, spent)) in face_list.iter().zip(drawn) {
+        evaluations += spent;
+        if list.is_empty() {
+            continue;
+        }
+        let paths = list.iter().map(|s| path(s, &mut positions)).collect();
+        segments.insert(f, paths);
+    }
+
+    // One polygon per sheet in each cell, fanned around its QEF vertex.
+    let normals: Vec<DVec3> = {
+        let mut n = vec![DVec3::ZERO; crossings.len()];
+        for c in crossings.values() {
+            n[c.vertex as usize] = c.normal;
+        }
+        n
+    };
+    let fans = polygons::fan(
+        field,
+        grid,
+        cells,
+        &segments,
+        &normals,
+        &mut positions,
+        sharp,
+    );
+    evaluations += fans.evaluations;
+    Contour {
+        positions,
+        triangles: fans.triangles,
+        evaluations,
+        added,
+        broken: fans.broken,
+    }
+}
+
+/// The crossings on every edge of `cells` that changes side (`at` gives the field at a grid
+/// point): the vertex positions (the crossings, numbered first), the crossings by edge key, and
+/// the evaluations spent.
+fn crossings(
+    field: &Field,
+    grid: &Grid,
+    cells: &[IVec3],
+    at: &(impl Fn(IVec3) -> f64 + Sync),
+) -> (Vec<DVec3>, HashMap<u64, Crossing>, usize) {
+    let mut evaluations = 0;
+    let mut edges: Vec<(IVec3, usize)> = cells
+        .iter()
+        .flat_map(|&c| (0..12).map(move |i| cell_edge(c, i)))
+        .filter(|&(p, a)| inside(at(p)) != inside(at(p + IVec3::AXES[a])))
+        .collect();
+    edges.sort_unstable_by_key(|&(p, a)| edge_key(grid, p, a));
+    edges.dedup();
+    let found = par_map(&edges, |&(p, a)| {
+        crossing(field, grid, grid.point(p), at(p), a, at(p + IVec3::AXES[a]))
+    });
+    let mut positions = Vec::with_capacity(edges.len() * 2);
+    let mut crossings: HashMap<u64, Crossing> = HashMap::with_capacity(edges.len());
+    for (&(p, a), (position, normal, spent)) in edges.iter().zip(found) {
+        evaluations += spent;
+        let vertex = positions.len() as u32;
+        positions.push(position);
+        let c = Crossing {
+            vertex,
+            position,
+            normal,
+        };
+        crossings.insert(edge_key(grid, p, a), c);
+    }
+    (positions, crossings, evaluations)
+}
+
+/// The cells `cells` with every neighbour across a face the surface crosses, until no face
+/// the surface crosses leads out of the set, and the field at all their corners; and the
+/// evaluations spent. With a correct bound the pruning already keeps every such cell; a bound
+/// that is wrong somewhere (an annotation too small, a fractal's estimate) would otherwise leave
+/// a hole in the mesh where it pruned a cell the surface crosses.
+fn closed(field: &Field, grid: &Grid, cells: &[IVec3]) -> (Vec<IVec3>, HashMap<u64, f64>, usize) {
+    let mut active: std::collections::HashSet<IVec3> = cells.iter().copied().collect();
+    let mut value: HashMap<u64, f64> = HashMap::new();
+    let mut frontier = cells.to_vec();
+    let mut evaluations = 0;
+    while !frontier.is_empty() {
+        let mut points: Vec<IVec3> = frontier
+            .iter()
+            .flat_map(|&c| (0..8).map(move |i| c + corner(i)))
+            .filter(|p| !value.contains_key(&grid.key(*p)))
+            .collect();
+        points.sort_unstable_by_key(|&p| grid.key(p));
+        points.dedup();
+        let values = par_map(&points, |&p| field.at(grid.point(p)));
+        evaluations += points.len();
+        value.extend(points.iter().map(|&p| grid.key(p)).zip(values));
+        let inside_at = |p: IVec3| inside(value[&grid.key(p)]);
+        let mut next = Vec::new();
+        for &c in &frontier {
+            for i in 0..6 {
+                let (face, far) = Face::of_cell(c, i);
+                let sides = face.corners().map(inside_at);
+                if sides.iter().all(|&s| s == sides[0]) {
+                    continue;
+                }
+                let step = IVec3::AXES[face.axis];
+                let across = if far { c + step } else { c - step };
+                if across.cmpge(IVec3::ZERO).all()
+                    && across.cmplt(grid.n).all()
+                    && active.insert(across)
+                {
+                    next.push(across);
+                }
+            }
+        }
+        frontier = next;
+    }
+    let mut cells: Vec<IVec3> = active.into_iter().collect();
+    cells.sort_unstable_by_key(|&c| grid.key(c));
+    (cells, value, evaluations)
+}
+
+/// Corner `i` (0..8) of a cell, relative to its lowest.
+fn corner(i: i32) -> IVec3 {
+    IVec3::new(i & 1, (i >> 1) & 1, i >> 2)
+}
+
+/// A key for the grid edge from `p` along `axis` (or the face at `p` normal to it).
+fn edge_key(grid: &Grid, p: IVec3, axis: usize) -> u64 {
+    grid.key(p) * 3 + axis as u64
+}
+
+/// Edge `i` (0..12) of cell `c`: its lowest end and axis.
+fn cell_edge(c: IVec3, i: i32) -> (IVec3, usize) {
+    let axis = (i / 4) as usize;
+    let (u, v) = ((axis + 1) % 3, (axis + 2) % 3);
+    let p = c + IVec3::AXES[u] * (i & 1) + IVec3::AXES[v] * ((i >> 1) & 1);
+    (p, axis)
+}
+
+/// A segment as a path of vertices (from, its sharp points given indices, to).
+fn path(s: &Segment, positions: &mut Vec<DVec3>) -> Vec<u32> {
+    let mut out = vec![s.from];
+    for &p in &s.sharp {
+        out.push(positions.len() as u32);
+        positions.push(p);
+    }
+    out.push(s.to);
+    out
+}
+
+/// Where the surface crosses the grid edge from `a` (field `fa`) along `axis` to the point of
+/// field `fb`: Illinois regula falsi on the side change, kept [`END_GAP`] off the ends; the
+/// position, the unit normal there and the evaluations spent.
+fn crossing(
+    field: &Field,
+    grid: &Grid,
+    a: DVec3,
+    fa: f64,
+    axis: usize,
+    fb: f64,
+) -> (DVec3, DVec3, usize) {
+    let along = DVec3::AXES[axis] * grid.h;
+    let (mut t0, mut f0, mut t1, mut f1) = (0.0, fa, 1.0, fb);
+    let mut t = 0.5;
+    let mut evaluations = 0;
+    let mut last_side = 0;
+    for _ in 0..ROOT_STEPS {
+        let guess = (t0 * f1 - t1 * f0) / (f1 - f0);
+        t = if guess.is_finite() && guess > t0 && guess < t1 {
+            guess
+        } else {
+            0.5 * (t0 + t1)
+        };
+        let f = field.at(a + along * t);
+        evaluations += 1;
+        if f.abs() < 1e-9 * grid.h || t1 - t0 < 1e-9 {
+            break;
+        }
+        if inside(f) == inside(f0) {
+            (t0, f0) = (t, f);
+            if last_side == -1 {
+                f1 *= 0.5;
+            }
+            last_side = -1;
+        } else {
+            (t1, f1) = (t, f);
+            if last_side == 1 {
+                f0 *= 0.5;
+            }
+            last_side = 1;
+        }
+    }
+    let p = a + along * t.clamp(END_GAP, 1.0 - END_GAP);
+    let normal = field.normal(p, 1e-4 * grid.h);
+    (p, normal, evaluations + 4)
+}

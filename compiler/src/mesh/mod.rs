@@ -1,0 +1,183 @@
+//! Triangle meshes of a scene's surface: the cells the field's bound cannot rule out, one
+//! polygon per surface sheet in each, sharp corners and creases from the gradients, on all cores.
+//!
+//! The steps: `cells` (an octree pruned by |f/λ| > half-diagonal), `contour` (corners,
+//! crossings, `faces`' segments, polygons fanned around a `qef` vertex), then materials per
+//! triangle; `measure` says how far the mesh is from the surface and whether it is closed and
+//! manifold, `formats` writes STL, OBJ, PLY and glTF.
+
+mod cells;
+mod contour;
+mod faces;
+pub mod field;
+pub mod formats;
+pub mod measure;
+mod polygons;
+mod qef;
+
+use crate::reference::eval;
+use crate::scene::Scene;
+use field::{Field, Grid};
+use glam::DVec3;
+
+/// What to mesh and how.
+#[derive(Clone, Debug)]
+pub struct Options {
+    /// Cells along the longest side of the box.
+    pub resolution: u32,
+    /// The box meshed (lowest and highest corner); the surface is clipped to it and capped.
+    pub bounds: (DVec3, DVec3),
+    /// Place each polygon's vertex by the QEF and add the faces' sharp points (corners and
+    /// creases stay sharp); without, the vertex is the mean of the crossings (marching cubes'
+    /// chamfer: the baseline the sharp method is measured against).
+    pub sharp: bool,
+    /// Refuse before the fine levels when the estimated memory exceeds this many bytes.
+    pub max_bytes: u64,
+}
+
+/// The largest resolution accepted (grid points must have 64-bit keys, and a grid this fine is
+/// past any memory anyway).
+pub const MAX_RESOLUTION: u32 = 65_536;
+
+/// Bytes a mesh costs per active cell, a generous estimate from measurement: the corner and
+/// crossing tables, about 2.5 vertices and 5 triangles, the cell itself.
+const BYTES_PER_CELL: u64 = 600;
+
+/// Active cells expected per active 8³ block (a flat sheet crosses about 64 of its 512, a
+/// little more with the pruning's margin and curvature).
+const CELLS_PER_BLOCK: u64 = 128;
+
+/// A triangle mesh with a material per triangle.
+#[derive(Clone, Debug, Default)]
+pub struct Mesh {
+    /// Vertex positions.
+    pub positions: Vec<DVec3>,
+    /// Triangles as vertex indices, counter-clockwise seen from outside.
+    pub triangles: Vec<[u32; 3]>,
+    /// Each triangle's material id (0 the default, i + 1 the scene's i-th material).
+    pub materials: Vec<u32>,
+    /// What making it cost.
+    pub stats: Stats,
+}
+
+/// What meshing cost.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Stats {
+    /// The cells' edge length.
+    pub cell: f64,
+    /// Cells along each axis.
+    pub grid: [i32; 3],
+    /// Cells the surface may cross (the rest were pruned by the bound).
+    pub active_cells: usize,
+    /// Cells the surface crosses that the bound had pruned, added back so that the mesh stays
+    /// closed (0 where every bound holds).
+    pub added_cells: usize,
+    /// Field evaluations, all steps.
+    pub evaluations: usize,
+    /// Cells whose polygons did not close (see `contour::Contour::broken`).
+    pub broken_cells: usize,
+}
+
+/// Why a mesh was not made.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Error {
+    /// The resolution is 0 or above [`MAX_RESOLUTION`].
+    Resolution(u32),
+    /// The box is empty, inverted or not finite.
+    Bounds,
+    /// The estimated memory passes the limit: (estimate, limit) in bytes.
+    Memory(u64, u64),
+}
+
+impl std::fmt::Display for Error {
+    fn fmt(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        match self {
+            Error::Resolution(r) => write!(
+                f,
+                "the resolution {r} is out of range: give 1 to {MAX_RESOLUTION} cells"
+            ),
+            Error::Bounds => write!(f, "the box to mesh is empty or not finite"),
+            Error::Memory(need, limit) => write!(
+                f,
+                "the mesh would need about {} of memory, past the limit of {}: give a lower \
+                 resolution (the memory grows with its square)",
+                gib(*need),
+                gib(*limit)
+            ),
+        }
+    }
+}
+
+/// Bytes in GiB, for messages.
+fn gib(bytes: u64) -> String {
+    format!("{:.1} GiB", bytes as f64 / (1u64 << 30) as f64)
+}
+
+/// The scene's own finite box, if it has one.
+pub fn scene_bounds(scene: &Scene) -> Option<(DVec3, DVec3)> {
+    let b = scene.root_node().bound;
+    (b.lo.is_finite() && b.hi.is_finite()).then_some((b.lo, b.hi))
+}
+
+/// Meshes the surface of `scene` inside `options.bounds`; `stage` is told what runs next.
+pub fn mesh(scene: &Scene, options: &Options, stage: &dyn Fn(&str)) -> Result<Mesh, Error> {
+    if options.resolution == 0 || options.resolution > MAX_RESOLUTION {
+        return Err(Error::Resolution(options.resolution));
+    }
+    let (lo, hi) = options.bounds;
+    if !(lo.is_finite() && hi.is_finite() && lo.cmplt(hi).all()) {
+        return Err(Error::Bounds);
+    }
+    let field = Field::new(scene, lo, hi);
+    let grid = Grid::over(lo, hi, options.resolution);
+    stage("finding the cells the surface crosses");
+    let active = cells::active(&field, &grid, |blocks| {
+        let need = blocks as u64 * CELLS_PER_BLOCK * BYTES_PER_CELL;
+        if need > options.max_bytes {
+            Err(Error::Memory(need, options.max_bytes))
+        } else {
+            Ok(())
+        }
+    })?;
+    stage("contouring");
+    let c = contour::contour(&field, &grid, &active.cells, options.sharp);
+    stage("materials");
+    let materials = par_map(&c.triangles, |t| {
+        let centroid = t.iter().map(|&v| c.positions[v as usize]).sum::<DVec3>() / 3.0;
+        eval::surface(scene, centroid).0
+    });
+    Ok(Mesh {
+        stats: Stats {
+            cell: grid.h,
+            grid: grid.n.to_array(),
+            active_cells: active.cells.len(),
+            added_cells: c.added,
+            evaluations: active.evaluations + c.evaluations + c.triangles.len(),
+            broken_cells: c.broken,
+        },
+        positions: c.positions,
+        triangles: c.triangles,
+        materials,
+    })
+}
+
+/// `f` over `items` on all cores (in order); on one core, or where threads cannot be made
+/// (WebAssembly), in this thread.
+pub fn par_map<T: Sync, R: Send>(items: &[T], f: impl Fn(&T) -> R + Sync) -> Vec<R> {
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+    if threads == 1 || items.len() < 256 {
+        return items.iter().map(f).collect();
+    }
+    let chunk = items.len().div_ceil(threads * 4);
+    let f = &f;
+    std::thread::scope(|s| {
+        let parts: Vec<_> = items
+            .chunks(chunk)
+            .map(|part| s.spawn(move || part.iter().map(f).collect::<Vec<R>>()))
+            .collect();
+        parts
+            .into_iter()
+            .flat_map(|p| p.join().unwrap_or_else(|e| std::panic::resume_unwind(e)))
+            .collect()
+    })
+}

@@ -1,0 +1,227 @@
+//! Each cell's polygons: its faces' segments chained into closed rings, one per surface sheet,
+//! each fanned around a vertex the QEF places and a Newton step settles on the surface.
+
+use super::faces::{self, Face};
+use super::field::{Field, Grid};
+use super::{par_map, qef};
+use glam::{DVec3, IVec3};
+use std::collections::HashMap;
+
+/// The fans of every cell.
+pub struct Fans {
+    /// Triangles, counter-clockwise seen from outside.
+    pub triangles: Vec<[u32; 3]>,
+    /// Field evaluations spent.
+    pub evaluations: usize,
+    /// Cells whose segments did not close into rings.
+    pub broken: usize,
+}
+
+/// Fans every polygon of `cells` around its vertex, appended to `positions`; `segments` are
+/// the faces' paths and `normals` the crossings' (vertex `v < normals.len()` is a crossing).
+/// Then moves apart vertices that came too near (`separate`).
+pub fn fan(
+    field: &Field,
+    grid: &Grid,
+    cells: &[IVec3],
+    segments: &HashMap<Face, Vec<Vec<u32>>>,
+    normals: &[DVec3],
+    positions: &mut Vec<DVec3>,
+    sharp: bool,
+) -> Fans {
+    let mut evaluations = 0;
+    let placed = {
+        let positions = &*positions;
+        par_map(cells, |&c| {
+            let mut spent = 0;
+            let rings = polygons(c, segments)?
+                .into_iter()
+                .map(|ring| {
+                    let (centre, n) = place(field, grid, c, &ring, (positions, normals), sharp);
+                    spent += n;
+                    (ring, centre)
+                })
+                .collect::<Vec<_>>();
+            Some((rings, spent))
+        })
+    };
+    let mut triangles = Vec::new();
+    let mut broken = 0;
+    for found in placed {
+        let Some((rings, spent)) = found else {
+            broken += 1;
+            continue;
+        };
+        evaluations += spent;
+        for (ring, centre) in rings {
+            let vertex = positions.len() as u32;
+            positions.push(centre);
+            for k in 0..ring.len() {
+                let (a, b) = (ring[k], ring[(k + 1) % ring.len()]);
+                triangles.push([vertex, b, a]);
+            }
+        }
+    }
+    separate(positions, faces::MIN_GAP * grid.h);
+    Fans {
+        triangles,
+        evaluations,
+        broken,
+    }
+}
+
+/// Where the vertex of `ring` (a polygon of cell `c`) goes, and the evaluations spent: sharp,
+/// where the QEF of its crossings puts it (around the mass point of all its vertices: a face's
+/// sharp points lie on the creases inside the cell, so a crease's line is followed to them),
+/// settled on the surface; plain, the mean of its crossings. Vertex `v` of `positions` is a
+/// crossing of normal `normals[v]` if `v < normals.len()`.
+fn place(
+    field: &Field,
+    grid: &Grid,
+    c: IVec3,
+    ring: &[u32],
+    (positions, normals): (&[DVec3], &[DVec3]),
+    sharp: bool,
+) -> (DVec3, usize) {
+    let lo = grid.point(c);
+    let sheet: Vec<(DVec3, DVec3)> = ring
+        .iter()
+        .filter_map(|&v| normals.get(v as usize).map(|&n| (positions[v as usize], n)))
+        .collect();
+    let (centre, spent) = if sharp {
+        let mass = ring.iter().map(|&v| positions[v as usize]).sum::<DVec3>() / ring.len() as f64;
+        onto_surface(field, qef::solve(&sheet, mass), lo, grid.h)
+    } else {
+        let mean = sheet.iter().map(|s| s.0).sum::<DVec3>() / sheet.len().max(1) as f64;
+        (mean.clamp(lo, lo + grid.h), 0)
+    };
+    (away(centre, ring, positions, grid.h), spent)
+}
+
+/// The polygons of cell `c`: its faces' segments, oriented as seen from outside the cell, chained
+/// into closed rings of vertices; `None` if they do not close.
+fn polygons(c: IVec3, segments: &HashMap<Face, Vec<Vec<u32>>>) -> Option<Vec<Vec<u32>>> {
+    let mut paths: Vec<Vec<u32>> = Vec::new();
+    for i in 0..6 {
+        let (face, far) = Face::of_cell(c, i);
+        for path in segments.get(&face).into_iter().flatten() {
+            let mut path = path.clone();
+            if !far {
+                path.reverse();
+            }
+            paths.push(path);
+        }
+    }
+    let mut used = vec![false; paths.len()];
+    let mut rings = Vec::new();
+    while let Some(first) = used.iter().position(|u| !u) {
+        let mut ring = Vec::new();
+        let mut at = first;
+        loop {
+            used[at] = true;
+            let path = &paths[at];
+            ring.extend_from_slice(&path[..path.len() - 1]);
+            let to = path[path.len() - 1];
+            if to == paths[first][0] {
+                break;
+            }
+            at = (0..paths.len()).find(|&k| !used[k] && paths[k][0] == to)?;
+        }
+        rings.push(ring);
+    }
+    Some(rings)
+}
+
+/// Newton steps of the QEF's point `p` onto the surface (p − d·∇d, the nearest surface point for
+/// an exact field), kept in the cell at `lo`: where the sheet in a cell shows only two of a
+/// corner's three faces, the QEF puts the point on the crease's line past the corner, and the
+/// step brings it back to the corner. A point the QEF put outside the cell is clamped to the
+/// cell's side and moves within that side (the surface's point there nearest a corner just
+/// outside). A point already on the surface does not move. Returns the point and the
+/// evaluations spent.
+fn onto_surface(field: &Field, p: DVec3, lo: DVec3, h: f64) -> (DVec3, usize) {
+    let hi = lo + h;
+    let free = DVec3::select(p.cmplt(lo) | p.cmpgt(hi), DVec3::ZERO, DVec3::ONE);
+    let mut p = p.clamp(lo, hi);
+    let mut d = field.at(p);
+    let mut spent = 1;
+    for _ in 0..PROJECTION_STEPS {
+        if d.is_nan() || d.abs() <= 1e-7 * h {
+            break;
+        }
+        let n = field.normal(p, 1e-4 * h) * free;
+        let g = n.length_squared();
+        if g < 1e-6 {
+            break;
+        }
+        let q = (p - n * (d / g)).clamp(lo, hi);
+        let dq = field.at(q);
+        spent += 5;
+        if dq.is_nan() || dq.abs() >= d.abs() {
+            break;
+        }
+        (p, d) = (q, dq);
+    }
+    (p, spent)
+}
+
+/// The polygon's vertex `centre`, moved toward the ring's mean while it lies within
+/// `faces::MIN_GAP` cells of one of the ring's vertices (a corner of the shape on a cell's face
+/// is both a face's sharp point and the QEF's answer), so that no two vertices share a position.
+fn away(centre: DVec3, ring: &[u32], positions: &[DVec3], h: f64) -> DVec3 {
+    let mean = ring.iter().map(|&v| positions[v as usize]).sum::<DVec3>() / ring.len() as f64;
+    let gap = faces::MIN_GAP * h;
+    let near = |c: DVec3| {
+        ring.iter()
+            .any(|&v| (positions[v as usize] - c).length() < gap)
+    };
+    let mut c = centre;
+    for k in 1..=8 {
+        if !near(c) {
+            return c;
+        }
+        c = centre + (mean - centre) * (0.01 * k as f64);
+    }
+    mean
+}
+
+/// The Newton steps [`onto_surface`] takes at most.
+const PROJECTION_STEPS: usize = 8;
+
+/// Moves apart vertices nearer each other than `gap`: two polygons' vertices clamped to one
+/// cell corner, or two parts that touch (a ball resting on a floor meets it at a point, where
+/// the two sheets' vertices come within 1e-8). The mesh is manifold by its indices either way,
+/// but a tool that joins vertices by position would pinch it there. Each vertex moves at most
+/// `gap` (1e-4 of a cell).
+fn separate(positions: &mut [DVec3], gap: f64) {
+    let bucket = |p: DVec3| (p / gap).floor().as_i64vec3();
+    let mut grid: HashMap<glam::I64Vec3, Vec<u32>> = HashMap::new();
+    for i in 0..positions.len() {
+        let mut p = positions[i];
+        let home = bucket(p);
+        for dz in -1..=1 {
+            for dy in -1..=1 {
+                for dx in -1..=1 {
+                    let cell = home + glam::I64Vec3::new(dx, dy, dz);
+                    for &j in grid.get(&cell).into_iter().flatten() {
+                        let q = positions[j as usize];
+                        let d = p - q;
+                        if d.length() < gap {
+                            let dir = d.try_normalize().unwrap_or(AWAY);
+                            p = q + dir * gap;
+                        }
+                    }
+                }
+            }
+        }
+        positions[i] = p;
+        grid.entry(bucket(p)).or_default().push(i as u32);
+    }
+}
+
+/// The direction a vertex moves off another at its very position.
+const AWAY: DVec3 = DVec3::new(
+    0.267_261_241_912_424_4,
+    0.534_522_483_824_848_8,
+    0.801_783_725_737_273_2,
+);

@@ -1,0 +1,246 @@
+//! `sdfc mesh`: a scene's surface as a closed triangle mesh in STL, OBJ, PLY or glTF, with how
+//! far it lies from the surface.
+
+use super::common::{progress_bar, writable, write_output};
+use crate::cli::input::{exit_code, load_scene_with, param_values};
+use crate::cli::messages::{self, done};
+use crate::cli::values::MeshMethodArg;
+use crate::cli::{Error, MeshArgs};
+use glam::DVec3;
+use sdfc_compiler::diag::Diagnostic;
+use sdfc_compiler::mesh::formats::{self, Format};
+use sdfc_compiler::mesh::{self, Mesh, field::Field, measure};
+use sdfc_compiler::scene::Scene;
+use std::path::Path;
+use std::time::Instant;
+
+/// Runs `sdfc mesh`; returns the exit code.
+pub fn run(args: &MeshArgs) -> i32 {
+    exit_code(mesh_scene(args))
+}
+
+/// How much the scene's own box is grown, relative to its longest side, so that no surface
+/// lies on the cut.
+const GROW: f64 = 0.01;
+
+fn mesh_scene(args: &MeshArgs) -> Result<(), Error> {
+    let started = Instant::now();
+    let format = output_format(args)?;
+    writable(&args.output)?;
+    let values = param_values(&args.params, args.time)?;
+    let Some((sources, scene)) = load_scene_with(&args.file, &values) else {
+        return Err(Error::Reported);
+    };
+    let scene = scene.with_values(&values.values);
+    let bounds = match &args.bounds {
+        Some(text) => parse_bounds(text)?,
+        None => own_bounds(&scene, &sources)?,
+    };
+    let longest = (bounds.1 - bounds.0).max_element();
+    let resolution = match args.cell {
+        Some(c) if c.is_finite() && c > 0.0 => (longest / c).ceil().min(u32::MAX as f64) as u32,
+        Some(c) => return Err(format!("error: `--cell {c}`: give a size above 0").into()),
+        None => args.resolution,
+    };
+    if !(args.max_memory.is_finite() && args.max_memory > 0.0) {
+        return Err("error: `--max-memory`: give a size above 0 (GiB)".into());
+    }
+    let options = mesh::Options {
+        resolution,
+        bounds,
+        sharp: args.method == MeshMethodArg::Sharp,
+        max_bytes: (args.max_memory * (1u64 << 30) as f64) as u64,
+    };
+    let bar = progress_bar("meshing");
+    let t0 = Instant::now();
+    let stage = |what: &str| {
+        if args.stats {
+            say!("{:7.2} s  {what}", t0.elapsed().as_secs_f64());
+        }
+        if let Some(b) = &bar {
+            b.set_message(what.to_string());
+        }
+    };
+    let mesh = mesh::mesh(&scene, &options, &stage).map_err(|e| format!("error: {e}"))?;
+    if mesh.triangles.is_empty() {
+        return Err("error: no surface crosses the box: nothing to mesh (see `--bounds`)".into());
+    }
+    if args.stats {
+        let s = mesh.stats;
+        say!(
+            "           {} cells near the surface ({} more the bound had pruned), {} field \
+             evaluations",
+            s.active_cells,
+            s.added_cells,
+            s.evaluations
+        );
+    }
+    stage("measuring");
+    let field = Field::new(&scene, bounds.0, bounds.1);
+    let deviation = measure::deviation(&field, &mesh, mesh.stats.cell);
+    let topology = measure::topology(&mesh);
+    stage("writing");
+    write(&scene, &mesh, format, &args.output)?;
+    if let Some(b) = bar {
+        b.finish_and_clear();
+    }
+    done(&success(args, &mesh, &topology, &deviation, started));
+    if !topology.is_closed_manifold() {
+        say!(
+            "warning: the mesh is not closed and 2-manifold: {} open, {} shared by more than two \
+             triangles, {} misoriented edges, {} cells left out (a field that is not a function \
+             of the point: NaN)",
+            topology.boundary,
+            topology.non_manifold,
+            topology.misoriented,
+            mesh.stats.broken_cells
+        );
+    }
+    Ok(())
+}
+
+/// The format `--format` or the output's extension names.
+fn output_format(args: &MeshArgs) -> Result<Format, Error> {
+    let ext = args
+        .output
+        .extension()
+        .and_then(|e| e.to_str())
+        .unwrap_or("");
+    let format = match args.format {
+        Some(f) => f.into(),
+        None => Format::from_extension(ext).ok_or_else(|| {
+            format!(
+                "error: `{}`: name a mesh file `.stl`, `.obj`, `.ply` or `.glb` (or give \
+                 `--format`)",
+                args.output.display()
+            )
+        })?,
+    };
+    if format == Format::Obj && args.output == Path::new("-") {
+        return Err("error: an OBJ file needs its MTL file beside it: write it to a file".into());
+    }
+    Ok(format)
+}
+
+/// `X0,Y0,Z0,X1,Y1,Z1` as the box's corners.
+fn parse_bounds(text: &str) -> Result<(DVec3, DVec3), Error> {
+    let bad = || {
+        Error::from(format!(
+            "error: `--bounds {text}`: give six numbers `X0,Y0,Z0,X1,Y1,Z1`, each lower corner \
+             below the upper one"
+        ))
+    };
+    let v: Vec<f64> = text
+        .split(',')
+        .map(|x| x.trim().parse::<f64>())
+        .collect::<Result<_, _>>()
+        .map_err(|_| bad())?;
+    if v.len() != 6 || v.iter().any(|x| !x.is_finite()) {
+        return Err(bad());
+    }
+    let (lo, hi) = (DVec3::new(v[0], v[1], v[2]), DVec3::new(v[3], v[4], v[5]));
+    if !lo.cmplt(hi).all() {
+        return Err(bad());
+    }
+    Ok((lo, hi))
+}
+
+/// The scene's own box, grown by [`GROW`]; an unbounded scene is an error at the part that has
+/// no bound.
+fn own_bounds(
+    scene: &Scene,
+    sources: &sdfc_compiler::source::Sources,
+) -> Result<(DVec3, DVec3), Error> {
+    if let Some((lo, hi)) = mesh::scene_bounds(scene) {
+        let grow = GROW * (hi - lo).max_element();
+        return Ok((lo - grow, hi + grow));
+    }
+    let unbounded = scene.reachable().into_iter().find(|&id| {
+        let n = &scene.nodes[id];
+        !n.bound.is_finite()
+            && n.children()
+                .iter()
+                .all(|&c| scene.nodes[c].bound.is_finite())
+    });
+    let Some(id) = unbounded else {
+        return Err("error: the scene has no finite box: give one with `--bounds`".into());
+    };
+    let node = &scene.nodes[id];
+    let d = Diagnostic::error(
+        node.call_site.unwrap_or(node.span),
+        format!(
+            "`{}` is unbounded: the scene has no finite box to mesh",
+            node.kind_name()
+        ),
+    )
+    .label("this extends without end")
+    .help(
+        "give the box to mesh: `--bounds X0,Y0,Z0,X1,Y1,Z1` (the surface is cut and capped there)",
+    );
+    say_raw!("{}", messages::report(&[d], sources));
+    Err(Error::Reported)
+}
+
+/// Writes the mesh (an OBJ's MTL beside it, named after it).
+fn write(scene: &Scene, mesh: &Mesh, format: Format, out: &Path) -> Result<(), Error> {
+    let bytes = match format {
+        Format::Stl => formats::stl(mesh),
+        Format::Ply => formats::ply(
+            mesh,
+            &formats::vertex_colors(scene, mesh, 1e-4 * mesh.stats.cell),
+        ),
+        Format::Glb => formats::glb(mesh, scene),
+        Format::Obj => {
+            let mtl_path = out.with_extension("mtl");
+            let mtl_name = mtl_path.file_name().map_or_else(
+                || "materials.mtl".to_string(),
+                |n| n.to_string_lossy().into_owned(),
+            );
+            let (obj, mtl) = formats::obj(mesh, scene, &mtl_name);
+            crate::cli::write_file(&mtl_path, mtl.as_bytes())?;
+            obj.into_bytes()
+        }
+    };
+    if write_output(Some(out), &bytes, format != Format::Obj) != 0 {
+        return Err(Error::Reported);
+    }
+    Ok(())
+}
+
+/// The success line: what was written, whether it is closed, what it cost and how near it is.
+fn success(
+    args: &MeshArgs,
+    mesh: &Mesh,
+    topology: &measure::Topology,
+    d: &measure::Deviation,
+    started: Instant,
+) -> String {
+    let place = match args.output.to_str() {
+        Some("-") => "standard output".to_string(),
+        _ => args.output.display().to_string(),
+    };
+    let shape = if topology.is_closed_manifold() {
+        "closed, 2-manifold"
+    } else {
+        "NOT closed and 2-manifold"
+    };
+    let h = mesh.stats.cell;
+    let g = mesh.stats.grid;
+    format!(
+        "wrote {place} — {} triangles, {} vertices, {shape}; cells of {h:.3e} ({}×{}×{}, {} \
+         near the surface), {:.1} s; distance to the surface: vertices ≤ {:.1e}, faces ≤ {:.1e} \
+         (rms {:.1e}, {} sampled) = {:.3} of a cell",
+        mesh.triangles.len(),
+        mesh.positions.len(),
+        g[0],
+        g[1],
+        g[2],
+        mesh.stats.active_cells,
+        started.elapsed().as_secs_f64(),
+        d.vertex_max,
+        d.face_max,
+        d.face_rms,
+        d.faces_sampled,
+        d.vertex_max.max(d.face_max) / h
+    )
+}
