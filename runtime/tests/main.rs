@@ -22,6 +22,7 @@ mod golden;
 mod host;
 mod hostile;
 mod lipschitz;
+mod mesh;
 mod nan;
 mod options;
 mod outputs;

@@ -14,17 +14,17 @@ pub struct Active {
     pub evaluations: usize,
 }
 
-/// The octree's blocks at one level that the coarse pass stops at (8³ cells each) before the
-/// memory estimate is made.
-pub const COARSE: i32 = 8;
+/// The largest blocks (in cells along a side) whose count [`active`] reports to its budget:
+/// a block this small that the surface may cross holds about its side² cells of the surface.
+pub const ESTIMATED_FROM: i32 = 512;
 
-/// Finds the cells of `grid` that the surface of `field` may cross. `budget` is called once,
-/// with the number of 8³-cell blocks the surface may cross, before the finer levels run; an
-/// error from it stops the work.
+/// Finds the cells of `grid` that the surface of `field` may cross. `budget` is called after
+/// each level of blocks of at most [`ESTIMATED_FROM`] cells a side, with their count and side,
+/// before the finer levels run; an error from it stops the work.
 pub fn active<E>(
     field: &Field,
     grid: &Grid,
-    budget: impl FnOnce(usize) -> Result<(), E>,
+    budget: impl Fn(usize, i32) -> Result<(), E>,
 ) -> Result<Active, E> {
     let levels = (grid.n.max_element().max(1) as u32)
         .next_power_of_two()
@@ -32,7 +32,6 @@ pub fn active<E>(
     let mut size = 1i32 << levels;
     let mut blocks = vec![IVec3::ZERO];
     let mut evaluations = 0;
-    let mut budget = Some(budget);
     loop {
         let keep = par_map(&blocks, |&b| {
             let centre = grid.origin + (b.as_dvec3() + 0.5 * size as f64) * grid.h;
@@ -47,10 +46,8 @@ pub fn active<E>(
             .zip(keep)
             .filter_map(|(b, k)| k.then_some(b))
             .collect();
-        if size == COARSE.min(1 << levels)
-            && let Some(check) = budget.take()
-        {
-            check(blocks.len())?;
+        if size <= ESTIMATED_FROM {
+            budget(blocks.len(), size)?;
         }
         if size == 1 {
             return Ok(Active {

@@ -8,7 +8,7 @@ use super::faces::{self, Crossing, Face, Segment};
 use super::field::{Field, Grid, inside};
 use super::{par_map, polygons};
 use glam::{DVec3, IVec3};
-use std::collections::HashMap;
+use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
 
 /// The mesh of the active cells.
 pub struct Contour {
@@ -56,7 +56,7 @@ pub fn contour(field: &Field, grid: &Grid, cells: &[IVec3], sharp: bool) -> Cont
     let drawn = par_map(&face_list, |&f| {
         faces::segments(field, grid, f, at, crossing_at, sharp)
     });
-    let mut segments: HashMap<Face, Vec<Vec<u32>>> = HashMap::new();
+    let mut segments: HashMap<Face, Vec<Vec<u32>>> = HashMap::default();
     for (&f, (list, spent)) in face_list.iter().zip(drawn) {
         evaluations += spent;
         if list.is_empty() {
@@ -114,7 +114,8 @@ fn crossings(
         crossing(field, grid, grid.point(p), at(p), a, at(p + IVec3::AXES[a]))
     });
     let mut positions = Vec::with_capacity(edges.len() * 2);
-    let mut crossings: HashMap<u64, Crossing> = HashMap::with_capacity(edges.len());
+    let mut crossings: HashMap<u64, Crossing> =
+        HashMap::with_capacity_and_hasher(edges.len(), Default::default());
     for (&(p, a), (position, normal, spent)) in edges.iter().zip(found) {
         evaluations += spent;
         let vertex = positions.len() as u32;
@@ -135,8 +136,8 @@ fn crossings(
 /// that is wrong somewhere (an annotation too small, a fractal's estimate) would otherwise leave
 /// a hole in the mesh where it pruned a cell the surface crosses.
 fn closed(field: &Field, grid: &Grid, cells: &[IVec3]) -> (Vec<IVec3>, HashMap<u64, f64>, usize) {
-    let mut active: std::collections::HashSet<IVec3> = cells.iter().copied().collect();
-    let mut value: HashMap<u64, f64> = HashMap::new();
+    let mut active: HashSet<IVec3> = cells.iter().copied().collect();
+    let mut value: HashMap<u64, f64> = HashMap::default();
     let mut frontier = cells.to_vec();
     let mut evaluations = 0;
     while !frontier.is_empty() {

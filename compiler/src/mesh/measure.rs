@@ -5,7 +5,7 @@ use super::Mesh;
 use super::field::Field;
 use super::par_map;
 use glam::DVec3;
-use std::collections::HashMap;
+use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
 
 /// The mesh's edges by how the triangles use them.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -38,7 +38,7 @@ impl Topology {
 
 /// Counts how the triangles of `mesh` use their edges.
 pub fn topology(mesh: &Mesh) -> Topology {
-    let mut uses: HashMap<(u32, u32), (u32, u32)> = HashMap::new();
+    let mut uses: HashMap<(u32, u32), (u32, u32)> = HashMap::default();
     let mut degenerate = 0;
     for t in &mesh.triangles {
         if t[0] == t[1] || t[1] == t[2] || t[0] == t[2] {
@@ -55,7 +55,7 @@ pub fn topology(mesh: &Mesh) -> Topology {
             }
         }
     }
-    let mut seen = std::collections::HashSet::new();
+    let mut seen = HashSet::default();
     let shared_positions = mesh
         .positions
         .iter()

@@ -5,7 +5,7 @@ use super::faces::{self, Face};
 use super::field::{Field, Grid};
 use super::{par_map, qef};
 use glam::{DVec3, IVec3};
-use std::collections::HashMap;
+use rustc_hash::FxHashMap as HashMap;
 
 /// The fans of every cell.
 pub struct Fans {
@@ -195,7 +195,7 @@ const PROJECTION_STEPS: usize = 8;
 /// `gap` (1e-4 of a cell).
 fn separate(positions: &mut [DVec3], gap: f64) {
     let bucket = |p: DVec3| (p / gap).floor().as_i64vec3();
-    let mut grid: HashMap<glam::I64Vec3, Vec<u32>> = HashMap::new();
+    let mut grid: HashMap<glam::I64Vec3, Vec<u32>> = HashMap::default();
     for i in 0..positions.len() {
         let mut p = positions[i];
         let home = bucket(p);
