@@ -12,6 +12,7 @@ fn mesh_in(scene: &Scene, bounds: (DVec3, DVec3), resolution: u32, sharp: bool) 
         resolution,
         bounds,
         sharp,
+        prune: true,
         max_bytes: 4 << 30,
     };
     mesh::mesh(scene, &options, &|_| {}).expect("meshed")

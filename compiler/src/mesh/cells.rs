@@ -14,6 +14,18 @@ pub struct Active {
     pub evaluations: usize,
 }
 
+/// Every cell of `grid`, none pruned (the brute-force baseline).
+pub fn every(grid: &Grid) -> Active {
+    let n = grid.n;
+    let cells = (0..n.z)
+        .flat_map(|z| (0..n.y).flat_map(move |y| (0..n.x).map(move |x| IVec3::new(x, y, z))))
+        .collect();
+    Active {
+        cells,
+        evaluations: 0,
+    }
+}
+
 /// The largest blocks (in cells along a side) whose count [`active`] reports to its budget:
 /// a block this small that the surface may cross holds about its side² cells of the surface.
 pub const ESTIMATED_FROM: i32 = 512;

@@ -56,7 +56,8 @@ pub fn contour(field: &Field, grid: &Grid, cells: &[IVec3], sharp: bool) -> Cont
     let drawn = par_map(&face_list, |&f| {
         faces::segments(field, grid, f, at, crossing_at, sharp)
     });
-    let mut segments: HashMap<Face, Vec<Vec<u32>>> = HashMap::default();
+    let mut segments: HashMap<Face, Vec<Vec<u32>>> =
+        HashMap::with_capacity_and_hasher(face_list.len(), Default::default());
     for (&f, (list, spent)) in face_list.iter().zip(drawn) {
         evaluations += spent;
         if list.is_empty() {
@@ -137,7 +138,9 @@ fn crossings(
 /// a hole in the mesh where it pruned a cell the surface crosses.
 fn closed(field: &Field, grid: &Grid, cells: &[IVec3]) -> (Vec<IVec3>, HashMap<u64, f64>, usize) {
     let mut active: HashSet<IVec3> = cells.iter().copied().collect();
-    let mut value: HashMap<u64, f64> = HashMap::default();
+    // (Sized once: this machine's page faults made the tables' growth a third of the time.)
+    let mut value: HashMap<u64, f64> =
+        HashMap::with_capacity_and_hasher(cells.len() * 3 / 2, Default::default());
     let mut frontier = cells.to_vec();
     let mut evaluations = 0;
     while !frontier.is_empty() {

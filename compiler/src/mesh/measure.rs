@@ -38,7 +38,8 @@ impl Topology {
 
 /// Counts how the triangles of `mesh` use their edges.
 pub fn topology(mesh: &Mesh) -> Topology {
-    let mut uses: HashMap<(u32, u32), (u32, u32)> = HashMap::default();
+    let mut uses: HashMap<(u32, u32), (u32, u32)> =
+        HashMap::with_capacity_and_hasher(mesh.triangles.len() * 3 / 2, Default::default());
     let mut degenerate = 0;
     for t in &mesh.triangles {
         if t[0] == t[1] || t[1] == t[2] || t[0] == t[2] {
@@ -55,7 +56,7 @@ pub fn topology(mesh: &Mesh) -> Topology {
             }
         }
     }
-    let mut seen = HashSet::default();
+    let mut seen = HashSet::with_capacity_and_hasher(mesh.positions.len(), Default::default());
     let shared_positions = mesh
         .positions
         .iter()

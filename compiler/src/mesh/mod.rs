@@ -31,6 +31,9 @@ pub struct Options {
     /// creases stay sharp); without, the vertex is the mean of the crossings (marching cubes'
     /// chamfer: the baseline the sharp method is measured against).
     pub sharp: bool,
+    /// Drop the blocks the field's bound proves empty (the octree); without, every cell of the
+    /// grid is contoured (the brute-force baseline the pruning is measured against).
+    pub prune: bool,
     /// Refuse, as soon as the octree's coarse levels show it, a mesh whose estimated memory
     /// exceeds this many bytes.
     pub max_bytes: u64,
@@ -133,17 +136,26 @@ pub fn mesh(scene: &Scene, options: &Options, stage: &dyn Fn(&str)) -> Result<Me
     let field = Field::new(scene, lo, hi);
     let grid = Grid::over(lo, hi, options.resolution);
     stage("finding the cells the surface crosses");
-    let active = cells::active(&field, &grid, |blocks, side| {
-        let area = (side as u64).pow(2);
-        let need = (blocks as u64)
-            .saturating_mul(area * CELLS_PER_AREA)
-            .saturating_mul(BYTES_PER_CELL);
+    let active = if !options.prune {
+        let n = grid.n;
+        let need = (n.x as u64 * n.y as u64 * n.z as u64).saturating_mul(BYTES_PER_CELL);
         if need > options.max_bytes {
-            Err(Error::Memory(need, options.max_bytes))
-        } else {
-            Ok(())
+            return Err(Error::Memory(need, options.max_bytes));
         }
-    })?;
+        cells::every(&grid)
+    } else {
+        cells::active(&field, &grid, |blocks, side| {
+            let area = (side as u64).pow(2);
+            let need = (blocks as u64)
+                .saturating_mul(area * CELLS_PER_AREA)
+                .saturating_mul(BYTES_PER_CELL);
+            if need > options.max_bytes {
+                Err(Error::Memory(need, options.max_bytes))
+            } else {
+                Ok(())
+            }
+        })?
+    };
     stage("contouring");
     let c = contour::contour(&field, &grid, &active.cells, options.sharp);
     stage("materials");

@@ -195,7 +195,8 @@ const PROJECTION_STEPS: usize = 8;
 /// `gap` (1e-4 of a cell).
 fn separate(positions: &mut [DVec3], gap: f64) {
     let bucket = |p: DVec3| (p / gap).floor().as_i64vec3();
-    let mut grid: HashMap<glam::I64Vec3, Vec<u32>> = HashMap::default();
+    let mut grid: HashMap<glam::I64Vec3, Vec<u32>> =
+        HashMap::with_capacity_and_hasher(positions.len(), Default::default());
     for i in 0..positions.len() {
         let mut p = positions[i];
         let home = bucket(p);

@@ -326,6 +326,11 @@ pub struct MeshArgs {
     /// crossings, as marching cubes places them (chamfered edges; the baseline).
     #[arg(long, value_enum, default_value = "sharp")]
     pub method: super::values::MeshMethodArg,
+    /// Contour every cell of the grid instead of only those the field's bound cannot rule out
+    /// (the brute-force baseline the pruning is measured against; memory grows with the cube
+    /// of the resolution).
+    #[arg(long)]
+    pub no_prune: bool,
     /// Refuse, before the fine work, a mesh estimated to need more memory than this (GiB).
     #[arg(long, default_value_t = 8.0, value_name = "GIB")]
     pub max_memory: f64,

@@ -49,6 +49,7 @@ fn mesh_scene(args: &MeshArgs) -> Result<(), Error> {
         resolution,
         bounds,
         sharp: args.method == MeshMethodArg::Sharp,
+        prune: !args.no_prune,
         max_bytes: (args.max_memory * (1u64 << 30) as f64) as u64,
     };
     let bar = progress_bar("meshing");
@@ -68,7 +69,7 @@ fn mesh_scene(args: &MeshArgs) -> Result<(), Error> {
     if args.stats {
         let s = mesh.stats;
         say!(
-            "           {} cells near the surface ({} more the bound had pruned), {} field \
+            "           {} cells contoured ({} of them the bound had pruned wrongly), {} field \
              evaluations",
             s.active_cells,
             s.added_cells,
