@@ -47,12 +47,14 @@ pub fn contour(field: &Field, grid: &Grid, cells: &[IVec3], sharp: bool) -> Cont
     let crossing_at = |(p, a): (IVec3, usize)| crossings.get(&edge_key(grid, p, a)).copied();
 
     // The segments on every face of an active cell.
-    let mut face_list: Vec<Face> = cells
+    // Each face once: a cell's near faces, and its far ones where no active cell lies beyond.
+    let listed: HashSet<IVec3> = cells.iter().copied().collect();
+    let face_list: Vec<Face> = cells
         .iter()
-        .flat_map(|&c| (0..6).map(move |i| Face::of_cell(c, i).0))
+        .flat_map(|&c| (0..6).map(move |i| (c, Face::of_cell(c, i))))
+        .filter(|&(c, (f, far))| !far || !listed.contains(&(c + IVec3::AXES[f.axis])))
+        .map(|(_, (f, _))| f)
         .collect();
-    face_list.sort_unstable_by_key(|f| edge_key(grid, f.base, f.axis));
-    face_list.dedup();
     let drawn = par_map(&face_list, |&f| {
         faces::segments(field, grid, f, at, crossing_at, sharp)
     });
@@ -144,13 +146,17 @@ fn closed(field: &Field, grid: &Grid, cells: &[IVec3]) -> (Vec<IVec3>, HashMap<u
     let mut frontier = cells.to_vec();
     let mut evaluations = 0;
     while !frontier.is_empty() {
-        let mut points: Vec<IVec3> = frontier
-            .iter()
-            .flat_map(|&c| (0..8).map(move |i| c + corner(i)))
-            .filter(|p| !value.contains_key(&grid.key(*p)))
-            .collect();
-        points.sort_unstable_by_key(|&p| grid.key(p));
-        points.dedup();
+        // The corners not yet known, each once (NaN holds the place until it is evaluated).
+        let mut points: Vec<IVec3> = Vec::new();
+        for &c in &frontier {
+            for i in 0..8 {
+                let p = c + corner(i);
+                if let std::collections::hash_map::Entry::Vacant(e) = value.entry(grid.key(p)) {
+                    e.insert(f64::NAN);
+                    points.push(p);
+                }
+            }
+        }
         let values = par_map(&points, |&p| field.at(grid.point(p)));
         evaluations += points.len();
         value.extend(points.iter().map(|&p| grid.key(p)).zip(values));

@@ -101,17 +101,16 @@ fn place(
 /// The polygons of cell `c`: its faces' segments, oriented as seen from outside the cell, chained
 /// into closed rings of vertices; `None` if they do not close.
 fn polygons(c: IVec3, segments: &HashMap<Face, Vec<Vec<u32>>>) -> Option<Vec<Vec<u32>>> {
-    let mut paths: Vec<Vec<u32>> = Vec::new();
+    // The paths as they lie (borrowed), and whether this cell walks them backwards (a face on
+    // its near side, seen from outside the cell, runs the other way).
+    let mut paths: Vec<(&[u32], bool)> = Vec::with_capacity(8);
     for i in 0..6 {
         let (face, far) = Face::of_cell(c, i);
         for path in segments.get(&face).into_iter().flatten() {
-            let mut path = path.clone();
-            if !far {
-                path.reverse();
-            }
-            paths.push(path);
+            paths.push((path, !far));
         }
     }
+    let start = |(p, back): (&[u32], bool)| if back { p[p.len() - 1] } else { p[0] };
     let mut used = vec![false; paths.len()];
     let mut rings = Vec::new();
     while let Some(first) = used.iter().position(|u| !u) {
@@ -119,13 +118,19 @@ fn polygons(c: IVec3, segments: &HashMap<Face, Vec<Vec<u32>>>) -> Option<Vec<Vec
         let mut at = first;
         loop {
             used[at] = true;
-            let path = &paths[at];
-            ring.extend_from_slice(&path[..path.len() - 1]);
-            let to = path[path.len() - 1];
-            if to == paths[first][0] {
+            let (path, back) = paths[at];
+            // Every vertex but the last, which the next path starts with.
+            let to = if back {
+                ring.extend(path[1..].iter().rev());
+                path[0]
+            } else {
+                ring.extend_from_slice(&path[..path.len() - 1]);
+                path[path.len() - 1]
+            };
+            if to == start(paths[first]) {
                 break;
             }
-            at = (0..paths.len()).find(|&k| !used[k] && paths[k][0] == to)?;
+            at = (0..paths.len()).find(|&k| !used[k] && start(paths[k]) == to)?;
         }
         rings.push(ring);
     }
@@ -194,29 +199,47 @@ const PROJECTION_STEPS: usize = 8;
 /// but a tool that joins vertices by position would pinch it there. Each vertex moves at most
 /// `gap` (1e-4 of a cell).
 fn separate(positions: &mut [DVec3], gap: f64) {
+    const END: u32 = u32::MAX;
     let bucket = |p: DVec3| (p / gap).floor().as_i64vec3();
-    let mut grid: HashMap<glam::I64Vec3, Vec<u32>> =
+    // Each bucket's latest vertex, and each vertex's predecessor in its bucket: lists without
+    // an allocation per bucket.
+    let mut head: HashMap<glam::I64Vec3, u32> =
         HashMap::with_capacity_and_hasher(positions.len(), Default::default());
-    for i in 0..positions.len() {
-        let mut p = positions[i];
-        let home = bucket(p);
-        for dz in -1..=1 {
-            for dy in -1..=1 {
-                for dx in -1..=1 {
-                    let cell = home + glam::I64Vec3::new(dx, dy, dz);
-                    for &j in grid.get(&cell).into_iter().flatten() {
-                        let q = positions[j as usize];
-                        let d = p - q;
-                        if d.length() < gap {
-                            let dir = d.try_normalize().unwrap_or(AWAY);
-                            p = q + dir * gap;
+    let mut before = vec![END; positions.len()];
+    // The first vertex nearer `p` than the gap, among those placed.
+    let near =
+        |p: DVec3, positions: &[DVec3], head: &HashMap<glam::I64Vec3, u32>, before: &[u32]| {
+            let home = bucket(p);
+            for dz in -1..=1 {
+                for dy in -1..=1 {
+                    for dx in -1..=1 {
+                        let cell = home + glam::I64Vec3::new(dx, dy, dz);
+                        let mut j = head.get(&cell).copied().unwrap_or(END);
+                        while j != END {
+                            if (p - positions[j as usize]).length() < gap {
+                                return Some(positions[j as usize]);
+                            }
+                            j = before[j as usize];
                         }
                     }
                 }
             }
+            None
+        };
+    for i in 0..positions.len() {
+        let mut p = positions[i];
+        // Moved off one vertex, it may come near another: look again (a few times at most;
+        // vertices this near are rare).
+        for _ in 0..8 {
+            let Some(q) = near(p, positions, &head, &before) else {
+                break;
+            };
+            let d = p - q;
+            p = q + d.try_normalize().unwrap_or(AWAY) * (gap * 1.000_001);
         }
         positions[i] = p;
-        grid.entry(bucket(p)).or_default().push(i as u32);
+        let key = bucket(p);
+        before[i] = head.insert(key, i as u32).unwrap_or(END);
     }
 }
 

@@ -89,11 +89,12 @@ fn mesh_scene(args: &MeshArgs) -> Result<(), Error> {
     if !topology.is_closed_manifold() {
         say!(
             "warning: the mesh is not closed and 2-manifold: {} open, {} shared by more than two \
-             triangles, {} misoriented edges, {} cells left out (a field that is not a function \
-             of the point: NaN)",
+             triangles, {} misoriented edges, {} vertices sharing a position, {} cells left out \
+             (a field that is not a function of the point: NaN)",
             topology.boundary,
             topology.non_manifold,
             topology.misoriented,
+            topology.shared_positions,
             mesh.stats.broken_cells
         );
     }
