@@ -165,6 +165,11 @@ fn apart(a: DVec3, found: Vec<DVec3>, b: DVec3, h: f64) -> Vec<DVec3> {
 /// sampled.
 const STATIONS: usize = 6;
 
+/// The cosine of the smallest angle between the normals at a face's two crossings for which a
+/// trace bending more than once is sampled (45°: a box's faces meet at 90°, a hexagonal
+/// prism's two apart at 120°, a dodecahedron's at 63°).
+const CORNER_COSINE: f64 = std::f64::consts::FRAC_1_SQRT_2;
+
 /// A surface point and its normal.
 type Point = (DVec3, DVec3);
 
@@ -187,6 +192,10 @@ fn bends(
                 .into_iter()
                 .collect();
         }
+        // Two faces of a corner meet at a wide angle; a rough surface (a fractal) bends between
+        // every two crossings by less, and sampling each of its faces would cost a dozen
+        // evaluations and six vertices for nothing a chord does not do.
+        Some(Meet::Outside) if a.1.dot(b.1) > CORNER_COSINE => return Vec::new(),
         Some(Meet::Outside) => {}
     }
     let (u, v) = face.span();
