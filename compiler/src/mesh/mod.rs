@@ -44,7 +44,7 @@ pub struct Options {
 pub const MAX_RESOLUTION: u32 = 65_536;
 
 /// Bytes a mesh costs per active cell, from measurement (a ball at 1 000 cells a side: 5.2
-/// million cells, a peak of 5.0 GB with the STL written): the corner, crossing and face
+/// million cells, a peak of 4.7 GiB with the STL written): the corner, crossing and face
 /// tables, about 1.7 vertices and 3.5 triangles, the file's bytes.
 const BYTES_PER_CELL: u64 = 1000;
 
