@@ -18,6 +18,7 @@ pub mod lipschitz;
 pub mod lower;
 pub mod manifest;
 pub mod mesh;
+pub mod parallel;
 pub mod passes;
 pub mod reference;
 pub mod scene;

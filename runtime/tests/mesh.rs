@@ -83,7 +83,7 @@ fn field_volume(scene: &Scene, (lo, hi): (DVec3, DVec3), n: u32) -> f64 {
             }
         }
     }
-    let inside = mesh::par_map(&points, |&p| field.at(p) < 0.0)
+    let inside = sdfc_compiler::parallel::par_map(&points, |&p| field.at(p) < 0.0)
         .into_iter()
         .filter(|&b| b)
         .count();
@@ -233,12 +233,7 @@ fn bad_input_is_refused_before_work_and_leaves_no_file() {
         ),
     ];
     for (args, says) in cases {
-        let run = sdfc(args);
-        let err = String::from_utf8_lossy(&run.stderr);
-        assert_eq!(run.status.code(), Some(1), "{args:?}: {err}");
-        assert!(err.contains(says), "{args:?} should say {says:?}: {err}");
-        assert!(!err.contains("panicked"), "{err}");
-        assert!(!out.exists(), "{args:?} left {o}");
+        crate::common::refused(args, says, &out);
     }
     // The unbounded part is shown with its line and a caret.
     let run = sdfc(&["mesh", &floor, "-o", &o]);

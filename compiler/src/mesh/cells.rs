@@ -2,8 +2,8 @@
 //! bound proves the surface misses it (|d(centre)| > half-diagonal), so that the work grows with
 //! the surface's area rather than the volume.
 
-use super::field::{Field, Grid};
-use super::par_map;
+use super::field::{Field, Grid, corner};
+use crate::parallel::par_map;
 use glam::IVec3;
 
 /// The cells a surface may cross, and what finding them cost.
@@ -70,7 +70,7 @@ pub fn active<E>(
         size /= 2;
         blocks = blocks
             .iter()
-            .flat_map(|&b| (0..8).map(move |i| b + IVec3::new(i & 1, (i >> 1) & 1, i >> 2) * size))
+            .flat_map(|&b| (0..8).map(move |i| b + corner(i) * size))
             .filter(|c| c.cmplt(grid.n).all())
             .collect();
     }

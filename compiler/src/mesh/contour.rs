@@ -5,8 +5,9 @@
 //! by construction; the QEF vertex and the faces' sharp points keep corners and creases).
 
 use super::faces::{self, Crossing, Face, Segment};
-use super::field::{Field, Grid, inside};
-use super::{par_map, polygons};
+use super::field::{Field, Grid, corner, inside};
+use super::polygons;
+use crate::parallel::par_map;
 use glam::{DVec3, IVec3};
 use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
 
@@ -36,19 +37,23 @@ const END_GAP: f64 = 1e-4;
 /// Contours the surface of `field` through `cells` of `grid`.
 pub fn contour(field: &Field, grid: &Grid, cells: &[IVec3], sharp: bool) -> Contour {
     let given = cells.len();
-    let (cells, value, mut evaluations) = closed(field, grid, cells);
+    let Closed {
+        cells,
+        listed,
+        value,
+        mut evaluations,
+    } = closed(field, grid, cells);
     let added = cells.len() - given;
     let cells = &cells[..];
     let at = |p: IVec3| value.get(&grid.key(p)).copied().unwrap_or(f64::NAN);
 
     // Every edge of an active cell that changes side, and where the surface crosses it.
-    let (mut positions, crossings, spent) = crossings(field, grid, cells, &at);
+    let (mut positions, normals, crossings, spent) = crossings(field, grid, cells, &at);
     evaluations += spent;
     let crossing_at = |(p, a): (IVec3, usize)| crossings.get(&edge_key(grid, p, a)).copied();
 
     // The segments on every face of an active cell.
     // Each face once: a cell's near faces, and its far ones where no active cell lies beyond.
-    let listed: HashSet<IVec3> = cells.iter().copied().collect();
     let face_list: Vec<Face> = cells
         .iter()
         .flat_map(|&c| (0..6).map(move |i| (c, Face::of_cell(c, i))))
@@ -70,13 +75,6 @@ pub fn contour(field: &Field, grid: &Grid, cells: &[IVec3], sharp: bool) -> Cont
     }
 
     // One polygon per sheet in each cell, fanned around its QEF vertex.
-    let normals: Vec<DVec3> = {
-        let mut n = vec![DVec3::ZERO; crossings.len()];
-        for c in crossings.values() {
-            n[c.vertex as usize] = c.normal;
-        }
-        n
-    };
     let fans = polygons::fan(
         field,
         grid,
@@ -97,14 +95,14 @@ pub fn contour(field: &Field, grid: &Grid, cells: &[IVec3], sharp: bool) -> Cont
 }
 
 /// The crossings on every edge of `cells` that changes side (`at` gives the field at a grid
-/// point): the vertex positions (the crossings, numbered first), the crossings by edge key, and
-/// the evaluations spent.
+/// point): the vertex positions and normals (the crossings, numbered first), the crossings by
+/// edge key, and the evaluations spent.
 fn crossings(
     field: &Field,
     grid: &Grid,
     cells: &[IVec3],
     at: &(impl Fn(IVec3) -> f64 + Sync),
-) -> (Vec<DVec3>, HashMap<u64, Crossing>, usize) {
+) -> (Vec<DVec3>, Vec<DVec3>, HashMap<u64, Crossing>, usize) {
     let mut evaluations = 0;
     let mut edges: Vec<(IVec3, usize)> = cells
         .iter()
@@ -117,12 +115,14 @@ fn crossings(
         crossing(field, grid, grid.point(p), at(p), a, at(p + IVec3::AXES[a]))
     });
     let mut positions = Vec::with_capacity(edges.len() * 2);
+    let mut normals = Vec::with_capacity(edges.len());
     let mut crossings: HashMap<u64, Crossing> =
         HashMap::with_capacity_and_hasher(edges.len(), Default::default());
     for (&(p, a), (position, normal, spent)) in edges.iter().zip(found) {
         evaluations += spent;
         let vertex = positions.len() as u32;
         positions.push(position);
+        normals.push(normal);
         let c = Crossing {
             vertex,
             position,
@@ -130,7 +130,7 @@ fn crossings(
         };
         crossings.insert(edge_key(grid, p, a), c);
     }
-    (positions, crossings, evaluations)
+    (positions, normals, crossings, evaluations)
 }
 
 /// The cells `cells` with every neighbour across a face the surface crosses, until no face
@@ -138,7 +138,7 @@ fn crossings(
 /// evaluations spent. With a correct bound the pruning already keeps every such cell; a bound
 /// that is wrong somewhere (an annotation too small, a fractal's estimate) would otherwise leave
 /// a hole in the mesh where it pruned a cell the surface crosses.
-fn closed(field: &Field, grid: &Grid, cells: &[IVec3]) -> (Vec<IVec3>, HashMap<u64, f64>, usize) {
+fn closed(field: &Field, grid: &Grid, cells: &[IVec3]) -> Closed {
     let mut active: HashSet<IVec3> = cells.iter().copied().collect();
     // (Sized once: this machine's page faults made the tables' growth a third of the time.)
     let mut value: HashMap<u64, f64> =
@@ -181,14 +181,26 @@ fn closed(field: &Field, grid: &Grid, cells: &[IVec3]) -> (Vec<IVec3>, HashMap<u
         }
         frontier = next;
     }
-    let mut cells: Vec<IVec3> = active.into_iter().collect();
+    let mut cells: Vec<IVec3> = active.iter().copied().collect();
     cells.sort_unstable_by_key(|&c| grid.key(c));
-    (cells, value, evaluations)
+    Closed {
+        cells,
+        listed: active,
+        value,
+        evaluations,
+    }
 }
 
-/// Corner `i` (0..8) of a cell, relative to its lowest.
-fn corner(i: i32) -> IVec3 {
-    IVec3::new(i & 1, (i >> 1) & 1, i >> 2)
+/// What [`closed`] finds.
+struct Closed {
+    /// The cells, in grid order.
+    cells: Vec<IVec3>,
+    /// The same cells, to ask whether one is among them.
+    listed: HashSet<IVec3>,
+    /// The field at every corner of them, by grid point key.
+    value: HashMap<u64, f64>,
+    /// Field evaluations spent.
+    evaluations: usize,
 }
 
 /// A key for the grid edge from `p` along `axis` (or the face at `p` normal to it).

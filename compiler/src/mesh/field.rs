@@ -19,29 +19,17 @@ impl<'a> Field<'a> {
         Field { scene, lo, hi }
     }
 
-    /// The scene.
-    pub fn scene(&self) -> &'a Scene {
-        self.scene
-    }
-
     /// The clipped distance bound at `p` (NaN counts as outside where it is read).
     pub fn at(&self, p: DVec3) -> f64 {
-        let center = 0.5 * (self.lo + self.hi);
-        let half = 0.5 * (self.hi - self.lo);
-        let q = (p - center).abs() - half;
-        let outside = q.max(DVec3::ZERO).length() + q.max_element().min(0.0);
+        let centre = 0.5 * (self.lo + self.hi);
+        let outside = crate::catalog::primitives::sd_box(p - centre, 0.5 * (self.hi - self.lo));
         eval::distance(self.scene, p).max(outside)
     }
 
     /// The field's unit gradient at `p` from the four samples of `eval::TETRAHEDRON` at
     /// distance `h`; zero where it vanishes.
     pub fn normal(&self, p: DVec3, h: f64) -> DVec3 {
-        let e = h / 3f64.sqrt();
-        let g: DVec3 = eval::TETRAHEDRON
-            .iter()
-            .map(|&k| k * self.at(p + k * e))
-            .sum();
-        g.try_normalize().unwrap_or(DVec3::ZERO)
+        eval::unit_gradient(|q| self.at(q), p, h)
     }
 }
 
@@ -49,6 +37,11 @@ impl<'a> Field<'a> {
 /// one side and the two cells at a face agree).
 pub fn inside(d: f64) -> bool {
     d < 0.0
+}
+
+/// Corner `i` (0..8) of a cell (or of an octree block of side 1), relative to its lowest.
+pub fn corner(i: i32) -> IVec3 {
+    IVec3::new(i & 1, (i >> 1) & 1, i >> 2)
 }
 
 /// A regular grid of cubic cells: cell (i, j, k) spans origin + h·[i, i+1] × … .

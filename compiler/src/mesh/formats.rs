@@ -2,7 +2,8 @@
 //! colours, and binary glTF (GLB) with a primitive and a PBR material per scene material.
 //! Written by hand: each is a page of a published layout, and no crate writes all four.
 
-use super::{Mesh, par_map};
+use super::Mesh;
+use crate::parallel::par_map;
 use crate::reference::{eval, shading};
 use crate::scene::Scene;
 use glam::DVec3;

@@ -3,7 +3,7 @@
 
 use super::Mesh;
 use super::field::Field;
-use super::par_map;
+use crate::parallel::par_map;
 use glam::DVec3;
 use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
 

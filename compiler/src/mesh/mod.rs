@@ -15,6 +15,7 @@ pub mod measure;
 mod polygons;
 mod qef;
 
+use crate::parallel::par_map;
 use crate::reference::eval;
 use crate::scene::Scene;
 use field::{Field, Grid};
@@ -136,24 +137,22 @@ pub fn mesh(scene: &Scene, options: &Options, stage: &dyn Fn(&str)) -> Result<Me
     let field = Field::new(scene, lo, hi);
     let grid = Grid::over(lo, hi, options.resolution);
     stage("finding the cells the surface crosses");
-    let active = if !options.prune {
-        let n = grid.n;
-        let need = (n.x as u64 * n.y as u64 * n.z as u64).saturating_mul(BYTES_PER_CELL);
+    // The memory `cells` cells would need, refused past the limit.
+    let fits = |cells: u64| {
+        let need = cells.saturating_mul(BYTES_PER_CELL);
         if need > options.max_bytes {
-            return Err(Error::Memory(need, options.max_bytes));
+            Err(Error::Memory(need, options.max_bytes))
+        } else {
+            Ok(())
         }
+    };
+    let active = if !options.prune {
+        let n = grid.n.as_u64vec3();
+        fits(n.x * n.y * n.z)?;
         cells::every(&grid)
     } else {
         cells::active(&field, &grid, |blocks, side| {
-            let area = (side as u64).pow(2);
-            let need = (blocks as u64)
-                .saturating_mul(area * CELLS_PER_AREA)
-                .saturating_mul(BYTES_PER_CELL);
-            if need > options.max_bytes {
-                Err(Error::Memory(need, options.max_bytes))
-            } else {
-                Ok(())
-            }
+            fits((blocks as u64).saturating_mul((side as u64).pow(2) * CELLS_PER_AREA))
         })?
     };
     stage("contouring");
@@ -175,26 +174,5 @@ pub fn mesh(scene: &Scene, options: &Options, stage: &dyn Fn(&str)) -> Result<Me
         positions: c.positions,
         triangles: c.triangles,
         materials,
-    })
-}
-
-/// `f` over `items` on all cores (in order); on one core, or where threads cannot be made
-/// (WebAssembly), in this thread.
-pub fn par_map<T: Sync, R: Send>(items: &[T], f: impl Fn(&T) -> R + Sync) -> Vec<R> {
-    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
-    if threads == 1 || items.len() < 256 {
-        return items.iter().map(f).collect();
-    }
-    let chunk = items.len().div_ceil(threads);
-    let f = &f;
-    std::thread::scope(|s| {
-        let parts: Vec<_> = items
-            .chunks(chunk)
-            .map(|part| s.spawn(move || part.iter().map(f).collect::<Vec<R>>()))
-            .collect();
-        parts
-            .into_iter()
-            .flat_map(|p| p.join().unwrap_or_else(|e| std::panic::resume_unwind(e)))
-            .collect()
     })
 }

@@ -3,7 +3,8 @@
 
 use super::faces::{self, Face};
 use super::field::{Field, Grid};
-use super::{par_map, qef};
+use super::qef;
+use crate::parallel::par_map;
 use glam::{DVec3, IVec3};
 use rustc_hash::FxHashMap as HashMap;
 
@@ -194,8 +195,10 @@ fn away(centre: DVec3, ring: &[u32], positions: &[DVec3], h: f64) -> DVec3 {
 const PROJECTION_STEPS: usize = 8;
 
 /// Moves apart vertices nearer each other than `gap`: two polygons' vertices clamped to one
-/// cell corner, or two parts that touch (a ball resting on a floor meets it at a point, where
-/// the two sheets' vertices come within 1e-8). The mesh is manifold by its indices either way,
+/// cell corner, or two parts that touch at a point (the primitives example's octahedron tip on
+/// its floor, where the two sheets' vertices came within 1e-8). (A polygon's vertex on its own
+/// ring's vertices is moved off them first, by `away`: a cluster there is more than the few
+/// moves here undo.) The mesh is manifold by its indices either way,
 /// but a tool that joins vertices by position would pinch it there. Each vertex moves at most
 /// `gap` (1e-4 of a cell).
 fn separate(positions: &mut [DVec3], gap: f64) {

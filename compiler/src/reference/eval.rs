@@ -174,10 +174,13 @@ pub const TETRAHEDRON: [DVec3; 4] = [
 /// [`TETRAHEDRON`] scaled by h/√3), normalised; a zero gradient (at a cusp or the centre of
 /// a sphere) gives the zero vector rather than NaN. The shader's `normal` does the same.
 pub fn normal(scene: &Scene, p: DVec3, h: f64) -> DVec3 {
+    unit_gradient(|q| distance(scene, q), p, h)
+}
+
+/// The unit gradient of any field `f` at `p` by the same four samples as [`normal`] (the
+/// mesher's clipped field uses it); the zero vector where it vanishes.
+pub fn unit_gradient(f: impl Fn(DVec3) -> f64, p: DVec3, h: f64) -> DVec3 {
     let e = h / 3f64.sqrt();
-    let g: DVec3 = TETRAHEDRON
-        .iter()
-        .map(|&k| k * distance(scene, p + k * e))
-        .sum();
+    let g: DVec3 = TETRAHEDRON.iter().map(|&k| k * f(p + k * e)).sum();
     g.try_normalize().unwrap_or(DVec3::ZERO)
 }

@@ -64,20 +64,10 @@ pub fn depth(scene: &Scene, ro: DVec3, rd: DVec3) -> Option<f64> {
 
 /// The ground-truth depth of every pixel of `view` (row by row), on all cores.
 pub fn depth_map(scene: &Scene, view: &View) -> Vec<Option<f64>> {
-    let (w, h) = (view.width as usize, view.height as usize);
-    let mut out = vec![None; w * h];
-    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
-    let rows_per = h.div_ceil(threads).max(1);
-    std::thread::scope(|s| {
-        for (k, chunk) in out.chunks_mut(rows_per * w).enumerate() {
-            s.spawn(move || {
-                for (i, px) in chunk.iter_mut().enumerate() {
-                    let (x, y) = (i % w, k * rows_per + i / w);
-                    let rd = view.ray(x as f64 + 0.5, y as f64 + 0.5);
-                    *px = depth(scene, view.eye, rd);
-                }
-            });
-        }
-    });
-    out
+    let w = view.width as usize;
+    let pixels: Vec<usize> = (0..w * view.height as usize).collect();
+    crate::parallel::par_map(&pixels, |&i| {
+        let rd = view.ray((i % w) as f64 + 0.5, (i / w) as f64 + 0.5);
+        depth(scene, view.eye, rd)
+    })
 }

@@ -214,6 +214,17 @@ pub fn sdfc(args: &[&str]) -> Output {
     bounded(&[], TIME_CAP, args)
 }
 
+/// Runs `sdfc args` and checks that it refused them as a user error (exit 1) saying `says`,
+/// without a panic, and left no file at `out`.
+pub fn refused(args: &[&str], says: &str, out: &std::path::Path) {
+    let run = sdfc(args);
+    let err = String::from_utf8_lossy(&run.stderr);
+    assert_eq!(run.status.code(), Some(1), "{args:?}: {err}");
+    assert!(err.contains(says), "{args:?} should say {says:?}: {err}");
+    assert!(!err.contains("panicked"), "{args:?}: {err}");
+    assert!(!out.exists(), "{args:?} left {} behind", out.display());
+}
+
 /// Runs `sdfc args` (behind `wrapper`, e.g. `prlimit --as=…`) under `timeout` at `seconds` and
 /// GNU time, and fails the test if it ran past them or held more than [`PEAK_CAP_KIB`].
 pub fn bounded(wrapper: &[String], seconds: u64, args: &[&str]) -> Output {
