@@ -13,16 +13,21 @@ const types = {
   ".html": "text/html",
   ".js": "text/javascript",
   ".json": "application/json",
+  ".glb": "model/gltf-binary",
 };
 
 /**
- * Serves `pageDir`'s files at `/NAME` and `sceneDir`'s at `/scene/NAME`; resolves to the port.
- * Anything else is a blank page.
+ * Serves `pageDir`'s files at `/NAME` and `sceneDir`'s at `/scene/NAME`, and for each `PREFIX`
+ * of `trees` the folder it names with its subfolders (`/three/build/three.module.js`); resolves
+ * to the port. Anything else is a blank page.
  */
-export async function serve(pageDir, sceneDir) {
+export async function serve(pageDir, sceneDir, trees = {}) {
   const server = http.createServer((req, res) => {
     const url = decodeURIComponent(new URL(req.url, "http://x").pathname);
-    const file = url.startsWith("/scene/")
+    const tree = Object.keys(trees).find((prefix) => url.startsWith(prefix));
+    const file = tree
+      ? path.join(trees[tree], path.normalize("/" + url.slice(tree.length)))
+      : url.startsWith("/scene/")
       ? sceneDir && path.join(sceneDir, path.basename(url))
       : pageDir && path.join(pageDir, path.basename(url === "/" ? "index.html" : url));
     if (!file) {
