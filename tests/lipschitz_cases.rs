@@ -106,9 +106,11 @@ fn the_innermost_material_tag_wins() {
 /// `render` and `emit` run is reported (and must catch most).
 #[test]
 fn the_annotation_check_finds_planted_errors_and_only_those() {
-    use sdfc_compiler::lipschitz::{Effort, verify_annotations};
+    use sdfc_compiler::lipschitz::{Effort, Values, verify_annotations, verify_over_ranges};
     let dir = sdfc_tests::root().join("tests/lipschitz");
     let mut tally: BTreeMap<(&str, &str), usize> = BTreeMap::new();
+    // Per (corpus, class): files, flagged by the quick check, by the thorough one.
+    let mut classes: BTreeMap<(&str, String), [usize; 3]> = BTreeMap::new();
     let mut missed = Vec::new();
     for kind in ["wrong", "right"] {
         let mut files: Vec<_> = std::fs::read_dir(dir.join(kind))
@@ -126,11 +128,18 @@ fn the_annotation_check_finds_planted_errors_and_only_those() {
                 .lines()
                 .position(|l| l.contains("@lipschitz") && !l.trim_start().starts_with("//"))
                 .expect("an annotation");
+            let class = source
+                .lines()
+                .find_map(|l| l.strip_prefix("// class: "))
+                .and_then(|c| c.split_whitespace().next())
+                .unwrap_or("?")
+                .to_string();
+            let at = |v: &Values| sdfc_compiler::check::compile_with(&source, v).scene;
             for (effort, name) in [(Effort::Fast, "quick"), (Effort::Thorough, "thorough")] {
-                let found: Vec<_> = verify_annotations(&scene, effort)
-                    .into_iter()
-                    .filter(|d| d.message.contains("too small"))
-                    .collect();
+                let mut found = verify_annotations(&scene, effort);
+                let more = verify_over_ranges(&at, &scene, effort, (&Values::new(), &found));
+                found.extend(more);
+                found.retain(|d| d.message.contains("too small"));
                 for d in &found {
                     let line = source[..d.span.start].matches('\n').count();
                     assert!(
@@ -143,6 +152,9 @@ fn the_annotation_check_finds_planted_errors_and_only_those() {
                 }
                 let flagged = !found.is_empty();
                 *tally.entry((kind, name)).or_default() += usize::from(flagged);
+                let row = classes.entry((kind, class.clone())).or_default();
+                row[0] += 1;
+                row[1 + usize::from(name == "thorough")] += usize::from(flagged);
                 if kind == "wrong" && name == "thorough" && !flagged {
                     missed.push(path.display().to_string());
                 }
@@ -156,6 +168,10 @@ fn the_annotation_check_finds_planted_errors_and_only_those() {
         }
     }
     println!("flagged per (corpus, check): {tally:?}");
+    println!("corpus | class | files | quick | thorough");
+    for ((kind, class), [n, quick, thorough]) in &classes {
+        println!("{kind} | {class} | {n} | {quick} | {thorough}");
+    }
     assert!(missed.is_empty(), "the thorough check missed {missed:?}");
     assert!(
         tally[&("wrong", "thorough")] >= 30,
@@ -167,7 +183,15 @@ fn the_annotation_check_finds_planted_errors_and_only_those() {
     );
     for path in sdfc_tests::examples() {
         let scene = sdfc_tests::example(&path);
-        let flags = verify_annotations(&scene, Effort::Thorough);
+        let source = std::fs::read_to_string(&path).expect("read");
+        let at = |v: &Values| sdfc_compiler::check::compile_with(&source, v).scene;
+        let mut flags = verify_annotations(&scene, Effort::Thorough);
+        flags.extend(verify_over_ranges(
+            &at,
+            &scene,
+            Effort::Thorough,
+            (&Values::new(), &[]),
+        ));
         assert!(flags.is_empty(), "{}: {}", path.display(), flags[0].message);
     }
 }

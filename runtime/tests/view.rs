@@ -355,6 +355,38 @@ fn keys_change_a_parameter() {
     );
 }
 
+/// The keys check annotations at the values they set: a bound right at the default (slope
+/// √(1 + a²) = 1.41 ≤ 1.5) and too small once `a` passes 1.14 is said when the second `=`
+/// takes it to 1.25, and not again at 1.375 (still too small).
+#[test]
+fn keys_check_annotations_at_the_values_they_set() {
+    if !xvfb() {
+        return;
+    }
+    let dir = scratch("view-annotation");
+    let source = "camera { eye (0, 1, -8) target (0, 0, 0) }\nparam a = 1 in 0.5..3\nimplicit { y - a * sin(x) } @lipschitz(1.5)\n";
+    let extra = ["--script", "key =; key =; key =", "--quit-after", "4"];
+    let Viewer {
+        mut child,
+        shots,
+        log,
+        ..
+    } = start_view(&dir, source, &extra);
+    wait_for(&shots.join("003.png"), &mut child, &log);
+    assert!(child.wait().unwrap().success());
+    let said = std::fs::read_to_string(&log).unwrap();
+    let warned: Vec<&str> = said
+        .lines()
+        .filter(|l| l.starts_with("warning: with a = "))
+        .collect();
+    assert_eq!(warned.len(), 1, "{said}");
+    assert!(
+        warned[0]
+            .starts_with("warning: with a = [1.25], the annotated Lipschitz bound is too small"),
+        "{said}"
+    );
+}
+
 /// `--quit-after` counts finished pictures whether or not they are saved: a still scene with a
 /// one-step script makes two and closes by itself at `--quit-after 2`; asked for three, it
 /// says it will wait for a save of the file to make the third.

@@ -4,9 +4,12 @@
 
 mod converge;
 mod overflow;
+mod ranges;
+mod reach;
 mod verify;
 
 pub use overflow::may_overflow;
+pub use ranges::{Values, verify_over_ranges};
 pub use verify::{Effort, verify_annotations};
 
 use crate::interval::Interval;
@@ -244,5 +247,23 @@ fn with_call(node: &crate::scene::Node, d: crate::diag::Diagnostic) -> crate::di
             d.also(call, "in this call: its arguments make the bound wrong")
         }
         _ => d,
+    }
+}
+
+/// A small deterministic generator (xorshift), so the check says the same every run.
+struct Rng(u64);
+
+impl Rng {
+    fn bits(&mut self) -> u64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        self.0
+    }
+    fn unit(&mut self) -> f64 {
+        (self.bits() >> 11) as f64 / (1u64 << 53) as f64
+    }
+    fn vec(&mut self) -> glam::DVec3 {
+        glam::DVec3::new(self.unit(), self.unit(), self.unit())
     }
 }

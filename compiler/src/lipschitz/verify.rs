@@ -5,14 +5,13 @@
 //! which finds features too thin for samples. A slope above the annotation is a warning with
 //! the place, the slope seen (a lower bound of the true one) and a safe bound where one is known.
 
-use super::bound_in;
+use super::{Rng, bound_in};
+use super::reach::{self, Ray};
 use crate::diag::Diagnostic;
 use crate::interval::Interval;
 use crate::reference::eval;
 use crate::scene::{NodeId, NodeKind, Scene};
-use crate::view::View;
 use glam::DVec3;
-use std::collections::HashMap;
 
 /// How hard to look.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -33,6 +32,11 @@ struct Budget {
     refine: (usize, usize),
     /// Boxes of the interval search (`implicit` only).
     boxes: usize,
+    /// Camera rays traced to a surface, whence secondary rays are sampled (scenes with
+    /// shadows, occlusion, mirrors or transparent solids).
+    hits: usize,
+    /// Points sampled on each secondary ray.
+    per_ray: usize,
 }
 
 impl Effort {
@@ -42,13 +46,17 @@ impl Effort {
                 world: 1500,
                 local: 500,
                 refine: (6, 24),
-                boxes: 400,
+                boxes: 2000,
+                hits: 96,
+                per_ray: 8,
             },
             Effort::Thorough => Budget {
                 world: 15_000,
                 local: 5_000,
                 refine: (24, 60),
-                boxes: 6_000,
+                boxes: 2000,
+                hits: 960,
+                per_ray: 16,
             },
         }
     }
@@ -57,10 +65,6 @@ impl Effort {
 /// A slope above the annotation by more than this factor is reported (sampling noise and f64
 /// rounding stay far below it; the smallest planted error in the tests is ×1.05).
 const MARGIN: f64 = 1.01;
-
-/// Most points recorded per annotated node (a node used through shared `let`s or many `repeat`
-/// copies is evaluated many times per point).
-const MAX_RECORDED: usize = 20_000;
 
 /// Most scene-node evaluations the frustum sampling may spend (large scenes get fewer points).
 const WORK: usize = 20_000_000;
@@ -83,7 +87,12 @@ pub fn verify_annotations(scene: &Scene, effort: Effort) -> Vec<Diagnostic> {
     if annotated.is_empty() {
         return out;
     }
-    let seen = where_rays_evaluate(scene, &annotated, &budget);
+    // Shared `let`s and `repeat` copies multiply what one point costs.
+    let cost = scene.root_node().evaluations.max(1.0) as usize + scene.nodes.len();
+    let world = budget.world.min(WORK / cost).max(64);
+    // A traced camera ray costs up to `SECONDARY_STEPS` evaluations, its secondary rays more.
+    let hits = budget.hits.min(WORK / (cost * 192));
+    let seen = reach::where_rays_evaluate(scene, &annotated, world, (hits, budget.per_ray));
     for (k, &id) in annotated.iter().enumerate() {
         let mut rng = Rng(0x9e37_79b9_7f4a_7c15 ^ (k as u64 + 1));
         match check_node(scene, id, &seen[&id], &budget, &mut rng) {
@@ -94,47 +103,11 @@ pub fn verify_annotations(scene: &Scene, effort: Effort) -> Vec<Diagnostic> {
     out
 }
 
-/// The points, in each annotated node's own coordinates, at which the scene's field is
-/// evaluated along the camera's rays (16:9, the default image shape), from the eye to
-/// `max_distance` (half the samples spread evenly along the rays, half towards the eye).
-fn where_rays_evaluate(
-    scene: &Scene,
-    annotated: &[NodeId],
-    budget: &Budget,
-) -> HashMap<NodeId, Vec<DVec3>> {
-    let mut seen: HashMap<NodeId, Vec<DVec3>> = annotated.iter().map(|&id| (id, vec![])).collect();
-    let view = View::new(&scene.camera, 1280, 720);
-    let far = scene.trace.max_distance;
-    // Shared `let`s and `repeat` copies multiply what one point costs (and records).
-    let cost = scene.root_node().evaluations.max(1.0) as usize + scene.nodes.len();
-    let world = budget.world.min(WORK / cost).max(64);
-    let mut rng = Rng(0x5eed_1a55);
-    for i in 0..world {
-        let rd = view.ray(rng.unit() * 1280.0, rng.unit() * 720.0);
-        let u = rng.unit();
-        let t = if i % 2 == 0 {
-            u * far
-        } else {
-            // Towards the eye: distances spread over orders of magnitude.
-            far * (u * 12.0 - 12.0).exp2()
-        };
-        let p = view.eye + rd * t;
-        eval::node_seen(scene, scene.root, p, &mut |id, q| {
-            if let Some(v) = seen.get_mut(&id)
-                && v.len() < MAX_RECORDED
-            {
-                v.push(q);
-            }
-        });
-    }
-    seen
-}
-
 /// The check of one annotated node given the points rays evaluate it at.
 fn check_node(
     scene: &Scene,
     id: NodeId,
-    from_rays: &[DVec3],
+    from_rays: &[(DVec3, Ray)],
     budget: &Budget,
     rng: &mut Rng,
 ) -> Result<f64, Diagnostic> {
@@ -142,30 +115,32 @@ fn check_node(
     let lambda = node.lambda;
     let field = |p: DVec3| eval::node(scene, id, p).d;
     // The region: the points rays reach, and the node's own box (grown), or around its origin.
-    let mut points: Vec<DVec3> = from_rays.to_vec();
+    let mut points: Vec<(DVec3, Ray)> = from_rays.to_vec();
     let (lo, hi) = if node.bound.is_finite() {
         let grow = ((node.bound.hi - node.bound.lo) * 0.25).max(DVec3::splat(1e-3));
         (node.bound.lo - grow, node.bound.hi + grow)
     } else {
         (DVec3::splat(-4.0), DVec3::splat(4.0))
     };
-    points.extend((0..budget.local).map(|_| lo + (hi - lo) * rng.vec()));
+    let framed = (scene.camera.eye - scene.camera.target).length().max(1e-6);
+    points.extend(stratified(lo, hi, budget.local, framed, rng).map(|p| (p, Ray::Region)));
     let (mut rlo, mut rhi) = (lo, hi);
-    for p in &points {
+    for (p, _) in &points {
         rlo = rlo.min(*p);
         rhi = rhi.max(*p);
     }
     let size = (rhi - rlo).max_element().max(1e-6);
     let slope = |p: DVec3| slope_at(&field, p, size * 1e-6);
     // Sample, keep the steepest, refine them by local search.
-    let mut scored: Vec<(f64, DVec3)> = points.iter().map(|&p| (slope(p), p)).collect();
+    let mut scored: Vec<(f64, DVec3, Ray)> =
+        points.iter().map(|&(p, r)| (slope(p), p, r)).collect();
     scored.sort_by(|a, b| b.0.total_cmp(&a.0));
     let (keep, steps) = budget.refine;
-    let mut best = scored.first().copied().unwrap_or((0.0, rlo));
-    for &(s, p) in scored.iter().take(keep) {
+    let mut best = scored.first().copied().unwrap_or((0.0, rlo, Ray::Region));
+    for &(s, p, r) in scored.iter().take(keep) {
         let found = climb(&slope, p, s, size, steps, rng);
         if found.0 > best.0 {
-            best = found;
+            best = (found.0, found.1, r);
         }
     }
     // An expression: search the region box by box, guided by interval bounds.
@@ -176,14 +151,59 @@ fn check_node(
         if best.0 <= lambda * MARGIN {
             let found = search(body, &slope, region, lambda, budget.boxes, rng);
             if found.0 > best.0 {
-                best = climb(&slope, found.1, found.0, size, steps, rng);
+                let (s, at) = climb(&slope, found.1, found.0, size, steps, rng);
+                best = (s, at, nearest_kind(&points, at));
             }
         }
     }
     if best.0 <= lambda * MARGIN {
         return Ok(best.0);
     }
-    let (seen, at) = best;
+    Err(too_small(scene, id, best, proven))
+}
+
+/// The kind of ray of the sampled point nearest `at` (what reaches a point the search found).
+fn nearest_kind(points: &[(DVec3, Ray)], at: DVec3) -> Ray {
+    points
+        .iter()
+        .min_by(|a, b| {
+            a.0.distance_squared(at)
+                .total_cmp(&b.0.distance_squared(at))
+        })
+        .map_or(Ray::Region, |p| p.1)
+}
+
+/// About `n` points of the box [lo, hi] on a jittered grid (every cell holds one, so no part
+/// of the box goes unsampled), more for a box larger than the distance `framed` the camera
+/// frames: up to 8× for one 8× that size.
+fn stratified(
+    lo: DVec3,
+    hi: DVec3,
+    n: usize,
+    framed: f64,
+    rng: &mut Rng,
+) -> impl Iterator<Item = DVec3> {
+    let scale = ((hi - lo).length() / framed).clamp(1.0, 8.0);
+    let k = ((n as f64 * scale).cbrt().ceil() as usize).max(1);
+    let cell = (hi - lo) / k as f64;
+    let points: Vec<DVec3> = (0..k * k * k)
+        .map(|i| {
+            let c = DVec3::new((i % k) as f64, (i / k % k) as f64, (i / (k * k)) as f64);
+            lo + (c + rng.vec()) * cell
+        })
+        .collect();
+    points.into_iter()
+}
+
+/// The warning for a slope `seen` at `at` (reached by `ray`) above the node's annotation;
+/// `proven` an interval bound over the region (an `implicit`).
+fn too_small(
+    scene: &Scene,
+    id: NodeId,
+    (seen, at, ray): (f64, DVec3, Ray),
+    proven: Option<f64>,
+) -> Diagnostic {
+    let node = &scene.nodes[id];
     let safe = proven
         .filter(|b| b.is_finite())
         .or(Some(node.inferred_lambda).filter(|b| b.is_finite()));
@@ -194,18 +214,21 @@ fn check_node(
             short(at.x),
             short(at.y),
             short(at.z),
-            lambda
+            node.lambda
         ))
         .note("steps of f/λ may pass through the surface there");
     d = match safe {
         Some(b) => d.help(format!(
-            "a safe bound where the camera's rays go is {}: annotate `@lipschitz({})`",
+            "a safe bound where rays go is {}: annotate `@lipschitz({})`",
             short(b),
             short_up(b)
         )),
         None => d.help(format!("raise the annotation above {}", short_up(seen))),
     };
-    Err(super::with_call(node, d).note("the point is in the annotated shape's own coordinates"))
+    super::with_call(node, d).note(format!(
+        "the point is in the annotated shape's own coordinates; {}",
+        ray.say()
+    ))
 }
 
 /// |∇f| at `p` by central differences with step `h`; 0 where the field is not finite.
@@ -303,22 +326,4 @@ fn short_up(x: f64) -> String {
     }
     let e = 10f64.powi(x.log10().floor() as i32 - 2);
     short((x / e).ceil() * e)
-}
-
-/// A small deterministic generator (xorshift), so the check says the same every run.
-struct Rng(u64);
-
-impl Rng {
-    fn bits(&mut self) -> u64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        self.0
-    }
-    fn unit(&mut self) -> f64 {
-        (self.bits() >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn vec(&mut self) -> DVec3 {
-        DVec3::new(self.unit(), self.unit(), self.unit())
-    }
 }

@@ -112,7 +112,7 @@ pub fn load_scene_with(
             Some(c) if v == values => c.scene.clone(),
             _ => compile((path, &name), &source, v).scene,
         };
-        let more = super::ranges::verify_over_ranges(&at, scene, Effort::Fast, (values, &found));
+        let more = lipschitz::verify_over_ranges(&at, scene, Effort::Fast, (values, &found));
         diagnostics.extend(found);
         diagnostics.extend(more);
     }

@@ -7,7 +7,6 @@ pub mod driver;
 mod error;
 pub mod input;
 pub mod messages;
-pub mod ranges;
 pub mod tracer;
 pub mod values;
 

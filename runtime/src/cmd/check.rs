@@ -45,7 +45,7 @@ fn check(path: &Path, effort: Effort) -> i32 {
         let found = lipschitz::verify_annotations(scene, effort);
         let none = std::collections::HashMap::new();
         let at = |v: &_| compile((path, &name), &source, v).scene;
-        let more = crate::cli::ranges::verify_over_ranges(&at, scene, effort, (&none, &found));
+        let more = lipschitz::verify_over_ranges(&at, scene, effort, (&none, &found));
         diagnostics.extend(found);
         diagnostics.extend(more);
     }

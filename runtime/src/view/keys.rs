@@ -5,6 +5,7 @@ use super::app::App;
 use super::live::Live;
 use sdfc::images::Channel;
 use sdfc_compiler::check::TIME;
+use sdfc_compiler::lipschitz::{Effort, verify_annotations};
 use std::path::PathBuf;
 use winit::event_loop::ActiveEventLoop;
 
@@ -104,6 +105,34 @@ fn change(live: &mut Live, up: bool) {
         .collect();
     say!("{} = {next:?}", p.name);
     live.values.insert(p.name.clone(), next);
+    verify(live);
+}
+
+/// The annotations checked at the parameter values the keys set (as `render --param` checks
+/// them): each one too small there is said when the values first make it so.
+fn verify(live: &mut Live) {
+    let here = live.scene.with_values(&live.values);
+    let found: Vec<_> = verify_annotations(&here, Effort::Fast)
+        .into_iter()
+        .filter(|d| d.message.contains("too small"))
+        .collect();
+    let mut values: Vec<String> = live
+        .values
+        .iter()
+        .map(|(k, v)| format!("{k} = {v:?}"))
+        .collect();
+    values.sort();
+    for d in &found {
+        if !live.too_small.contains(&d.span) {
+            say!(
+                "warning: with {}, {}: {}",
+                values.join(", "),
+                d.message,
+                d.label
+            );
+        }
+    }
+    live.too_small = found.iter().map(|d| d.span).collect();
 }
 
 /// `s`: the last finished picture to `sdfc-view-NNN.png`.

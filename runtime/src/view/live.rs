@@ -60,6 +60,9 @@ pub struct Live {
     pub values: HashMap<String, Vec<f64>>,
     /// The parameter the keys change.
     pub selected: usize,
+    /// Where annotations are too small at the current parameter values (said once on the way
+    /// in: `keys::verify`).
+    pub too_small: Vec<sdfc_compiler::diag::Span>,
     /// When `time` last started running, and its value then.
     started: (Instant, f64),
     /// `time` stopped at this value (space).
@@ -89,6 +92,7 @@ impl Live {
             moving_until: Instant::now(),
             values: HashMap::new(),
             selected: 0,
+            too_small: Vec::new(),
             started: (Instant::now(), 0.0),
             paused: None,
             stats: (0.0, 0.0),

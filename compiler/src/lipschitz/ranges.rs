@@ -1,0 +1,197 @@
+//! `@lipschitz` annotations checked at other parameter values than the defaults: the values
+//! asked for, the declared ranges' ends and points inside them, and parameters without a range
+//! perturbed (issue 31: an annotation right at the default and too small elsewhere in a range
+//! passed every check, and the render there lost whole shapes).
+
+use super::Effort;
+use super::Rng;
+use super::verify::verify_annotations;
+use crate::diag::Diagnostic;
+use crate::scene::{NodeId, NodeKind, ParamDecl, ParamKind, Scene};
+use std::collections::{BTreeSet, HashMap};
+
+/// Parameter values by name (angles in radians), as `--param` gives them.
+pub type Values = HashMap<String, Vec<f64>>;
+
+/// Why a setting is checked: what its warnings' note says.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Why {
+    Asked,
+    Ends,
+    Inside,
+    Unranged,
+}
+
+impl Why {
+    fn say(self) -> &'static str {
+        match self {
+            Why::Asked => "the values asked for",
+            Why::Ends => "ends of their declared ranges",
+            Why::Inside => "inside their declared ranges",
+            Why::Unranged => "a parameter without a declared range may take any value",
+        }
+    }
+}
+
+/// How many settings an effort checks: points inside each range alone, random points of the
+/// box of ranges (two or more ranged parameters), and the most settings in all (each compiles
+/// the scene once more and samples its annotations).
+fn sizes(effort: Effort) -> (usize, usize, usize) {
+    match effort {
+        Effort::Fast => (3, 4, 24),
+        Effort::Thorough => (7, 24, 80),
+    }
+}
+
+/// The parameters (indices into `scene.params`) that some annotated node's subtree reads:
+/// only they can make an annotation wrong.
+fn read_by_annotations(scene: &Scene) -> BTreeSet<usize> {
+    let mut read = BTreeSet::new();
+    let mut stack: Vec<NodeId> = scene
+        .reachable()
+        .into_iter()
+        .filter(|&id| scene.nodes[id].lambda < scene.nodes[id].inferred_lambda)
+        .collect();
+    let mut seen = BTreeSet::new();
+    while let Some(id) = stack.pop() {
+        if !seen.insert(id) {
+            continue;
+        }
+        let node = &scene.nodes[id];
+        let mut note = |r: &crate::catalog::field::ParamRef| {
+            read.insert(r.index);
+        };
+        match &node.kind {
+            NodeKind::Implicit { field } => field.params(&mut note),
+            NodeKind::Primitive { ctx, .. } | NodeKind::Operator { ctx, .. } => {
+                for f in ctx.sym.iter().flatten().flatten() {
+                    f.params(&mut note);
+                }
+            }
+        }
+        stack.extend(node.children());
+    }
+    read
+}
+
+/// A parameter's components at `v`.
+fn comps(p: &ParamDecl, v: glam::DVec3) -> Vec<f64> {
+    v.to_array()[..p.kind.components()].to_vec()
+}
+
+/// Values that test an annotation against a parameter without a range (as the catalog's rules
+/// are tested, `check/ranges.rs`).
+fn perturbed(x: f64) -> [f64; 6] {
+    [x + 1.0, x - 1.0, 2.0 * x + 1.0, -x, 0.5 * x, 10.0 * x + 3.0]
+}
+
+/// The settings to check, in order: the values asked for; every ranged parameter an annotation
+/// reads at its low and at its high end together; each alone at either end; each parameter
+/// without a range perturbed; each ranged one alone at points inside its range; random points
+/// of the box of ranges.
+fn settings(scene: &Scene, asked: &Values, effort: Effort) -> Vec<(Values, Why)> {
+    let read = read_by_annotations(scene);
+    let used: Vec<&ParamDecl> = read
+        .iter()
+        .map(|&i| &scene.params[i])
+        .filter(|p| p.kind != ParamKind::Color)
+        .collect();
+    let ranged: Vec<&ParamDecl> = used.iter().copied().filter(|p| p.range.is_some()).collect();
+    let (inside, random, most) = sizes(effort);
+    let mut out = Vec::new();
+    if !asked.is_empty() && !read.is_empty() {
+        out.push((asked.clone(), Why::Asked));
+    }
+    let at = |p: &ParamDecl, t: f64| {
+        let (lo, hi) = p.range.expect("ranged");
+        comps(p, lo + (hi - lo) * t)
+    };
+    if ranged.len() > 1 {
+        for t in [0.0, 1.0] {
+            let all = ranged.iter().map(|p| (p.name.clone(), at(p, t))).collect();
+            out.push((all, Why::Ends));
+        }
+    }
+    for p in &ranged {
+        for t in [0.0, 1.0] {
+            out.push((HashMap::from([(p.name.clone(), at(p, t))]), Why::Ends));
+        }
+    }
+    for p in used.iter().filter(|p| p.range.is_none()) {
+        for k in 0..6 {
+            let v = p.values().iter().map(|&x| perturbed(x)[k]).collect();
+            out.push((HashMap::from([(p.name.clone(), v)]), Why::Unranged));
+        }
+    }
+    for p in &ranged {
+        for i in 1..=inside {
+            let t = i as f64 / (inside + 1) as f64;
+            out.push((HashMap::from([(p.name.clone(), at(p, t))]), Why::Inside));
+        }
+    }
+    if ranged.len() > 1 {
+        let mut rng = Rng(0x7a6e_5e77_1e55_0001);
+        for _ in 0..random {
+            let all = ranged
+                .iter()
+                .map(|p| {
+                    let (lo, hi) = p.range.expect("ranged");
+                    let v = lo + (hi - lo) * rng.vec();
+                    (p.name.clone(), comps(p, v))
+                })
+                .collect();
+            out.push((all, Why::Inside));
+        }
+    }
+    out.truncate(most);
+    out
+}
+
+/// The annotation warnings found at other parameter values than the defaults' (`seen`: the
+/// defaults' own, not repeated), each with a note saying at which values and why those;
+/// `compile_at` checks the scene's source at given values (`None` where it does not check).
+pub fn verify_over_ranges(
+    compile_at: &dyn Fn(&Values) -> Option<Scene>,
+    scene: &Scene,
+    effort: Effort,
+    (asked, seen): (&Values, &[Diagnostic]),
+) -> Vec<Diagnostic> {
+    if !scene.nodes.iter().any(|n| n.lambda < n.inferred_lambda) {
+        return Vec::new();
+    }
+    let mut out: Vec<Diagnostic> = Vec::new();
+    for (values, why) in settings(scene, asked, effort) {
+        let Some(at) = compile_at(&values) else {
+            continue;
+        };
+        for d in verify_annotations(&at, effort) {
+            let known = seen
+                .iter()
+                .chain(&out)
+                .any(|k| k.span == d.span && k.message == d.message);
+            if known {
+                continue;
+            }
+            let mut shown: Vec<String> = values
+                .iter()
+                .map(|(k, v)| {
+                    let v: Vec<String> = v.iter().map(|&x| six_digits(x)).collect();
+                    format!("{k} = {}", v.join(", "))
+                })
+                .collect();
+            shown.sort();
+            let mut d = d.note(format!("found with {} ({})", shown.join("; "), why.say()));
+            if why == Why::Unranged {
+                d = d.help("declare the parameter's range (`param a = 1 in 0..2`) so that the bound can be checked over it");
+            }
+            out.push(d);
+        }
+    }
+    out
+}
+
+/// A value with at most six significant digits (`2.5`, `1.12346`).
+fn six_digits(x: f64) -> String {
+    let r: f64 = format!("{x:.5e}").parse().unwrap_or(x);
+    format!("{r}")
+}
