@@ -38,7 +38,7 @@ impl Why {
 /// the scene once more and samples its annotations).
 fn sizes(effort: Effort) -> (usize, usize, usize) {
     match effort {
-        Effort::Fast => (3, 4, 24),
+        Effort::Fast => (3, 4, 32),
         Effort::Thorough => (7, 24, 80),
     }
 }
@@ -74,21 +74,19 @@ fn read_by_annotations(scene: &Scene) -> BTreeSet<usize> {
     read
 }
 
-/// A parameter's components at `v`.
-fn comps(p: &ParamDecl, v: glam::DVec3) -> Vec<f64> {
-    v.to_array()[..p.kind.components()].to_vec()
-}
-
 /// Values that test an annotation against a parameter without a range (as the catalog's rules
 /// are tested, `check/ranges.rs`).
 fn perturbed(x: f64) -> [f64; 6] {
     [x + 1.0, x - 1.0, 2.0 * x + 1.0, -x, 0.5 * x, 10.0 * x + 3.0]
 }
 
-/// The settings to check, in order: the values asked for; every ranged parameter an annotation
-/// reads at its low and at its high end together; each alone at either end; each parameter
-/// without a range perturbed; each ranged one alone at points inside its range; random points
-/// of the box of ranges.
+/// Most ranged components whose every corner is a setting (16 corners).
+const MAX_CORNER_DIMS: usize = 4;
+
+/// The settings to check, in order: the values asked for; the corners of the box of ranges of
+/// the parameters annotations read (its lowest and highest corners only, past four ranged
+/// components); each component alone at either end; each parameter without a range
+/// perturbed; each component alone at points inside its range; random points of the box.
 fn settings(scene: &Scene, asked: &Values, effort: Effort) -> Vec<(Values, Why)> {
     let read = read_by_annotations(scene);
     let used: Vec<&ParamDecl> = read
@@ -96,25 +94,50 @@ fn settings(scene: &Scene, asked: &Values, effort: Effort) -> Vec<(Values, Why)>
         .map(|&i| &scene.params[i])
         .filter(|p| p.kind != ParamKind::Color)
         .collect();
-    let ranged: Vec<&ParamDecl> = used.iter().copied().filter(|p| p.range.is_some()).collect();
+    // (parameter, component) of every ranged component.
+    let dims: Vec<(&ParamDecl, usize)> = used
+        .iter()
+        .filter(|p| p.range.is_some())
+        .flat_map(|&p| (0..p.kind.components()).map(move |c| (p, c)))
+        .collect();
     let (inside, random, most) = sizes(effort);
     let mut out = Vec::new();
     if !asked.is_empty() && !read.is_empty() {
         out.push((asked.clone(), Why::Asked));
     }
-    let at = |p: &ParamDecl, t: f64| {
-        let (lo, hi) = p.range.expect("ranged");
-        comps(p, lo + (hi - lo) * t)
+    // A setting from a value in [0, 1] per dimension (the fraction of its range; `None`: the
+    // parameter's own value).
+    let setting = |t: &dyn Fn(usize) -> Option<f64>| -> Values {
+        let mut v = Values::new();
+        for (k, &(p, c)) in dims.iter().enumerate() {
+            if let Some(t) = t(k) {
+                let (lo, hi) = p.range.expect("ranged");
+                let e = v.entry(p.name.clone()).or_insert_with(|| p.values());
+                e[c] = lo[c] + (hi[c] - lo[c]) * t;
+            }
+        }
+        v
     };
-    if ranged.len() > 1 {
-        for t in [0.0, 1.0] {
-            let all = ranged.iter().map(|p| (p.name.clone(), at(p, t))).collect();
-            out.push((all, Why::Ends));
+    let corners: Vec<usize> = if dims.len() <= MAX_CORNER_DIMS {
+        (0..1usize << dims.len()).collect()
+    } else {
+        vec![0, (1usize << MAX_CORNER_DIMS) - 1]
+    };
+    if dims.len() > 1 {
+        for bits in corners {
+            let high = |k: usize| {
+                Some(if bits >> k.min(MAX_CORNER_DIMS - 1) & 1 == 1 {
+                    1.0
+                } else {
+                    0.0
+                })
+            };
+            out.push((setting(&high), Why::Ends));
         }
     }
-    for p in &ranged {
+    for k in 0..dims.len() {
         for t in [0.0, 1.0] {
-            out.push((HashMap::from([(p.name.clone(), at(p, t))]), Why::Ends));
+            out.push((setting(&|i| (i == k).then_some(t)), Why::Ends));
         }
     }
     for p in used.iter().filter(|p| p.range.is_none()) {
@@ -123,24 +146,17 @@ fn settings(scene: &Scene, asked: &Values, effort: Effort) -> Vec<(Values, Why)>
             out.push((HashMap::from([(p.name.clone(), v)]), Why::Unranged));
         }
     }
-    for p in &ranged {
+    for k in 0..dims.len() {
         for i in 1..=inside {
             let t = i as f64 / (inside + 1) as f64;
-            out.push((HashMap::from([(p.name.clone(), at(p, t))]), Why::Inside));
+            out.push((setting(&|j| (j == k).then_some(t)), Why::Inside));
         }
     }
-    if ranged.len() > 1 {
+    if dims.len() > 1 {
         let mut rng = Rng(0x7a6e_5e77_1e55_0001);
         for _ in 0..random {
-            let all = ranged
-                .iter()
-                .map(|p| {
-                    let (lo, hi) = p.range.expect("ranged");
-                    let v = lo + (hi - lo) * rng.vec();
-                    (p.name.clone(), comps(p, v))
-                })
-                .collect();
-            out.push((all, Why::Inside));
+            let t: Vec<f64> = dims.iter().map(|_| rng.unit()).collect();
+            out.push((setting(&|k| Some(t[k])), Why::Inside));
         }
     }
     out.truncate(most);
@@ -182,7 +198,12 @@ pub fn verify_over_ranges(
             shown.sort();
             let mut d = d.note(format!("found with {} ({})", shown.join("; "), why.say()));
             if why == Why::Unranged {
-                d = d.help("declare the parameter's range (`param a = 1 in 0..2`) so that the bound can be checked over it");
+                let names: Vec<&str> = values.keys().map(String::as_str).collect();
+                d = d.help(format!(
+                    "declare the range `{}` may take (`param {} = … in LOW..HIGH`): the bound is then checked over it",
+                    names.join("`, `"),
+                    names[0]
+                ));
             }
             out.push(d);
         }
@@ -194,4 +215,24 @@ pub fn verify_over_ranges(
 fn six_digits(x: f64) -> String {
     let r: f64 = format!("{x:.5e}").parse().unwrap_or(x);
     format!("{r}")
+}
+
+/// The annotations too small at `values` (the quick check of the scene with its parameters
+/// set, λ and bounds as checked): what the viewer's keys and each frame of an animation are
+/// checked by.
+pub fn too_small_at(scene: &Scene, values: &Values) -> Vec<Diagnostic> {
+    if !scene.nodes.iter().any(|n| n.lambda < n.inferred_lambda) {
+        return Vec::new();
+    }
+    let mut found = verify_annotations(&scene.with_values(values), Effort::Fast);
+    found.retain(|d| d.message.contains("too small"));
+    found
+}
+
+/// Whether some annotated shape reads the parameter `name` (then its values matter to the
+/// annotation check).
+pub fn annotation_reads(scene: &Scene, name: &str) -> bool {
+    read_by_annotations(scene)
+        .into_iter()
+        .any(|i| scene.params[i].name == name)
 }

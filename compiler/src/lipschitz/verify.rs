@@ -5,8 +5,8 @@
 //! which finds features too thin for samples. A slope above the annotation is a warning with
 //! the place, the slope seen (a lower bound of the true one) and a safe bound where one is known.
 
-use super::{Rng, bound_in};
 use super::reach::{self, Ray};
+use super::{Rng, bound_in};
 use crate::diag::Diagnostic;
 use crate::interval::Interval;
 use crate::reference::eval;

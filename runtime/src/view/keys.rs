@@ -5,7 +5,7 @@ use super::app::App;
 use super::live::Live;
 use sdfc::images::Channel;
 use sdfc_compiler::check::TIME;
-use sdfc_compiler::lipschitz::{Effort, verify_annotations};
+use sdfc_compiler::lipschitz::too_small_at;
 use std::path::PathBuf;
 use winit::event_loop::ActiveEventLoop;
 
@@ -111,11 +111,7 @@ fn change(live: &mut Live, up: bool) {
 /// The annotations checked at the parameter values the keys set (as `render --param` checks
 /// them): each one too small there is said when the values first make it so.
 fn verify(live: &mut Live) {
-    let here = live.scene.with_values(&live.values);
-    let found: Vec<_> = verify_annotations(&here, Effort::Fast)
-        .into_iter()
-        .filter(|d| d.message.contains("too small"))
-        .collect();
+    let found = too_small_at(&live.scene, &live.values);
     let mut values: Vec<String> = live
         .values
         .iter()

@@ -5,6 +5,7 @@
 use super::{Job, progress_bar};
 use crate::cli::{Error, RenderArgs, messages::done, write_file};
 use sdfc::images::{self, Channel};
+use sdfc_compiler::check::TIME;
 use sdfc_compiler::scene::ParamDecl;
 use std::cell::RefCell;
 use std::path::{Path, PathBuf};
@@ -93,7 +94,7 @@ pub fn settings(
         .map(|k| {
             let mut p = params.to_vec();
             for d in &mut p {
-                if d.name == sdfc_compiler::check::TIME {
+                if d.name == TIME {
                     let t = start + f64::from(k) / fps;
                     if let Some((lo, hi)) = d.range
                         && !(lo.x..=hi.x).contains(&t)
@@ -110,6 +111,46 @@ pub fn settings(
             Ok(sdfc_compiler::lower::params::bytes(&p))
         })
         .collect()
+}
+
+/// Frames whose `time` the annotations are checked at: at most this many, evenly spread.
+const CHECKED_FRAMES: u32 = 16;
+
+/// The annotations checked at the `time` of frames spread over the animation, first and last
+/// included (as `render --time` checks its one value): each one too small at some frame is
+/// said once, with the first such frame.
+fn verify_frames(
+    scene: &sdfc_compiler::scene::Scene,
+    frames: std::ops::Range<u32>,
+    fps: f64,
+    start: f64,
+) {
+    let n = frames.len() as u32;
+    if n == 0 || !sdfc_compiler::lipschitz::annotation_reads(scene, TIME) {
+        return;
+    }
+    let picks = n.min(CHECKED_FRAMES);
+    let mut said: Vec<sdfc_compiler::diag::Span> = Vec::new();
+    for i in 0..picks {
+        let k = frames.start
+            + if picks == 1 {
+                0
+            } else {
+                i * (n - 1) / (picks - 1)
+            };
+        let t = start + f64::from(k) / fps;
+        let values = std::collections::HashMap::from([(TIME.to_string(), vec![t])]);
+        for d in sdfc_compiler::lipschitz::too_small_at(scene, &values) {
+            if !said.contains(&d.span) {
+                say!(
+                    "warning: at frame {k} (time = {t} s), {}: {}",
+                    d.message,
+                    d.label
+                );
+                said.push(d.span);
+            }
+        }
+    }
 }
 
 /// Collects the frames as they are finished and writes them.
@@ -212,7 +253,9 @@ pub fn render(
     let (w, h) = (job.view.width, job.view.height);
     let first = range.start;
     let fps = f64::from(args.fps);
-    let settings = settings(&job.valued.params, range, fps, args.time.unwrap_or(0.0))?;
+    let start = args.time.unwrap_or(0.0);
+    verify_frames(&job.valued, range.clone(), fps, start);
+    let settings = settings(&job.valued.params, range, fps, start)?;
     let count = settings.len();
     let mut writer = Writer::new(sink, first, fps, (w, h))?;
     let mut sum = images::Accumulator::new((w * h) as usize, true);
@@ -245,12 +288,7 @@ pub fn render(
         b.finish_and_clear();
     }
     let place = writer.finish()?;
-    let still = if job
-        .scene
-        .params
-        .iter()
-        .any(|p| p.name == sdfc_compiler::check::TIME)
-    {
+    let still = if job.scene.params.iter().any(|p| p.name == TIME) {
         ""
     } else {
         " (the scene does not read `time`: every frame is the same)"
