@@ -153,7 +153,7 @@ fn the_annotation_check_finds_planted_errors_and_only_those() {
                 let flagged = !found.is_empty();
                 *tally.entry((kind, name)).or_default() += usize::from(flagged);
                 let row = classes.entry((kind, class.clone())).or_default();
-                row[0] += 1;
+                row[0] += usize::from(name == "quick");
                 row[1 + usize::from(name == "thorough")] += usize::from(flagged);
                 if kind == "wrong" && name == "thorough" && !flagged {
                     missed.push(path.display().to_string());

@@ -256,3 +256,85 @@ fn annotations_are_checked_over_the_parameters_ranges() {
         "{err}"
     );
 }
+
+/// The annotation corpus's scenes whose error only the newer checks see — steep parts reached
+/// by shadow, mirror or glass rays or far out under a long `max_distance` (class `secondary`),
+/// at parameter values other than the defaults (`ranged`), in one call of a function (`call`)
+/// — make `sdfc render` warn that the annotation is too small, rendered at the values the file
+/// names as the worst (`// worst-at:`), or else the picture loses nothing: a scene the quick
+/// check misses must be one camera rays reach (`// reached-by: camera`, no parameters), and its
+/// hit mask on the GPU is within one pixel of the f64 truth's both ways. The correct ones of
+/// those classes render without the warning.
+#[test]
+fn render_warns_where_only_secondary_rays_ranges_or_calls_see_the_error() {
+    let dir = crate::common::root().join("tests/lipschitz");
+    let out = crate::common::scratch("lipschitz-render-classes");
+    let png = out.join("x.png");
+    let (mut rendered, mut missed) = (0, Vec::new());
+    for kind in ["wrong", "right"] {
+        let mut files: Vec<_> = std::fs::read_dir(dir.join(kind))
+            .unwrap()
+            .map(|e| e.unwrap().path())
+            .filter(|p| p.extension().is_some_and(|e| e == "sdf"))
+            .collect();
+        files.sort();
+        for path in files {
+            let source = std::fs::read_to_string(&path).unwrap();
+            let header = |key: &str| {
+                source
+                    .lines()
+                    .find_map(|l| l.strip_prefix(&format!("// {key}: ")))
+                    .map(str::trim)
+            };
+            let class = header("class").unwrap_or_default();
+            if !["secondary", "ranged", "call"].contains(&class) {
+                continue;
+            }
+            let mut args: Vec<String> = ["render", path.to_str().unwrap(), "--size", "32x18"]
+                .map(String::from)
+                .to_vec();
+            args.extend(["-o".into(), png.display().to_string()]);
+            for setting in header("worst-at").into_iter().flat_map(|w| w.split(';')) {
+                let (name, value) = setting.split_once('=').expect("name = value");
+                let (name, value) = (name.trim(), value.trim());
+                if name == "time" {
+                    args.extend(["--time".into(), value.into()]);
+                } else {
+                    args.extend(["--param".into(), format!("{name}={value}")]);
+                }
+            }
+            let args: Vec<&str> = args.iter().map(String::as_str).collect();
+            let o = crate::common::sdfc(&args);
+            let err = String::from_utf8_lossy(&o.stderr);
+            assert_eq!(o.status.code(), Some(0), "{}:\n{err}", path.display());
+            rendered += 1;
+            let warned = err.contains("the annotated Lipschitz bound is too small");
+            if kind == "right" {
+                assert!(
+                    !warned,
+                    "{}: a correct annotation flagged:\n{err}",
+                    path.display()
+                );
+            } else if !warned {
+                let seen_directly =
+                    header("reached-by") == Some("camera") && header("worst-at").is_none();
+                assert!(seen_directly, "{}: no warning:\n{err}", path.display());
+                let scene = compile(&source);
+                let (got, want) = (masks(&scene).gpu, truth(&scene));
+                let lost = (beyond_one_pixel(&want, &got), beyond_one_pixel(&got, &want));
+                assert_eq!(
+                    lost,
+                    (0, 0),
+                    "{}: no warning, and pixels lost",
+                    path.display()
+                );
+                missed.push(path.display().to_string());
+            }
+        }
+    }
+    assert!(
+        rendered >= 30,
+        "only {rendered} scenes of the three classes"
+    );
+    assert!(missed.is_empty(), "render did not warn for {missed:#?}");
+}

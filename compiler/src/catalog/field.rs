@@ -66,20 +66,31 @@ impl Field {
 
     /// The same expression with every parameter's value replaced by `value(use)`.
     pub fn with_values(&self, value: &dyn Fn(&ParamRef) -> f64) -> Field {
+        self.map_params(&|r| ParamRef {
+            value: value(r),
+            ..*r
+        })
+    }
+
+    /// The same expression with every parameter held at its value: its range is that value
+    /// alone (interval bounds then hold at these values, not over the whole range).
+    pub fn pinned(&self) -> Field {
+        self.map_params(&|r| ParamRef {
+            lo: r.value,
+            hi: r.value,
+            ..*r
+        })
+    }
+
+    /// The same expression with every parameter use replaced by `f(use)`.
+    fn map_params(&self, f: &dyn Fn(&ParamRef) -> ParamRef) -> Field {
         match self {
-            Field::Param(r) => Field::Param(ParamRef {
-                value: value(r),
-                ..*r
-            }),
-            Field::Neg(a) => Field::Neg(Box::new(a.with_values(value))),
-            Field::Binary(op, a, b) => Field::Binary(
-                *op,
-                Box::new(a.with_values(value)),
-                Box::new(b.with_values(value)),
-            ),
-            Field::Call(f, args) => {
-                Field::Call(f, args.iter().map(|a| a.with_values(value)).collect())
+            Field::Param(r) => Field::Param(f(r)),
+            Field::Neg(a) => Field::Neg(Box::new(a.map_params(f))),
+            Field::Binary(op, a, b) => {
+                Field::Binary(*op, Box::new(a.map_params(f)), Box::new(b.map_params(f)))
             }
+            Field::Call(c, args) => Field::Call(c, args.iter().map(|a| a.map_params(f)).collect()),
             other => other.clone(),
         }
     }

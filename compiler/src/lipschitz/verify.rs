@@ -7,6 +7,7 @@
 
 use super::reach::{self, Ray};
 use super::{Rng, bound_in};
+use crate::catalog::traits::Motion;
 use crate::diag::Diagnostic;
 use crate::interval::Interval;
 use crate::reference::eval;
@@ -92,10 +93,19 @@ pub fn verify_annotations(scene: &Scene, effort: Effort) -> Vec<Diagnostic> {
     let world = budget.world.min(WORK / cost).max(64);
     // A traced camera ray costs up to `SECONDARY_STEPS` evaluations, its secondary rays more.
     let hits = budget.hits.min(WORK / (cost * 192));
-    let seen = reach::where_rays_evaluate(scene, &annotated, world, (hits, budget.per_ray));
+    let below: Vec<Option<NodeId>> = annotated
+        .iter()
+        .map(|&id| expression_below(scene, id))
+        .collect();
+    let mut recorded = annotated.clone();
+    recorded.extend(below.iter().flatten());
+    recorded.sort_unstable();
+    recorded.dedup();
+    let seen = reach::where_rays_evaluate(scene, &recorded, world, (hits, budget.per_ray));
     for (k, &id) in annotated.iter().enumerate() {
         let mut rng = Rng(0x9e37_79b9_7f4a_7c15 ^ (k as u64 + 1));
-        match check_node(scene, id, &seen[&id], &budget, &mut rng) {
+        let expr = below[k].map(|e| (e, seen[&e].as_slice()));
+        match check_node(scene, (id, &seen[&id]), expr, &budget, &mut rng) {
             Err(d) => out.push(d),
             Ok(slope) => out.extend(super::converge::too_loose(scene, id, slope)),
         }
@@ -103,18 +113,34 @@ pub fn verify_annotations(scene: &Scene, effort: Effort) -> Vec<Diagnostic> {
     out
 }
 
-/// The check of one annotated node given the points rays evaluate it at.
-fn check_node(
+/// The `implicit` whose slope is the annotated node's: the node itself, or one under moves and
+/// turns only (rigid motions keep slopes), whose body the interval search can then search.
+fn expression_below(scene: &Scene, id: NodeId) -> Option<NodeId> {
+    let mut at = id;
+    loop {
+        match &scene.nodes[at].kind {
+            NodeKind::Implicit { .. } => return Some(at),
+            NodeKind::Operator { op, children, .. }
+                if children.len() == 1
+                    && matches!(op.traits.motion, Motion::Move | Motion::Turn) =>
+            {
+                at = children[0];
+            }
+            _ => return None,
+        }
+    }
+}
+
+/// The points to sample node `id` at: those rays reach (`from_rays`), and its own box (grown
+/// by a quarter; [−4, 4]³ for an unbounded node) on a jittered grid.
+fn region_points(
     scene: &Scene,
     id: NodeId,
     from_rays: &[(DVec3, Ray)],
     budget: &Budget,
     rng: &mut Rng,
-) -> Result<f64, Diagnostic> {
+) -> Vec<(DVec3, Ray)> {
     let node = &scene.nodes[id];
-    let lambda = node.lambda;
-    let field = |p: DVec3| eval::node(scene, id, p).d;
-    // The region: the points rays reach, and the node's own box (grown), or around its origin.
     let mut points: Vec<(DVec3, Ray)> = from_rays.to_vec();
     let (lo, hi) = if node.bound.is_finite() {
         let grow = ((node.bound.hi - node.bound.lo) * 0.25).max(DVec3::splat(1e-3));
@@ -124,12 +150,32 @@ fn check_node(
     };
     let framed = (scene.camera.eye - scene.camera.target).length().max(1e-6);
     points.extend(stratified(lo, hi, budget.local, framed, rng).map(|p| (p, Ray::Region)));
-    let (mut rlo, mut rhi) = (lo, hi);
-    for (p, _) in &points {
-        rlo = rlo.min(*p);
-        rhi = rhi.max(*p);
+    points
+}
+
+/// The box the points span, and its largest side.
+fn span(points: &[(DVec3, Ray)]) -> (DVec3, DVec3, f64) {
+    let (mut lo, mut hi) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
+    for (p, _) in points {
+        lo = lo.min(*p);
+        hi = hi.max(*p);
     }
-    let size = (rhi - rlo).max_element().max(1e-6);
+    (lo, hi, (hi - lo).max_element().max(1e-6))
+}
+
+/// The check of one annotated node given the points rays evaluate it at, and the `implicit`
+/// its slope is (itself or one under moves and turns) with the points rays evaluate that at.
+fn check_node(
+    scene: &Scene,
+    (id, from_rays): (NodeId, &[(DVec3, Ray)]),
+    expr: Option<(NodeId, &[(DVec3, Ray)])>,
+    budget: &Budget,
+    rng: &mut Rng,
+) -> Result<f64, Diagnostic> {
+    let lambda = scene.nodes[id].lambda;
+    let field = |p: DVec3| eval::node(scene, id, p).d;
+    let points = region_points(scene, id, from_rays, budget, rng);
+    let (rlo, _, size) = span(&points);
     let slope = |p: DVec3| slope_at(&field, p, size * 1e-6);
     // Sample, keep the steepest, refine them by local search.
     let mut scored: Vec<(f64, DVec3, Ray)> =
@@ -143,23 +189,40 @@ fn check_node(
             best = (found.0, found.1, r);
         }
     }
-    // An expression: search the region box by box, guided by interval bounds.
+    // An expression: search the region box by box, guided by interval bounds (in the
+    // coordinates of the `implicit`, whose slope is the node's).
     let mut proven = None;
-    if let NodeKind::Implicit { field: body } = &node.kind {
-        let region = [0, 1, 2].map(|i| Interval::new(rlo[i], rhi[i]));
+    let mut inner = false;
+    if let Some((e, seen)) = expr
+        && let NodeKind::Implicit { field: body } = &scene.nodes[e].kind
+    {
+        let points = if e == id {
+            points
+        } else {
+            region_points(scene, e, seen, budget, rng)
+        };
+        let (lo, hi, size) = span(&points);
+        let region = [0, 1, 2].map(|i| Interval::new(lo[i], hi[i]));
+        // (The safe bound holds over the parameters' ranges; the search is at the values
+        // checked: over the whole ranges, a width parameter's widest spike would hide its
+        // narrowest.)
         proven = Some(bound_in(body, &region));
+        let body = &body.pinned();
         if best.0 <= lambda * MARGIN {
-            let found = search(body, &slope, region, lambda, budget.boxes, rng);
+            let efield = |p: DVec3| eval::node(scene, e, p).d;
+            let eslope = |p: DVec3| slope_at(&efield, p, size * 1e-6);
+            let found = search(body, &eslope, region, lambda, budget.boxes, rng);
             if found.0 > best.0 {
-                let (s, at) = climb(&slope, found.1, found.0, size, steps, rng);
+                let (s, at) = climb(&eslope, found.1, found.0, size, steps, rng);
                 best = (s, at, nearest_kind(&points, at));
+                inner = e != id;
             }
         }
     }
     if best.0 <= lambda * MARGIN {
         return Ok(best.0);
     }
-    Err(too_small(scene, id, best, proven))
+    Err(too_small(scene, id, (best, inner), proven))
 }
 
 /// The kind of ray of the sampled point nearest `at` (what reaches a point the search found).
@@ -200,7 +263,7 @@ fn stratified(
 fn too_small(
     scene: &Scene,
     id: NodeId,
-    (seen, at, ray): (f64, DVec3, Ray),
+    ((seen, at, ray), inner): ((f64, DVec3, Ray), bool),
     proven: Option<f64>,
 ) -> Diagnostic {
     let node = &scene.nodes[id];
@@ -225,10 +288,11 @@ fn too_small(
         )),
         None => d.help(format!("raise the annotation above {}", short_up(seen))),
     };
-    super::with_call(node, d).note(format!(
-        "the point is in the annotated shape's own coordinates; {}",
-        ray.say()
-    ))
+    let frame = match inner {
+        true => "the coordinates of the `implicit` under its moves and turns",
+        false => "the annotated shape's own coordinates",
+    };
+    super::with_call(node, d).note(format!("the point is in {frame}; {}", ray.say()))
 }
 
 /// |∇f| at `p` by central differences with step `h`; 0 where the field is not finite.
@@ -277,9 +341,18 @@ fn search(
 ) -> (f64, DVec3) {
     let mut best = (0.0, DVec3::ZERO);
     let mut boxes = vec![(bound_in(body, &region), region)];
+    let side = |b: &[Interval; 3]| (0..3).map(|i| b[i].hi - b[i].lo).fold(0.0, f64::max);
+    // Boxes smaller than this are not split: at a point where a gradient's interval does not
+    // shrink (the apex of `length`), the bound stays high at every size.
+    let finest = side(&region) * 1e-7;
     for _ in 0..budget {
-        // The box with the largest bound (a linear scan: the list stays small).
-        let Some(i) = (0..boxes.len()).max_by(|&a, &b| boxes[a].0.total_cmp(&boxes[b].0)) else {
+        // The box with the largest bound, the larger of equal ones (a linear scan: the list
+        // stays small).
+        let key = |k: usize| (boxes[k].0, side(&boxes[k].1));
+        let Some(i) = (0..boxes.len()).max_by(|&a, &b| {
+            let (ka, kb) = (key(a), key(b));
+            ka.0.total_cmp(&kb.0).then(ka.1.total_cmp(&kb.1))
+        }) else {
             break;
         };
         let (bound, b) = boxes.swap_remove(i);
@@ -300,6 +373,9 @@ fn search(
         }
         if best.0 > lambda * MARGIN {
             break;
+        }
+        if side(&b) < finest {
+            continue;
         }
         let axis = (hi - lo).max_position();
         let mid = (lo[axis] + hi[axis]) / 2.0;
