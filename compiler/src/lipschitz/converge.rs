@@ -20,8 +20,10 @@ fn relative_epsilon(scene: &Scene) -> f64 {
 }
 
 /// A warning when the node `id`'s bound λ is so far above `slope` (the steepest slope sampled
-/// where rays go) that rays near it need more steps than the budget.
-pub fn too_loose(scene: &Scene, id: NodeId, slope: f64) -> Option<Diagnostic> {
+/// where rays go) that rays near it need more steps than the budget. `proven`: an interval
+/// bound on the slope over that region (an `implicit`), which a smaller annotation it suggests
+/// must not go below: sampling may have missed a thin steep part.
+pub fn too_loose(scene: &Scene, id: NodeId, slope: f64, proven: Option<f64>) -> Option<Diagnostic> {
     let node = &scene.nodes[id];
     let ratio = node.lambda / slope;
     if !(slope > 0.0 && ratio.is_finite() && ratio > LOOSE) {
@@ -33,29 +35,39 @@ pub fn too_loose(scene: &Scene, id: NodeId, slope: f64) -> Option<Diagnostic> {
     if needed <= budget {
         return None;
     }
-    Some(super::with_call(
-        node,
-        Diagnostic::warning(
-            node.span,
-            "this Lipschitz bound is so large that rays cannot arrive within their step budget",
-        )
-        .label(format!(
-            "λ {} is {}× the field's slope of {}",
-            short(node.lambda),
-            short(ratio),
-            short(slope)
-        ))
-        .note(format!(
-            "each step is f/λ: near it a ray needs about {} steps to reach ε, and the budget is {}",
-            short(needed.ceil()),
-            scene.trace.steps
-        ))
-        .help(format!(
-            "annotate close to the slope, `@lipschitz({})`, or raise `steps` above {}",
-            short(slope * 1.1),
-            short(needed.ceil())
-        )),
+    let d = Diagnostic::warning(
+        node.span,
+        "this Lipschitz bound is so large that rays cannot arrive within their step budget",
+    )
+    .label(format!(
+        "λ {} is {}× the steepest slope sampled, {}",
+        short(node.lambda),
+        short(ratio),
+        short(slope)
     ))
+    .note(format!(
+        "each step is f/λ: near it a ray needs about {} steps to reach ε, and the budget is {}",
+        short(needed.ceil()),
+        scene.trace.steps
+    ));
+    let steps = short(needed.ceil());
+    let d = match proven.filter(|b| b.is_finite()) {
+        // Proven below the annotation: that bound is safe.
+        Some(b) if b < node.lambda => d.help(format!(
+            "annotate the interval bound where rays go, `@lipschitz({})`, or raise `steps` above {steps}",
+            short(b * 1.001)
+        )),
+        // The region may be as steep as the annotation somewhere sampling did not see.
+        Some(b) => d.help(format!(
+            "raise `steps` above {steps}; the interval bound where rays go is {}, so a smaller annotation is not proven",
+            short(b)
+        )),
+        None => d.help(format!(
+            "raise `steps` above {steps}, or, if the field is nowhere steeper than sampled, annotate `@lipschitz({})`",
+            short(slope * 1.1)
+        )),
+    };
+    Some(super::with_call(node, d))
 }
 
 /// A number printed with three significant digits, in e-notation from 10⁵.

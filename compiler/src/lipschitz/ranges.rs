@@ -181,6 +181,10 @@ pub fn verify_over_ranges(
             continue;
         };
         for d in verify_annotations(&at, effort) {
+            // (How fast rays arrive matters where they are traced: at the values asked for.)
+            if why != Why::Asked && !d.message.contains("too small") {
+                continue;
+            }
             let known = seen
                 .iter()
                 .chain(&out)

@@ -107,7 +107,7 @@ pub fn verify_annotations(scene: &Scene, effort: Effort) -> Vec<Diagnostic> {
         let expr = below[k].map(|e| (e, seen[&e].as_slice()));
         match check_node(scene, (id, &seen[&id]), expr, &budget, &mut rng) {
             Err(d) => out.push(d),
-            Ok(slope) => out.extend(super::converge::too_loose(scene, id, slope)),
+            Ok((slope, proven)) => out.extend(super::converge::too_loose(scene, id, slope, proven)),
         }
     }
     out
@@ -164,14 +164,16 @@ fn span(points: &[(DVec3, Ray)]) -> (DVec3, DVec3, f64) {
 }
 
 /// The check of one annotated node given the points rays evaluate it at, and the `implicit`
-/// its slope is (itself or one under moves and turns) with the points rays evaluate that at.
+/// its slope is (itself or one under moves and turns) with the points rays evaluate that at:
+/// the steepest slope found and the interval bound over the region (an `implicit`), or the
+/// warning.
 fn check_node(
     scene: &Scene,
     (id, from_rays): (NodeId, &[(DVec3, Ray)]),
     expr: Option<(NodeId, &[(DVec3, Ray)])>,
     budget: &Budget,
     rng: &mut Rng,
-) -> Result<f64, Diagnostic> {
+) -> Result<(f64, Option<f64>), Diagnostic> {
     let lambda = scene.nodes[id].lambda;
     let field = |p: DVec3| eval::node(scene, id, p).d;
     let points = region_points(scene, id, from_rays, budget, rng);
@@ -220,7 +222,7 @@ fn check_node(
         }
     }
     if best.0 <= lambda * MARGIN {
-        return Ok(best.0);
+        return Ok((best.0, proven));
     }
     Err(too_small(scene, id, (best, inner), proven))
 }
