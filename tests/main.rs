@@ -2,6 +2,7 @@
 //! of this folder is a module, its tests named `<file>::<test>`; the helpers they share are this
 //! crate's library (`lib.rs`).
 
+mod bake;
 mod converge;
 mod emit;
 mod errors;

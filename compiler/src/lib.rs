@@ -4,6 +4,7 @@
 // pest_derive without its `std` feature (see the workspace's Cargo.toml) names `::alloc`.
 extern crate alloc;
 
+pub mod bake;
 pub mod catalog;
 pub mod check;
 pub mod color;
