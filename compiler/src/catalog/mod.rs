@@ -203,6 +203,36 @@ impl MatRule {
         }
     }
 
+    /// Whether a hit needs confirming at an operator's result (`eval::loose`, `map_loose`),
+    /// from the children's raw fields and looseness (`Some`: loose): as [`MatRule::pick`] picks,
+    /// except where the largest operand decides (an intersection, a cut, sharp or smooth).
+    /// There a point is near the result's surface only if it is near or inside every operand,
+    /// and a loose operand's small positive field does not say it is near: so the result is
+    /// loose where some loose operand is positive (the cut's later operands negated), or where
+    /// every operand is loose. (Before, the largest operand alone decided, and an exact cutter
+    /// trusted at the rim of a loose shell fattened it: `docs/lipschitz.md` §5.)
+    pub fn pick_loose<T: Copy>(self, ctx: &Ctx, children: &[(f64, Option<T>)]) -> Option<T> {
+        let rule = self.sharp();
+        if !matches!(rule, MatRule::Farthest | MatRule::Cut) {
+            return self.pick(ctx, children);
+        }
+        let sign = |i: usize| {
+            if rule == MatRule::Cut && i > 0 {
+                -1.0
+            } else {
+                1.0
+            }
+        };
+        if children.iter().all(|c| c.1.is_some()) {
+            return children[0].1;
+        }
+        children
+            .iter()
+            .enumerate()
+            .find(|(i, c)| c.1.is_some() && sign(*i) * c.0 > 0.0)
+            .and_then(|(_, c)| c.1)
+    }
+
     /// The rule that picks one material (the smooth rules' sharp ones).
     pub fn sharp(self) -> MatRule {
         match self {

@@ -48,6 +48,57 @@ pub(super) fn pick_material(
     }
 }
 
+/// Looseness (1 or 0) of an operator's result in IR, as [`MatRule::pick_loose`] computes it:
+/// at an intersection or a cut, 1 where some loose operand is positive (a cut's later ones
+/// negated) or every operand is loose; elsewhere as the materials pick.
+pub(super) fn pick_loose(
+    b: &mut FnBuilder,
+    rule: MatRule,
+    ctx: &crate::catalog::Ctx,
+    seen: &[(Ex, Option<Ex>)],
+    zero: &dyn Fn(&mut FnBuilder) -> Ex,
+) -> Option<Ex> {
+    let sharp = rule.sharp();
+    if !matches!(sharp, MatRule::Farthest | MatRule::Cut) {
+        return pick_material(b, rule, ctx, seen, zero);
+    }
+    if seen.iter().all(|(_, m)| m.is_none()) {
+        return None;
+    }
+    // (A child statically not loose adds nothing to `any` and makes `all` false.)
+    let every = seen.iter().all(|(_, m)| m.is_some());
+    let (mut any, mut all) = (None, None);
+    for (i, &(d, m)) in seen.iter().enumerate() {
+        let Some(m) = m else { continue };
+        let z = b.u(0);
+        let loose = b.bin(naga::BinaryOperator::NotEqual, m, z);
+        let zero_f = b.f(0.0);
+        let outside = if sharp == MatRule::Cut && i > 0 {
+            b.lt(d, zero_f)
+        } else {
+            b.gt(d, zero_f)
+        };
+        let here = b.bin(naga::BinaryOperator::LogicalAnd, loose, outside);
+        any = Some(match any {
+            None => here,
+            Some(a) => b.bin(naga::BinaryOperator::LogicalOr, a, here),
+        });
+        if every {
+            all = Some(match all {
+                None => loose,
+                Some(a) => b.bin(naga::BinaryOperator::LogicalAnd, a, loose),
+            });
+        }
+    }
+    let any = any.expect("a loose child");
+    let either = match all {
+        Some(all) => b.bin(naga::BinaryOperator::LogicalOr, any, all),
+        None => any,
+    };
+    let (one, none) = (b.u(1), b.u(0));
+    Some(b.select(either, one, none))
+}
+
 /// The blend of a blending operator's children in IR, as `crate::reference::blend::pick` computes it.
 pub(super) fn pick_blend(
     b: &mut FnBuilder,

@@ -4,7 +4,7 @@
 
 use super::Walk;
 use super::constant::{constant_looseness, constant_materials};
-use super::pick::{pick_blend, pick_material};
+use super::pick::{pick_blend, pick_loose, pick_material};
 use crate::ir::builder::{Ex, FnBuilder};
 use crate::scene::{NodeId, NodeKind};
 
@@ -23,6 +23,9 @@ pub(super) struct Tagging<'a> {
     pub zero: &'a Zero<'a>,
     /// Whether blending operators blend the tags (`map_blend`) rather than pick one.
     pub blends: bool,
+    /// Whether the tag is looseness (`map_loose`): intersections and cuts pick it by
+    /// [`pick_loose`].
+    pub loose: bool,
     /// The nodes whose tag is one constant at every point (`constant.rs`); empty where
     /// the tag is not an id.
     pub constant: &'a [Option<u32>],
@@ -40,6 +43,7 @@ impl Walk<'_> {
             &Tagging {
                 zero: &|b| b.u(0),
                 blends: false,
+                loose: false,
                 constant: &constant,
                 tag: &|b, id, _, inner| match (scene.nodes[id].material, inner) {
                     (None, m) => m,
@@ -67,6 +71,7 @@ impl Walk<'_> {
             &Tagging {
                 zero: &|b| b.u(0),
                 blends: false,
+                loose: true,
                 constant: &constant,
                 tag: &|b, id, _, inner| {
                     if scene.breaks_unit_gradient(id) {
@@ -95,6 +100,7 @@ impl Walk<'_> {
                     b.compose(v4, vec![z, z, z, z])
                 },
                 blends: false,
+                loose: false,
                 constant: &[],
                 tag: &|b, id, q, inner| {
                     if scene.nodes[id].material.is_none() {
@@ -129,6 +135,7 @@ impl Walk<'_> {
             &Tagging {
                 zero: &|b| b.splat3(0.0),
                 blends: true,
+                loose: false,
                 constant: &[],
                 tag: &|b, id, _, inner| {
                     let Some(m) = scene.nodes[id].material else {
@@ -218,6 +225,8 @@ impl Walk<'_> {
                     .collect();
                 let picked = if tag.blends && op.materials.blends() {
                     pick_blend(b, op.materials, ctx, &seen)
+                } else if tag.loose {
+                    pick_loose(b, op.materials, ctx, &seen, tag.zero)
                 } else {
                     pick_material(b, op.materials, ctx, &seen, tag.zero)
                 };

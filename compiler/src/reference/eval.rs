@@ -65,6 +65,16 @@ impl Tag for (u32, DVec3) {
     }
 }
 
+/// A part whose hit needs confirming (`loose`), picked by [`MatRule::pick_loose`].
+#[derive(Clone, Copy)]
+struct Loose;
+
+impl Tag for Loose {
+    fn pick(rule: MatRule, ctx: &Ctx, children: &[(f64, Option<Loose>)]) -> Option<Loose> {
+        rule.pick_loose(ctx, children)
+    }
+}
+
 impl Tag for Blend {
     fn pick(rule: MatRule, ctx: &Ctx, children: &[(f64, Option<Blend>)]) -> Option<Blend> {
         crate::reference::blend::pick(rule, ctx, children)
@@ -95,13 +105,14 @@ pub fn surface(scene: &Scene, p: DVec3) -> (u32, DVec3) {
         .unwrap_or((0, p))
 }
 
-/// Whether the surface nearest `p` (as the materials pick it: the nearest part of a union, the
-/// bounding one of an intersection…) belongs to a part whose f/λ is not a distance to first
-/// order (`Scene::breaks_unit_gradient`): where a hit needs confirming (`trace::careful`).
+/// Whether the surface nearest `p` (as the materials pick it: the nearest part of a union…;
+/// at an intersection or a cut, any loose operand `p` is outside of, or all being loose:
+/// [`MatRule::pick_loose`]) belongs to a part whose f/λ is not a distance to first order
+/// (`Scene::breaks_unit_gradient`): where a hit needs confirming (`trace::careful`).
 pub fn loose(scene: &Scene, p: DVec3) -> bool {
-    let tag = |id: NodeId, _: DVec3, inner: Option<u32>| {
+    let tag = |id: NodeId, _: DVec3, inner: Option<Loose>| {
         if scene.breaks_unit_gradient(id) {
-            Some(1)
+            Some(Loose)
         } else {
             inner
         }
