@@ -228,9 +228,14 @@ fn success(
     };
     let h = mesh.stats.cell;
     let g = mesh.stats.grid;
+    // (Without pruning every cell is evaluated, near the surface or not.)
+    let cells = match args.no_prune {
+        false => "near the surface",
+        true => "evaluated, no pruning",
+    };
     format!(
         "wrote {place} — {} triangles, {} vertices, {shape}; cells of {h:.3e} ({}×{}×{}, {} \
-         near the surface), {:.1} s; distance to the surface: vertices ≤ {:.1e}, faces ≤ {:.1e} \
+         {cells}), {:.1} s; distance to the surface: vertices ≤ {:.1e}, faces ≤ {:.1e} \
          (rms {:.1e}, {} sampled) = {:.3} of a cell",
         mesh.triangles.len(),
         mesh.positions.len(),
