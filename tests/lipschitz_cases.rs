@@ -393,3 +393,53 @@ fn bounding_boxes_are_tested_by_default_only_in_large_unions() {
     assert_eq!(tests(40, BoundingVolumes::Off), 0, "40 spheres, --no-bvh");
     assert_eq!(BoundingVolumes::default(), BoundingVolumes::Large);
 }
+
+/// The annotation check on random scenes of the fuzzers' generator, annotated with random
+/// (mostly wrong) bounds, lit with shadows, in a material that reflects and lets light through,
+/// beside an annotated part that reads a ranged parameter: every sampling path (camera,
+/// shadow, mirror and glass rays, the box, the search, the ranges' settings) runs, and none
+/// panics. The slowest check is printed (timing is not asserted).
+#[test]
+fn the_annotation_check_survives_random_annotated_scenes() {
+    use sdfc_compiler::lipschitz::{Effort, Values, verify_annotations, verify_over_ranges};
+    let cases = sdfc_tests::fuzz_cases(24);
+    let seed = sdfc_tests::fuzz_seed(3131);
+    let mut r = sdfc_tests::Rng::new(seed);
+    let (mut checked, mut warned, mut slowest) = (0, 0, (0.0f64, 0u64));
+    for i in 0..u64::from(cases) {
+        let source = sdfc_tests::scenes::scene(seed + i);
+        let mut lines: Vec<&str> = source.lines().collect();
+        let Some(body) = lines.pop() else { continue };
+        let lambda = [0.05, 0.3, 0.9, 1.0, 2.5][r.below(5)];
+        let annotated = format!(
+            "param a = 1 in 0.5..2\nlight {{ direction (0.3, 1, -0.2)  shadow hard }}\nlight point {{ position (0, 4, 0)  shadow soft }}\nmaterial glass {{ color #def  reflect 0.3  transparent 0.5  ior 1.5 }}\n{}\nunion {{\n  ({body}) @lipschitz({lambda}) : glass\n  implicit {{ y + 2 + 0.3 * a * sin(x) }} @lipschitz(0.8)\n}}\n",
+            lines.join("\n")
+        );
+        let Some(scene) = sdfc_compiler::check::compile(&annotated).scene else {
+            continue;
+        };
+        let at = |v: &Values| sdfc_compiler::check::compile_with(&annotated, v).scene;
+        let started = std::time::Instant::now();
+        let mut found = verify_annotations(&scene, Effort::Fast);
+        found.extend(verify_over_ranges(
+            &at,
+            &scene,
+            Effort::Fast,
+            (&Values::new(), &found.clone()),
+        ));
+        let took = started.elapsed().as_secs_f64();
+        if took > slowest.0 {
+            slowest = (took, seed + i);
+        }
+        checked += 1;
+        warned += usize::from(!found.is_empty());
+    }
+    println!(
+        "{checked} annotated scenes checked, {warned} with warnings; slowest {:.2} s (seed {})",
+        slowest.0, slowest.1
+    );
+    assert!(
+        checked * 3 >= cases as usize,
+        "only {checked} of {cases} checked"
+    );
+}

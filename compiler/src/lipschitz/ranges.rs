@@ -5,7 +5,7 @@
 
 use super::Effort;
 use super::Rng;
-use super::verify::verify_annotations;
+use super::verify::{WORK, verify_where};
 use crate::diag::Diagnostic;
 use crate::scene::{NodeId, NodeKind, ParamDecl, ParamKind, Scene};
 use std::collections::{BTreeSet, HashMap};
@@ -46,12 +46,25 @@ fn sizes(effort: Effort) -> (usize, usize, usize) {
 /// The parameters (indices into `scene.params`) that some annotated node's subtree reads:
 /// only they can make an annotation wrong.
 fn read_by_annotations(scene: &Scene) -> BTreeSet<usize> {
-    let mut read = BTreeSet::new();
-    let mut stack: Vec<NodeId> = scene
+    annotated(scene)
+        .into_iter()
+        .flat_map(|id| reads(scene, id))
+        .collect()
+}
+
+/// The annotated nodes the checks sample (below the catalog's rule).
+fn annotated(scene: &Scene) -> Vec<NodeId> {
+    scene
         .reachable()
         .into_iter()
         .filter(|&id| scene.nodes[id].lambda < scene.nodes[id].inferred_lambda)
-        .collect();
+        .collect()
+}
+
+/// The parameters node `id`'s subtree reads.
+fn reads(scene: &Scene, id: NodeId) -> BTreeSet<usize> {
+    let mut read = BTreeSet::new();
+    let mut stack = vec![id];
     let mut seen = BTreeSet::new();
     while let Some(id) = stack.pop() {
         if !seen.insert(id) {
@@ -176,11 +189,19 @@ pub fn verify_over_ranges(
         return Vec::new();
     }
     let mut out: Vec<Diagnostic> = Vec::new();
-    for (values, why) in settings(scene, asked, effort) {
+    let settings = settings(scene, asked, effort);
+    // The settings share one check's work (a large scene gets fewer points at each).
+    let work = WORK / settings.len().max(1);
+    for (values, why) in settings {
         let Some(at) = compile_at(&values) else {
             continue;
         };
-        for d in verify_annotations(&at, effort) {
+        // Only the annotated shapes that read the parameters set here can change.
+        let set: Vec<usize> = (0..at.params.len())
+            .filter(|&i| values.contains_key(&at.params[i].name))
+            .collect();
+        let touched = |id: NodeId| reads(&at, id).iter().any(|i| set.contains(i));
+        for d in verify_where(&at, effort, &touched, work) {
             // (How fast rays arrive matters where they are traced: at the values asked for.)
             if why != Why::Asked && !d.message.contains("too small") {
                 continue;
@@ -228,7 +249,12 @@ pub fn too_small_at(scene: &Scene, values: &Values) -> Vec<Diagnostic> {
     if !scene.nodes.iter().any(|n| n.lambda < n.inferred_lambda) {
         return Vec::new();
     }
-    let mut found = verify_annotations(&scene.with_values(values), Effort::Fast);
+    let here = scene.with_values(values);
+    let set: Vec<usize> = (0..here.params.len())
+        .filter(|&i| values.contains_key(&here.params[i].name))
+        .collect();
+    let touched = |id: NodeId| reads(&here, id).iter().any(|i| set.contains(i));
+    let mut found = verify_where(&here, Effort::Fast, &touched, WORK);
     found.retain(|d| d.message.contains("too small"));
     found
 }

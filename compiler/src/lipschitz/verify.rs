@@ -38,6 +38,8 @@ struct Budget {
     hits: usize,
     /// Points sampled on each secondary ray.
     per_ray: usize,
+    /// Node evaluations each phase may spend (camera rays, traced rays, a node's slopes).
+    work: usize,
 }
 
 impl Effort {
@@ -50,6 +52,7 @@ impl Effort {
                 boxes: 2000,
                 hits: 96,
                 per_ray: 8,
+                work: WORK,
             },
             Effort::Thorough => Budget {
                 world: 15_000,
@@ -58,6 +61,7 @@ impl Effort {
                 boxes: 2000,
                 hits: 960,
                 per_ray: 16,
+                work: WORK,
             },
         }
     }
@@ -68,13 +72,28 @@ impl Effort {
 const MARGIN: f64 = 1.01;
 
 /// Most scene-node evaluations the frustum sampling may spend (large scenes get fewer points).
-const WORK: usize = 20_000_000;
+pub(super) const WORK: usize = 20_000_000;
 
 /// Warnings for every annotation the sampling shows to be too small, and for every one so
 /// far above the steepest slope sampled that rays cannot arrive within their step budget
 /// (`converge.rs`).
 pub fn verify_annotations(scene: &Scene, effort: Effort) -> Vec<Diagnostic> {
-    let budget = effort.budget();
+    verify_where(scene, effort, &|_| true, WORK)
+}
+
+/// [`verify_annotations`] of the annotated nodes `keep` picks (at other parameter values, only
+/// those that read the parameters changed: `ranges.rs`), spending at most about `work` node
+/// evaluations on each of the camera's rays, the traced rays and each node's slopes.
+pub(super) fn verify_where(
+    scene: &Scene,
+    effort: Effort,
+    keep: &dyn Fn(NodeId) -> bool,
+    work: usize,
+) -> Vec<Diagnostic> {
+    let budget = Budget {
+        work,
+        ..effort.budget()
+    };
     let reachable = scene.reachable();
     // (Annotations above the catalog's rule have the checker's own warning, "looser than the
     // inferred bound".)
@@ -83,16 +102,17 @@ pub fn verify_annotations(scene: &Scene, effort: Effort) -> Vec<Diagnostic> {
     let annotated: Vec<NodeId> = reachable
         .iter()
         .copied()
-        .filter(|&id| scene.nodes[id].lambda < scene.nodes[id].inferred_lambda)
+        .filter(|&id| scene.nodes[id].lambda < scene.nodes[id].inferred_lambda && keep(id))
         .collect();
     if annotated.is_empty() {
         return out;
     }
     // Shared `let`s and `repeat` copies multiply what one point costs.
     let cost = scene.root_node().evaluations.max(1.0) as usize + scene.nodes.len();
-    let world = budget.world.min(WORK / cost).max(64);
-    // A traced camera ray costs up to `SECONDARY_STEPS` evaluations, its secondary rays more.
-    let hits = budget.hits.min(WORK / (cost * 192));
+    let world = budget.world.min(work / cost).max(64);
+    // A traced camera ray costs up to `SECONDARY_STEPS` evaluations, its secondary rays (a
+    // reflected one traced too, shadow rays, normals) about three times that.
+    let hits = budget.hits.min(work / (cost * 512));
     let below: Vec<Option<NodeId>> = annotated
         .iter()
         .map(|&id| expression_below(scene, id))
@@ -177,6 +197,10 @@ fn check_node(
     let lambda = scene.nodes[id].lambda;
     let field = |p: DVec3| eval::node(scene, id, p).d;
     let points = region_points(scene, id, from_rays, budget, rng);
+    // A costly node (shared `let`s, `repeat` copies) gets fewer points: each slope is six
+    // evaluations of it.
+    let cost = scene.nodes[id].evaluations.max(1.0) as usize;
+    let points = thin_out(points, (budget.work / (6 * cost)).max(64));
     let (rlo, _, size) = span(&points);
     let slope = |p: DVec3| slope_at(&field, p, size * 1e-6);
     // Sample, keep the steepest, refine them by local search.
@@ -225,6 +249,18 @@ fn check_node(
         return Ok((best.0, proven));
     }
     Err(too_small(scene, id, (best, inner), proven))
+}
+
+/// At most `most` of `points`, evenly spread over the list (which interleaves the kinds of
+/// rays and the box).
+fn thin_out(points: Vec<(DVec3, Ray)>, most: usize) -> Vec<(DVec3, Ray)> {
+    if points.len() <= most {
+        return points;
+    }
+    let step = points.len() as f64 / most as f64;
+    (0..most)
+        .map(|k| points[(k as f64 * step) as usize])
+        .collect()
 }
 
 /// The kind of ray of the sampled point nearest `at` (what reaches a point the search found).
