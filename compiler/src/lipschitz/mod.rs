@@ -9,7 +9,7 @@ mod reach;
 mod verify;
 
 pub use overflow::may_overflow;
-pub use ranges::{Values, annotation_reads, too_small_at, verify_over_ranges};
+pub use ranges::{Values, too_small_at, verify_over_ranges};
 pub use verify::{Effort, verify_annotations};
 
 use crate::interval::Interval;
@@ -248,6 +248,17 @@ fn with_call(node: &crate::scene::Node, d: crate::diag::Diagnostic) -> crate::di
         }
         _ => d,
     }
+}
+
+/// The annotated nodes the checks sample: reachable, annotated below the catalog's rule (one
+/// at or above it is implied by the rule, a proof; one above it has the checker's own warning,
+/// "looser than the inferred bound").
+fn annotated(scene: &crate::scene::Scene) -> Vec<crate::scene::NodeId> {
+    scene
+        .reachable()
+        .into_iter()
+        .filter(|&id| scene.nodes[id].lambda < scene.nodes[id].inferred_lambda)
+        .collect()
 }
 
 /// A small deterministic generator (xorshift), so the check says the same every run.

@@ -4,8 +4,8 @@
 //! passed every check, and the render there lost whole shapes).
 
 use super::Effort;
-use super::Rng;
 use super::verify::{WORK, verify_where};
+use super::{Rng, annotated};
 use crate::diag::Diagnostic;
 use crate::scene::{NodeId, NodeKind, ParamDecl, ParamKind, Scene};
 use std::collections::{BTreeSet, HashMap};
@@ -52,13 +52,12 @@ fn read_by_annotations(scene: &Scene) -> BTreeSet<usize> {
         .collect()
 }
 
-/// The annotated nodes the checks sample (below the catalog's rule).
-fn annotated(scene: &Scene) -> Vec<NodeId> {
-    scene
-        .reachable()
+/// Whether node `id`'s subtree reads one of the parameters `values` sets: at those values only
+/// such annotated shapes can change.
+fn reads_any(scene: &Scene, values: &Values, id: NodeId) -> bool {
+    reads(scene, id)
         .into_iter()
-        .filter(|&id| scene.nodes[id].lambda < scene.nodes[id].inferred_lambda)
-        .collect()
+        .any(|i| values.contains_key(&scene.params[i].name))
 }
 
 /// The parameters node `id`'s subtree reads.
@@ -185,7 +184,7 @@ pub fn verify_over_ranges(
     effort: Effort,
     (asked, seen): (&Values, &[Diagnostic]),
 ) -> Vec<Diagnostic> {
-    if !scene.nodes.iter().any(|n| n.lambda < n.inferred_lambda) {
+    if annotated(scene).is_empty() {
         return Vec::new();
     }
     let mut out: Vec<Diagnostic> = Vec::new();
@@ -197,11 +196,7 @@ pub fn verify_over_ranges(
             continue;
         };
         // Only the annotated shapes that read the parameters set here can change.
-        let set: Vec<usize> = (0..at.params.len())
-            .filter(|&i| values.contains_key(&at.params[i].name))
-            .collect();
-        let touched = |id: NodeId| reads(&at, id).iter().any(|i| set.contains(i));
-        for d in verify_where(&at, effort, &touched, work) {
+        for d in verify_where(&at, effort, &|id| reads_any(&at, &values, id), work) {
             // (How fast rays arrive matters where they are traced: at the values asked for.)
             if why != Why::Asked && !d.message.contains("too small") {
                 continue;
@@ -243,26 +238,15 @@ fn six_digits(x: f64) -> String {
 }
 
 /// The annotations too small at `values` (the quick check of the scene with its parameters
-/// set, λ and bounds as checked): what the viewer's keys and each frame of an animation are
-/// checked by.
+/// set, λ and bounds as checked; only those whose shapes read a parameter set, and nothing is
+/// done when none does): what the viewer's keys and the frames of an animation are checked by.
 pub fn too_small_at(scene: &Scene, values: &Values) -> Vec<Diagnostic> {
-    if !scene.nodes.iter().any(|n| n.lambda < n.inferred_lambda) {
+    let touched = |id: NodeId| reads_any(scene, values, id);
+    if !annotated(scene).into_iter().any(touched) {
         return Vec::new();
     }
-    let here = scene.with_values(values);
-    let set: Vec<usize> = (0..here.params.len())
-        .filter(|&i| values.contains_key(&here.params[i].name))
-        .collect();
-    let touched = |id: NodeId| reads(&here, id).iter().any(|i| set.contains(i));
-    let mut found = verify_where(&here, Effort::Fast, &touched, WORK);
+    // (`with_values` keeps the nodes: the same ones read the same parameters.)
+    let mut found = verify_where(&scene.with_values(values), Effort::Fast, &touched, WORK);
     found.retain(|d| d.message.contains("too small"));
     found
-}
-
-/// Whether some annotated shape reads the parameter `name` (then its values matter to the
-/// annotation check).
-pub fn annotation_reads(scene: &Scene, name: &str) -> bool {
-    read_by_annotations(scene)
-        .into_iter()
-        .any(|i| scene.params[i].name == name)
 }

@@ -4,7 +4,7 @@
 
 use super::Rng;
 use crate::reference::{eval, pixel, shading};
-use crate::scene::{LightKind, NodeId, Scene, Shadow};
+use crate::scene::{NodeId, Scene, Shadow};
 use crate::view::View;
 use glam::DVec3;
 use std::collections::HashMap;
@@ -123,12 +123,7 @@ pub fn where_rays_evaluate(
 fn from_surface(rec: &mut Recorder, p: DVec3, rd: DVec3, (h, n): (f64, usize), rng: &mut Rng) {
     let scene = rec.scene;
     let far = scene.trace.max_distance;
-    let normal = eval::normal(scene, p, h);
-    let facing = if rd.dot(normal) < 0.0 {
-        normal
-    } else {
-        -normal
-    };
+    let facing = pixel::face_forward(eval::normal(scene, p, h), rd);
     shadows(rec, p, facing, (h, n), Ray::Shadow, rng);
     if let Some(o) = scene.occlusion {
         rec.along(p, facing, o.distance, n / 2 + 1, Ray::Occlusion, rng);
@@ -138,16 +133,14 @@ fn from_surface(rec: &mut Recorder, p: DVec3, rd: DVec3, (h, n): (f64, usize), r
         return;
     };
     let lift = shading::lift(scene, p, h);
-    if mat.reflect > 0.0 || mat.transparent > 0.0 {
-        let r = rd - 2.0 * rd.dot(facing) * facing;
-        let o = p + facing * lift;
-        rec.along(o, r, far, n, Ray::Reflected, rng);
-        if let Some(t) = pixel::march(scene, o, r, 1.0, h, far) {
-            let q = o + r * t;
-            let nq = eval::normal(scene, q, h);
-            let nq = if r.dot(nq) < 0.0 { nq } else { -nq };
-            shadows(rec, q, nq, (h, n), Ray::Reflected, rng);
-        }
+    // (Both a mirror and a transparent surface reflect: the material continues.)
+    let r = rd - 2.0 * rd.dot(facing) * facing;
+    let o = p + facing * lift;
+    rec.along(o, r, far, n, Ray::Reflected, rng);
+    if let Some(t) = pixel::march(scene, o, r, 1.0, h, far) {
+        let q = o + r * t;
+        let nq = pixel::face_forward(eval::normal(scene, q, h), r);
+        shadows(rec, q, nq, (h, n), Ray::Reflected, rng);
     }
     if mat.transparent > 0.0 {
         let into = pixel::refract(rd, facing, 1.0 / mat.ior);
@@ -181,10 +174,7 @@ fn shadows(rec: &mut Recorder, p: DVec3, n: DVec3, (h, k): (f64, usize), ray: Ra
     let scene = rec.scene;
     let o = p + n * shading::lift(scene, p, h);
     for light in scene.lights.iter().filter(|l| l.shadow != Shadow::None) {
-        let (l, far) = match light.kind {
-            LightKind::Directional(d) => (d.normalize(), scene.trace.max_distance),
-            LightKind::Point(pos) => (shading::unit_or_zero(pos - o), (pos - o).length()),
-        };
+        let (l, far) = shading::towards(scene, light, o);
         if l != DVec3::ZERO && l.dot(n) > 0.0 {
             rec.along(o, l, far, k, ray, rng);
         }

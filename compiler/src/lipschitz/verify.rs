@@ -94,16 +94,9 @@ pub(super) fn verify_where(
         work,
         ..effort.budget()
     };
-    let reachable = scene.reachable();
-    // (Annotations above the catalog's rule have the checker's own warning, "looser than the
-    // inferred bound".)
     let mut out: Vec<Diagnostic> = Vec::new();
-    // Annotations at or above the catalog's rule need no check: the rule is a proven bound.
-    let annotated: Vec<NodeId> = reachable
-        .iter()
-        .copied()
-        .filter(|&id| scene.nodes[id].lambda < scene.nodes[id].inferred_lambda && keep(id))
-        .collect();
+    let mut annotated = super::annotated(scene);
+    annotated.retain(|&id| keep(id));
     if annotated.is_empty() {
         return out;
     }

@@ -46,6 +46,12 @@ pub fn march(scene: &Scene, ro: DVec3, rd: DVec3, sign: f64, h: f64, far: f64) -
     None
 }
 
+/// The normal `n` turned to face the ray along `rd` (`faceForward`): `n` where the ray meets
+/// it head on, else −n.
+pub fn face_forward(n: DVec3, rd: DVec3) -> DVec3 {
+    if rd.dot(n) < 0.0 { n } else { -n }
+}
+
 /// Schlick's approximation of the Fresnel reflectance at the cosine `c` of the angle on the
 /// side of the rarer medium, for a solid of index `ior` in air.
 pub fn schlick(c: f64, ior: f64) -> f64 {
@@ -121,9 +127,9 @@ pub fn path_counted(
             let rest = if inside { 1.0 } else { r + t };
             return (acc + w * rest * bg, count);
         }
-        // The normal on the ray's side (`faceForward`), so that a silhouette's normal facing
-        // away from the ray does not send a reflection into the solid.
-        let facing = if rd.dot(n) < 0.0 { n } else { -n };
+        // The normal on the ray's side, so that a silhouette's normal facing away from the ray
+        // does not send a reflection into the solid.
+        let facing = face_forward(n, rd);
         let (reflected, refracted, dir_t) = if inside {
             lobes_inside(rd, facing, solid_ior)
         } else {

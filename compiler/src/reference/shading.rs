@@ -48,6 +48,16 @@ pub fn shadow(scene: &Scene, p: DVec3, n: DVec3, l: DVec3, far: f64, h: f64, k: 
     lit.clamp(0.0, 1.0)
 }
 
+/// The unit direction from `p` towards `light` and how far a shadow ray goes: to a point
+/// light, or `max_distance` for a directional one. (A light at the point itself lights it
+/// from no direction: zero, not NaN.)
+pub fn towards(scene: &Scene, light: &crate::scene::Light, p: DVec3) -> (DVec3, f64) {
+    match light.kind {
+        LightKind::Directional(d) => (d.normalize(), scene.trace.max_distance),
+        LightKind::Point(pos) => (unit_or_zero(pos - p), (pos - p).length()),
+    }
+}
+
 /// Ambient occlusion at `p` of normal `n` (Evans 2006, as Keinert et al. §1 cite it): the
 /// clearance missing at `samples` points i·δ along the normal, weighted by 2⁻ⁱ and relative to
 /// δ: clamp(1 − strength·Σ 2⁻ⁱ(iδ − f(p + iδ·n))/δ, 0, 1) — 1 in the open, less in creases.
@@ -83,11 +93,7 @@ pub fn shade(scene: &Scene, p: DVec3, n: DVec3, rd: DVec3, material: u32, h: f64
     let ao = scene.occlusion.map_or(1.0, |o| occlusion(scene, &o, p, n));
     let mut color = base * AMBIENT * ao;
     for light in &scene.lights {
-        let (l, far) = match light.kind {
-            LightKind::Directional(d) => (d.normalize(), scene.trace.max_distance),
-            // (A light at the point itself lights it from no direction: zero, not NaN.)
-            LightKind::Point(pos) => (unit_or_zero(pos - p), (pos - p).length()),
-        };
+        let (l, far) = towards(scene, light, p);
         let diffuse = n.dot(l).max(0.0);
         let mut lc = crate::color::linear(light.color) * light.intensity;
         match light.shadow {
