@@ -11,7 +11,7 @@
 //! printed for `docs/lipschitz.md`. The Mandelbulb, an estimate rather than a bound, is left out.
 
 use crate::lipschitz_sampler::{
-    POINTS, Sampling, Tally, args, sample_node, scene_source, shape, vec3,
+    POINTS, Sampling, Tally, args, promised_nodes, sample_node, scene_source, shape, vec3,
 };
 use glam::DVec3;
 use sdfc_compiler::catalog::PRIMITIVES;
@@ -37,7 +37,7 @@ fn every_rule_is_a_true_bound_where_sampled() {
                 continue;
             };
             valid += 1;
-            for id in scene.reachable() {
+            for id in promised_nodes(&scene) {
                 sample_node(&scene, id, &mut r, &source, &mut tally);
             }
         }

@@ -318,6 +318,25 @@ pub(crate) fn steps_allowed(scene: &Scene, id: NodeId) -> bool {
     here || node.children().iter().any(|&c| steps_allowed(scene, c))
 }
 
+/// The reachable nodes whose λ is a promise: all but those inside a `bake`, whose shape may
+/// have no bound (its λ only combines parts before baking; the map's λ is proven from its
+/// values, and `tests/bake.rs` tests that).
+pub(crate) fn promised_nodes(scene: &Scene) -> Vec<NodeId> {
+    let mut seen = vec![false; scene.nodes.len()];
+    let mut stack = vec![scene.root];
+    while let Some(n) = stack.pop() {
+        if std::mem::replace(&mut seen[n], true) {
+            continue;
+        }
+        let bakes =
+            matches!(&scene.nodes[n].kind, NodeKind::Operator { op, .. } if op.traits.bakes);
+        if !bakes {
+            stack.extend(scene.nodes[n].children());
+        }
+    }
+    (0..scene.nodes.len()).filter(|&n| seen[n]).collect()
+}
+
 /// Samples one node: pairs for the slope, balls for the bound.
 pub(crate) fn sample_node(scene: &Scene, id: NodeId, r: &mut Rng, source: &str, tally: &mut Tally) {
     let node = &scene.nodes[id];

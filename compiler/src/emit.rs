@@ -65,8 +65,18 @@ pub fn validate(module: &naga::Module) -> Result<ModuleInfo, InternalError> {
 /// The library's placeholder `main`: it loads every global (the parameters),
 /// because naga's GLSL back end writes only the globals an entry point uses, and leaves out
 /// every function that reads another — the whole library of a scene with parameters.
-fn touching_globals(module: &naga::Module) -> naga::Function {
+fn touching_globals(module: &mut naga::Module) -> naga::Function {
     let mut f = naga::Function::default();
+    let ivec3 = module.types.insert(
+        naga::Type {
+            name: None,
+            inner: naga::TypeInner::Vector {
+                size: naga::VectorSize::Tri,
+                scalar: naga::Scalar::I32,
+            },
+        },
+        naga::Span::UNDEFINED,
+    );
     for (h, g) in module.global_variables.iter() {
         let runtime_sized = matches!(
             module.types[g.ty].inner,
@@ -81,11 +91,27 @@ fn touching_globals(module: &naga::Module) -> naga::Function {
         let ptr = f
             .expressions
             .append(naga::Expression::GlobalVariable(h), naga::Span::UNDEFINED);
-        let start = f.expressions.len();
-        f.expressions.append(
-            naga::Expression::Load { pointer: ptr },
+        let level = f.expressions.append(
+            naga::Expression::Literal(naga::Literal::I32(0)),
             naga::Span::UNDEFINED,
         );
+        let origin = f
+            .expressions
+            .append(naga::Expression::ZeroValue(ivec3), naga::Span::UNDEFINED);
+        let start = f.expressions.len();
+        // A texture (a baked volume) is a handle, not a pointer: a texel is loaded instead
+        // (the GLSL writer keeps only functions whose uses of globals `main`'s cover).
+        let touch = match g.space {
+            naga::AddressSpace::Handle => naga::Expression::ImageLoad {
+                image: ptr,
+                coordinate: origin,
+                array_index: None,
+                sample: None,
+                level: Some(level),
+            },
+            _ => naga::Expression::Load { pointer: ptr },
+        };
+        f.expressions.append(touch, naga::Span::UNDEFINED);
         let range = f.expressions.range_from(start);
         f.body
             .push(naga::Statement::Emit(range), naga::Span::UNDEFINED);
@@ -108,7 +134,7 @@ fn glsl_bindings(module: &naga::Module) -> back::glsl::BindingMap {
 pub const MSL_SIZES_SLOT: u8 = 30;
 
 /// The MSL resource map of the entry point `main`: binding n of group 0 is `[[buffer(n)]]`
-/// (writable for storage buffers), the array sizes at [`MSL_SIZES_SLOT`]; no fake bindings.
+/// (writable for storage buffers), or `[[texture(n)]]` for a texture, the array sizes at [`MSL_SIZES_SLOT`]; no fake bindings.
 fn msl_bindings(module: &naga::Module) -> back::msl::EntryPointResourceMap {
     let resources = module
         .global_variables
@@ -119,14 +145,19 @@ fn msl_bindings(module: &naga::Module) -> back::msl::EntryPointResourceMap {
                 space,
                 naga::AddressSpace::Storage { access } if access.contains(naga::StorageAccess::STORE)
             );
-            (
-                rb,
-                back::msl::BindTarget {
+            // A texture (a baked volume) takes the texture slot of its binding's number.
+            let target = match space {
+                naga::AddressSpace::Handle => back::msl::BindTarget {
+                    texture: Some(rb.binding as u8),
+                    ..Default::default()
+                },
+                _ => back::msl::BindTarget {
                     buffer: Some(rb.binding as u8),
                     mutable,
                     ..Default::default()
                 },
-            )
+            };
+            (rb, target)
         })
         .collect();
     let mut map = back::msl::EntryPointResourceMap::new();
@@ -216,8 +247,8 @@ pub fn write_with(
 /// knows.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct Reflection {
-    /// GLSL: each uniform or storage block's name as written (`View_block_0Fragment`), by
-    /// binding — numbered in the order the writer met them, so a WebGL2 host, which binds
+    /// GLSL: each uniform or storage block's name as written (`View_block_0Fragment`), and
+    /// each texture's sampler uniform's, by binding — numbered in the order the writer met them, so a WebGL2 host, which binds
     /// blocks by name, must read them here. Empty for the other targets.
     pub blocks: Vec<(u32, String)>,
 }
@@ -310,6 +341,13 @@ fn write_glsl_reflected(
         .iter()
         .filter_map(|(h, name)| Some((module.global_variables[*h].binding?.binding, name.clone())))
         .collect();
+    // Textures (baked volumes) are uniforms a host binds to a texture unit by name, too.
+    blocks.extend(reflection.texture_mapping.iter().filter_map(|(name, m)| {
+        Some((
+            module.global_variables[m.texture].binding?.binding,
+            name.clone(),
+        ))
+    }));
     blocks.sort();
     Ok((Output::Text(text), Reflection { blocks }))
 }
@@ -324,6 +362,7 @@ fn with_main(
 ) -> Result<(naga::Module, ModuleInfo), InternalError> {
     let mut m = module.clone();
     let fragment = target == Target::Glsl && !settings.glsl_version.has_compute();
+    let function = touching_globals(&mut m);
     m.entry_points.push(naga::EntryPoint {
         name: "main".into(),
         stage: if fragment {
@@ -334,7 +373,7 @@ fn with_main(
         early_depth_test: None,
         workgroup_size: if fragment { [0, 0, 0] } else { [1, 1, 1] },
         workgroup_size_overrides: None,
-        function: touching_globals(&m),
+        function,
         mesh_info: None,
         task_payload: None,
         incoming_ray_payload: None,

@@ -69,6 +69,14 @@ pub const VIEW_BYTES: usize = 16 * VIEW_FIELDS.len();
 /// `Options::params_binding` moves it).
 pub const PARAMS_BINDING: u32 = 9;
 
+/// The first baked volume's binding: a `texture_3d<f32>` of `r32float` texels (`bake`), volume
+/// i of `Scene::volumes` at this + i.
+pub const VOLUME_BINDING: u32 = 16;
+
+/// Most baked volumes a scene may have: each is a texture every entry reads (WebGPU promises
+/// 16 sampled textures per shader stage).
+pub const MAX_VOLUMES: usize = 8;
+
 /// The full compute entry's outputs, per pixel, in binding order: colour (rgba8 packed), depth
 /// t (−1 for a miss), normal, material id, steps (the camera ray's evaluations of the field)
 /// and the evaluations shading took.

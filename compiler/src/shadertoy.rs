@@ -6,7 +6,8 @@
 use crate::scene::{ParamKind, Scene};
 
 /// The Shadertoy shader of `scene` with tracer settings `options`: the library compiled with
-/// private parameters, written as GLSL ES 3.00, wrapped.
+/// private parameters, written as GLSL ES 3.00, wrapped. (A scene with baked parts declares a
+/// `sampler3D` uniform per volume, which Shadertoy cannot bind: `sdfc emit` refuses those.)
 pub fn shader(
     scene: &Scene,
     options: &crate::lower::tracer::Options,

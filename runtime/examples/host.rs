@@ -69,6 +69,7 @@ pub fn render(job: &Job) -> Result<Vec<u8>, String> {
         unreachable!("WGSL is text")
     };
     let origin = sdfc_compiler::manifest::Origin {
+        volume_files: &[],
         scene: "host",
         target: "wgsl",
         entry: Entry::Library,

@@ -376,6 +376,7 @@ fn the_fragment_entry_draws_in_a_wgpu_host_from_its_manifest() {
                 emit::write_reflected(&module, &info, target, Entry::Fragment, &Default::default())
                     .unwrap();
             let origin = Origin {
+                volume_files: &[],
                 scene: name,
                 target: "wgsl",
                 entry: Entry::Fragment,

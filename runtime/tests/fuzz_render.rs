@@ -40,7 +40,7 @@ fn random_valid_scenes_render_finitely_or_are_refused_by_the_compile_limit() {
             refused += 1;
             continue;
         }
-        gpu.set_params(&sdfc_compiler::lower::params::bytes(&scene.params));
+        gpu.set_scene(&scene);
         let view = View::new(&scene.camera, 8, 6);
         let frame = gpu
             .render(&module, &view, None, |_, _| {})

@@ -136,7 +136,7 @@ fn code_generation_keeps_every_picture() {
         let (module, _) = emit::module(&scene, Entry::Compute, &options)
             .unwrap_or_else(|e| panic!("{name}: {}", e.0));
         let name = if bvh { format!("{name} (bvh)") } else { name };
-        gpu.set_params(&sdfc_compiler::lower::params::bytes(&scene.params));
+        gpu.set_scene(&scene);
         let frame = gpu.render(&module, &view, None, |_, _| {}).unwrap();
         // The trace-only entry `sdfc bench` times traces the same rays: the same hits, t and
         // steps as the full frame, pixel for pixel.

@@ -160,7 +160,7 @@ fn gpu_passes_agree_with_the_cpu_reference() {
     for path in examples() {
         let scene = compile(&std::fs::read_to_string(&path).unwrap());
         let module = passes_module(&scene);
-        gpu.set_params(&sdfc_compiler::lower::params::bytes(&scene.params));
+        gpu.set_scene(&scene);
         for count in [2, 4] {
             let (w, h) = (64, 40);
             let plan = passes::plan(&scene, w, h, scene.trace.steps, count).unwrap();
@@ -289,7 +289,7 @@ fn cone_antialiasing_agrees_on_cpu_and_gpu() {
         .collect();
     let rays = camera_rays(&view, &pts);
     let (module, _) = emit::module(&scene, Entry::Rays, &Options::from_scene(&scene)).unwrap();
-    gpu.set_params(&sdfc_compiler::lower::params::bytes(&scene.params));
+    gpu.set_scene(&scene);
     let on_gpu = gpu.trace_rays_full(&module, &rays).unwrap();
     let (mut covered, mut differ, mut worst) = (0, 0, 0.0f64);
     for (i, &(x, y)) in pts.iter().enumerate() {

@@ -50,7 +50,7 @@ fn every_example_links_in_chromes_webgl2() {
             written += 1;
         }
         let toy = dir.join(format!("{stem}.shadertoy.glsl"));
-        emitted(&[
+        let toy_args = [
             "emit",
             file,
             "--entry",
@@ -58,7 +58,23 @@ fn every_example_links_in_chromes_webgl2() {
             "-q",
             "-o",
             toy.to_str().unwrap(),
-        ]);
+        ];
+        // A baked part is a 3D texture a Shadertoy tab cannot be given: refused, no file.
+        if !compile(&std::fs::read_to_string(path).unwrap())
+            .volumes()
+            .is_empty()
+        {
+            let out = sdfc(&toy_args);
+            let said = String::from_utf8_lossy(&out.stderr);
+            assert_eq!(out.status.code(), Some(1), "{stem}: {said}");
+            assert!(
+                said.contains("Shadertoy tab has no input"),
+                "{stem}: {said}"
+            );
+            assert!(!toy.exists(), "{stem}: a Shadertoy file was written");
+            continue;
+        }
+        emitted(&toy_args);
         written += 1;
     }
     // And the scenes the suites aim at the edges: the fragment entry.

@@ -20,7 +20,7 @@ impl Grid {
     /// `res` points along the longest side (at least 4) and as many at the same spacing on the
     /// others.
     pub fn around(lo: DVec3, hi: DVec3, res: usize) -> Grid {
-        let res = res.clamp(4, super::MAX_RES);
+        let res = res.clamp(super::MIN_RES, super::MAX_RES);
         let size = (hi - lo).max(DVec3::splat(1e-9));
         // h·(res − 1) = longest side + 2·margin·h.
         let h = size.max_element() / (res as f64 - 1.0 - 2.0 * super::MARGIN_CELLS);

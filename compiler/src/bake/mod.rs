@@ -1,7 +1,9 @@
 //! Distance maps (Liktor §3): a part's field sampled on a grid, turned into Euclidean distances
 //! to the surface by vector propagation, and read back by trilinear interpolation.
 
+pub mod cache;
 mod edt;
+pub mod file;
 mod grid;
 
 pub use grid::Grid;
@@ -11,13 +13,37 @@ use glam::DVec3;
 /// Most grid points per axis (a 512³ volume of f32 is 512 MiB).
 pub const MAX_RES: usize = 512;
 
+/// Fewest grid points per axis: the margin's cells on both sides and two cells for the shape.
+pub const MIN_RES: usize = 2 * MARGIN_CELLS as usize + 3;
+
+/// Points per side when `bake` is not given `res`.
+pub const DEFAULT_RES: usize = 64;
+
+/// Bytes baking holds per grid point: the sample (8), the nearest surface point and its squared
+/// distance (40), the distance (8) and the stored value (4), rounded up.
+pub const BYTES_PER_POINT: u64 = 64;
+
+/// Most bytes one bake may hold ([`BYTES_PER_POINT`] per point): 2 GiB, about 330 points on
+/// every side of a cube.
+pub const MAX_BYTES: u64 = 2 << 30;
+
+/// Most evaluations of primitives sampling one bake may cost (grid points × the shape's
+/// evaluations per point; the surface's points cost about forty more each): a blob of 300
+/// balls at 128 points per side is 6e8 and bakes in about 10 s on two cores.
+pub const MAX_WORK: f64 = 4e9;
+
+/// The bytes baking `grid` holds while it runs (estimated before any work).
+pub fn bytes_to_bake(grid: &Grid) -> u64 {
+    grid.len() as u64 * BYTES_PER_POINT
+}
+
 /// Cells of margin around the part's bound: the surface stays inside the volume by this many
 /// cells, so the interpolant near it never reads the outside rule.
 pub const MARGIN_CELLS: f64 = 2.0;
 
 /// A baked distance map: signed distances at the points of a grid, read by trilinear
 /// interpolation inside it and by the distance to the grid's box plus the clamped value outside.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, PartialEq)]
 pub struct Volume {
     /// The grid: its box, spacing and points per axis.
     pub grid: Grid,
@@ -28,7 +54,51 @@ pub struct Volume {
     pub lambda: f64,
 }
 
+impl std::fmt::Debug for Volume {
+    /// The grid and λ, not the values (millions of numbers in every scene's debug print).
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Volume")
+            .field("grid", &self.grid)
+            .field("values", &self.values.len())
+            .field("lambda", &self.lambda)
+            .finish()
+    }
+}
+
 impl Volume {
+    /// A volume of stored values on `grid` (as baked, or read back from a file), with its
+    /// Lipschitz constant proven from them.
+    pub fn from_values(grid: Grid, values: Vec<f32>) -> Volume {
+        let lambda = total_lambda(&grid, &values, lambda_of(&grid, &values));
+        Volume {
+            grid,
+            values,
+            lambda,
+        }
+    }
+
+    /// How far outside its box the baked surface may reach: the field outside is v + d where
+    /// the boundary value v is negative, so up to −v; 0 when every boundary value is positive.
+    pub fn reach_outside(&self) -> f64 {
+        let [nx, ny, nz] = self.grid.n;
+        let mut least: f64 = 0.0;
+        for k in 0..nz {
+            for j in 0..ny {
+                for i in 0..nx {
+                    if i == 0 || j == 0 || k == 0 || i == nx - 1 || j == ny - 1 || k == nz - 1 {
+                        least = least.min(self.at(i, j, k));
+                    }
+                }
+            }
+        }
+        -least
+    }
+
+    /// Bytes its values take on the GPU (one `f32` per point).
+    pub fn bytes(&self) -> u64 {
+        4 * self.values.len() as u64
+    }
+
     /// Bakes `field` over the box `lo`..`hi` (grown by [`MARGIN_CELLS`]) with `res` points along
     /// its longest side: the field sampled at every grid point (the sign says inside or
     /// outside, the values place the surface between points), distances propagated from the
@@ -40,12 +110,7 @@ impl Volume {
             .into_iter()
             .map(|d| d as f32)
             .collect();
-        let lambda = total_lambda(&grid, &values, lambda_of(&grid, &values));
-        Volume {
-            grid,
-            values,
-            lambda,
-        }
+        Volume::from_values(grid, values)
     }
 
     /// The stored value at grid point `(i, j, k)`.

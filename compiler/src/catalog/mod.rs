@@ -4,6 +4,7 @@
 //! primitive means adding one entry (and its formula) in `primitives.rs`.
 
 pub mod absorb;
+mod baked;
 mod bound;
 pub mod domain;
 pub mod field;
@@ -63,6 +64,8 @@ pub struct Ctx {
     /// A union's bounding-volume tree (see [`prune`]), built once at check time; `None`
     /// evaluates every child.
     pub prune: Option<std::sync::Arc<prune::Tree>>,
+    /// `bake`'s distance map of its child, made when the scene is checked (`crate::bake`).
+    pub baked: Option<std::sync::Arc<crate::bake::Volume>>,
     /// Per argument, its components as expressions of parameters when it reads any (the
     /// shader computes it at run time; `args` holds its value where the scene was checked);
     /// empty when no argument does.

@@ -349,4 +349,5 @@ pub static OPERATORS: &[Operator] = &[
     super::polar::REPEAT_POLAR,
     super::planar::EXTRUDE,
     super::planar::REVOLVE,
+    super::baked::BAKE,
 ];

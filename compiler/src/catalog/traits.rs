@@ -23,6 +23,9 @@ pub struct Traits {
     pub unbounded: Option<&'static str>,
     /// A function of the module its IR body calls, added once (`op_smooth_union(a, b, k)`).
     pub helper: Option<Helper>,
+    /// Its shape is baked into a distance map when checked (`bake`): the shape may have no
+    /// Lipschitz bound, must not read parameters, and is not evaluated by the field.
+    pub bakes: bool,
 }
 
 /// The traits of an operator that is none of these things.
@@ -33,6 +36,7 @@ pub const PLAIN: Traits = Traits {
     copies: None,
     unbounded: None,
     helper: None,
+    bakes: false,
 };
 
 /// A motion of space an operator is.

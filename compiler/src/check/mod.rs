@@ -4,6 +4,7 @@
 mod absorb;
 mod args;
 mod arith;
+mod bake;
 mod call;
 mod convert;
 mod derived;

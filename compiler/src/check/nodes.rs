@@ -89,6 +89,7 @@ impl Checker<'_> {
             child_swap: children.iter().map(|&c| self.nodes[c].swap).collect(),
             child_exact: children.iter().map(|&c| self.nodes[c].exact).collect(),
             prune: None,
+            baked: None,
         }
     }
 
@@ -131,11 +132,18 @@ impl Checker<'_> {
         if op.traits.groups {
             ctx.prune = crate::catalog::prune::Tree::build(&ctx).map(std::sync::Arc::new);
         }
+        if op.traits.bakes {
+            ctx.baked = Some(self.bake(&ctx, children[0], span)?);
+        }
         let rules =
             self.rules_over_ranges(&ctx, span, name, &|c| ranges::Rules::operator(op, c))?;
         let (lambda, bound) = (rules.lambda, rules.bound);
         let copies = self.copies_of(op, &ctx, span);
-        let each: f64 = children.iter().map(|&c| self.nodes[c].evaluations).sum();
+        // A baked shape is read from its map, not evaluated.
+        let each: f64 = match op.traits.bakes {
+            true => 1.0,
+            false => children.iter().map(|&c| self.nodes[c].evaluations).sum(),
+        };
         let evaluations = each * copies;
         self.check_evaluations(&children, evaluations, span);
         let id = self.push_node(
@@ -243,6 +251,12 @@ impl Checker<'_> {
                 }
                 let d = self.with_call_site(d, n);
                 self.diags.push(d);
+            }
+            // A baked shape needs no bound of its own: the map's is proven from its values.
+            if let NodeKind::Operator { op, .. } = &self.nodes[n].kind
+                && op.traits.bakes
+            {
+                continue;
             }
             stack.extend(self.nodes[n].children().iter().copied());
         }

@@ -24,6 +24,8 @@ pub struct ModuleBuilder {
     /// Per primitive function (`sd_<name>`), which arguments are constants inside it rather
     /// than parameters (`Primitive::bake`).
     pub baked: std::collections::HashMap<String, Vec<bool>>,
+    /// Each baked volume's read function `volume_<i>(p)` (`lower/volumes.rs`).
+    pub volumes: Vec<(std::sync::Arc<crate::bake::Volume>, Handle<Function>)>,
 }
 
 impl ModuleBuilder {
@@ -33,6 +35,15 @@ impl ModuleBuilder {
             .helpers
             .get(name)
             .unwrap_or_else(|| panic!("helper `{name}` was not added before use"))
+    }
+
+    /// The read function of a baked volume (declared before `map` is built).
+    pub fn volume_fn(&self, volume: &std::sync::Arc<crate::bake::Volume>) -> Handle<Function> {
+        self.volumes
+            .iter()
+            .find(|(v, _)| std::sync::Arc::ptr_eq(v, volume))
+            .map(|(_, f)| *f)
+            .expect("every reachable volume declared before `map`")
     }
 
     /// Whether a helper exists.

@@ -30,6 +30,7 @@ mod texture;
 pub mod tracer;
 mod variants;
 mod vector;
+mod volumes;
 
 use crate::catalog::gpu::{args, field};
 use crate::catalog::traits::Helper;
@@ -53,6 +54,7 @@ pub fn lower(scene: &Scene, entry: Entry, options: &tracer::Options) -> naga::Mo
         (options.private_params, options.params_binding),
     );
     let reachable = scene.reachable();
+    volumes::add(&mut mb, scene);
     add_primitive_functions(&mut mb, scene, &reachable);
     add_operator_helpers(&mut mb, scene, &reachable);
     let trees = options.bounding_volumes;

@@ -219,9 +219,11 @@ impl Walk<'_> {
                     d
                 };
                 let d = (op.lower)(b, ctx, p, &mut child);
+                // A baked shape's field is its map's: its tag is walked where the map is.
                 let seen: Vec<(Ex, Option<Ex>)> = seen
                     .into_iter()
-                    .map(|s| s.expect("every child lowered"))
+                    .enumerate()
+                    .map(|(i, s)| s.unwrap_or_else(|| self.with_tag(b, children[i], p, tag)))
                     .collect();
                 let picked = if tag.blends && op.materials.blends() {
                     pick_blend(b, op.materials, ctx, &seen)

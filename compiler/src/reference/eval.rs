@@ -3,15 +3,14 @@
 
 use crate::catalog::{Ctx, MatRule, Sample};
 use crate::reference::blend::Blend;
-use crate::scene::{NodeId, NodeKind, Scene};
+use crate::scene::{Node, NodeId, NodeKind, Scene};
 use glam::DVec3;
 
 /// The scene's distance bound at `p`: the root's field divided by its λ, so that stepping by it
 /// never passes a surface (Liktor §2.2, f/λ).
 pub fn distance(scene: &Scene, p: DVec3) -> f64 {
     // No materials: a union's bounding-volume tree may leave children unevaluated.
-    let no_tag = |_: NodeId, _: DVec3, _: Option<u32>| None;
-    node_with(scene, scene.root, p, &mut |_, _| {}, &no_tag, false).0 / scene.root_node().lambda
+    raw(&scene.nodes, scene.root, p) / scene.root_node().lambda
 }
 
 /// Distance bound and material at `p`.
@@ -28,6 +27,12 @@ pub fn node(scene: &Scene, id: NodeId, p: DVec3) -> Sample {
     node_seen(scene, id, p, &mut |_, _| {})
 }
 
+/// The raw field of node `id` of `nodes` (a scene's nodes, or those being checked) at `p`.
+pub fn raw(nodes: &[Node], id: NodeId, p: DVec3) -> f64 {
+    let no_tag = |_: NodeId, _: DVec3, _: Option<u32>| None;
+    node_with(nodes, id, p, &mut |_, _| {}, &no_tag, false).0
+}
+
 /// [`node`], calling `seen(id, q)` for every node evaluated on the way, with the point in that
 /// node's own coordinates (how the annotation check finds where rays evaluate a node).
 pub fn node_seen<F: FnMut(NodeId, DVec3)>(
@@ -37,7 +42,7 @@ pub fn node_seen<F: FnMut(NodeId, DVec3)>(
     seen: &mut F,
 ) -> Sample {
     let (d, mat) = node_with(
-        scene,
+        &scene.nodes,
         id,
         p,
         seen,
@@ -88,7 +93,7 @@ pub fn blend(scene: &Scene, p: DVec3) -> Blend {
         None => inner,
         Some(m) => Some(inner.map_or(Blend::plain(m + 1), |b| b.under(m + 1))),
     };
-    node_with(scene, scene.root, p, &mut |_, _| {}, &tag, true)
+    node_with(&scene.nodes, scene.root, p, &mut |_, _| {}, &tag, true)
         .1
         .unwrap_or(Blend::plain(0))
 }
@@ -100,7 +105,7 @@ pub fn surface(scene: &Scene, p: DVec3) -> (u32, DVec3) {
     let tag = |n: NodeId, q: DVec3, inner: Option<(u32, DVec3)>| {
         inner.or(scene.nodes[n].material.map(|m| (m + 1, q)))
     };
-    node_with(scene, scene.root, p, &mut |_, _| {}, &tag, true)
+    node_with(&scene.nodes, scene.root, p, &mut |_, _| {}, &tag, true)
         .1
         .unwrap_or((0, p))
 }
@@ -117,7 +122,7 @@ pub fn loose(scene: &Scene, p: DVec3) -> bool {
             inner
         }
     };
-    node_with(scene, scene.root, p, &mut |_, _| {}, &tag, true)
+    node_with(&scene.nodes, scene.root, p, &mut |_, _| {}, &tag, true)
         .1
         .is_some()
 }
@@ -128,7 +133,7 @@ pub fn loose(scene: &Scene, p: DVec3) -> bool {
 /// bounding-volume tree skipped are evaluated after all, so that the tag is picked from every
 /// child as without the tree. Returns the raw field and the tag.
 fn node_with<F: FnMut(NodeId, DVec3), T: Tag>(
-    scene: &Scene,
+    nodes: &[Node],
     id: NodeId,
     p: DVec3,
     seen: &mut F,
@@ -136,7 +141,7 @@ fn node_with<F: FnMut(NodeId, DVec3), T: Tag>(
     tags: bool,
 ) -> (f64, Option<T>) {
     seen(id, p);
-    let n = &scene.nodes[id];
+    let n = &nodes[id];
     let (d, inner) = match &n.kind {
         NodeKind::Primitive { prim, ctx } => ((prim.eval)(ctx, p), None),
         NodeKind::Implicit { field } => (field.eval(p), None),
@@ -145,18 +150,19 @@ fn node_with<F: FnMut(NodeId, DVec3), T: Tag>(
             // A child evaluated more than once (the copies of a `repeat`) gives the material
             // of its nearest evaluation.
             let mut child = |i: usize, q: DVec3| {
-                let s = node_with(scene, children[i], q, seen, tag, tags);
+                let s = node_with(nodes, children[i], q, seen, tag, tags);
                 if nearest[i].is_none_or(|old| s.0 < old.0) {
                     nearest[i] = Some(s);
                 }
                 s.0
             };
             let d = (op.eval)(ctx, p, &mut child);
-            if tags && ctx.prune.is_some() {
-                // A union evaluates its children at its own point.
+            if tags && (ctx.prune.is_some() || ctx.baked.is_some()) {
+                // A union evaluates its children at its own point, and a baked shape is where
+                // its map is.
                 for (i, s) in nearest.iter_mut().enumerate() {
                     if s.is_none() {
-                        *s = Some(node_with(scene, children[i], p, seen, tag, tags));
+                        *s = Some(node_with(nodes, children[i], p, seen, tag, tags));
                     }
                 }
             }

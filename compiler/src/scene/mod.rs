@@ -143,6 +143,21 @@ impl Scene {
         }
     }
 
+    /// The baked volumes of reachable `bake` nodes, each once, in node order: the order of
+    /// their bindings (`layout::VOLUME_BINDING`) and of `emit`'s volume files.
+    pub fn volumes(&self) -> Vec<std::sync::Arc<crate::bake::Volume>> {
+        let mut out: Vec<std::sync::Arc<crate::bake::Volume>> = Vec::new();
+        for id in self.reachable() {
+            if let NodeKind::Operator { ctx, .. } = &self.nodes[id].kind
+                && let Some(v) = &ctx.baked
+                && !out.iter().any(|o| std::sync::Arc::ptr_eq(o, v))
+            {
+                out.push(v.clone());
+            }
+        }
+        out
+    }
+
     /// Nodes reachable from the root, children before parents, each once.
     pub fn reachable(&self) -> Vec<NodeId> {
         let mut seen = vec![false; self.nodes.len()];

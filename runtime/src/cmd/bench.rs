@@ -75,6 +75,7 @@ fn bench(args: &BenchArgs) -> Result<(), Error> {
     let gpu = Gpu::new(args.backend.into())?;
     // A scene with parameters is measured at their defaults, as its ground truth is.
     gpu.set_params(&sdfc_compiler::lower::params::bytes(&scene.params));
+    gpu.set_volumes(&scene.volumes());
     let view = View::new(&scene.camera, w, h);
     let reference = reference.as_ref().map(|(t, p)| (t.as_str(), p.as_str()));
     let (truth, measured) = measure(

@@ -69,7 +69,21 @@ fn once(args: &EmitArgs, plan: &Plan) -> i32 {
         );
         return 1;
     }
-    let (out, manifest) = match compile(args, plan, &scene, &options, name) {
+    let volumes = match volume_paths(args, plan, &scene) {
+        Ok(v) => v,
+        Err(e) => {
+            say!("{e}");
+            return 1;
+        }
+    };
+    let files: Vec<String> = volumes
+        .iter()
+        .map(|(p, _)| {
+            p.file_name()
+                .map_or(String::new(), |n| n.to_string_lossy().into())
+        })
+        .collect();
+    let (out, manifest) = match compile(args, plan, &scene, &options, (name, &files)) {
         Ok(o) => o,
         Err(e) => {
             say!("internal compiler error while compiling `{name}`: {}", e.0);
@@ -79,7 +93,40 @@ fn once(args: &EmitArgs, plan: &Plan) -> i32 {
             return 2;
         }
     };
-    write(args, plan, &out, manifest)
+    write(args, plan, &out, manifest, &volumes)
+}
+
+/// Where each baked volume of the scene is written (beside the shader, or beside the manifest
+/// when the shader goes to standard output: `NAME.volumeI.r32f`) with its bytes; an error
+/// when there is no file to write them beside, or the target cannot read them.
+fn volume_paths(
+    args: &EmitArgs,
+    plan: &Plan,
+    scene: &sdfc_compiler::scene::Scene,
+) -> Result<Vec<(std::path::PathBuf, Vec<u8>)>, Error> {
+    let volumes = scene.volumes();
+    if volumes.is_empty() {
+        return Ok(Vec::new());
+    }
+    if plan.shadertoy {
+        return Err("error: this scene bakes a part (`bake`) into a 3D texture, and a Shadertoy tab has no input for one of your own\nhelp: emit WGSL or GLSL for a host that binds the texture (docs/bake.md)".into());
+    }
+    let file = |p: Option<&Path>| p.filter(|p| *p != Path::new("-")).map(Path::to_path_buf);
+    let Some(beside) = file(args.output.as_deref()).or_else(|| file(args.manifest.as_deref()))
+    else {
+        return Err("error: this scene bakes a part (`bake`), and its volume is written beside the shader: give the shader a file with `-o FILE` (or a manifest with `--manifest FILE`)".into());
+    };
+    let stem = beside
+        .file_stem()
+        .map_or("scene".into(), |s| s.to_string_lossy().into_owned());
+    Ok(volumes
+        .iter()
+        .enumerate()
+        .map(|(i, v)| {
+            let path = beside.with_file_name(format!("{stem}.volume{i}.r32f"));
+            (path, sdfc_compiler::bake::file::raw(v))
+        })
+        .collect())
 }
 
 /// Refuses flags that do not go together, or files whose names say another format.
@@ -129,7 +176,7 @@ fn compile(
     plan: &Plan,
     scene: &sdfc_compiler::scene::Scene,
     options: &sdfc_compiler::lower::tracer::Options,
-    name: &str,
+    (name, volume_files): (&str, &[String]),
 ) -> Result<(Output, Option<serde_json::Value>), emit::InternalError> {
     let (target, entry) = (plan.target, plan.entry);
     let prefix = args.prefix.as_deref();
@@ -144,6 +191,7 @@ fn compile(
     let (out, reflection) = emit::write_reflected(&m, &info, target, entry, &plan.settings)?;
     let described = args.manifest.is_some().then(|| {
         let origin = sdfc_compiler::manifest::Origin {
+            volume_files,
             scene: name,
             target: target_name(target),
             entry,
@@ -162,7 +210,13 @@ fn compile(
 }
 
 /// Writes the output (and the manifest) and says so; the exit code.
-fn write(args: &EmitArgs, plan: &Plan, out: &Output, manifest: Option<serde_json::Value>) -> i32 {
+fn write(
+    args: &EmitArgs,
+    plan: &Plan,
+    out: &Output,
+    manifest: Option<serde_json::Value>,
+    volumes: &[(std::path::PathBuf, Vec<u8>)],
+) -> i32 {
     let bytes: Vec<u8> = match out {
         Output::Text(s) => s.clone().into_bytes(),
         Output::Binary(words) => words.iter().flat_map(|w| w.to_le_bytes()).collect(),
@@ -176,7 +230,12 @@ fn write(args: &EmitArgs, plan: &Plan, out: &Output, manifest: Option<serde_json
         );
         return 1;
     }
-    for path in [output, args.manifest.as_deref()].into_iter().flatten() {
+    let volume_files = volumes.iter().map(|(p, _)| p.as_path());
+    for path in [output, args.manifest.as_deref()]
+        .into_iter()
+        .flatten()
+        .chain(volume_files)
+    {
         if let Err(e) = super::common::writable(path) {
             say!("{e}");
             return 1;
@@ -191,7 +250,13 @@ fn write(args: &EmitArgs, plan: &Plan, out: &Output, manifest: Option<serde_json
         .as_deref()
         .zip(text.as_deref())
         .map(|(p, t)| (Some(p), t.as_bytes(), false));
-    let mut writes: Vec<_> = std::iter::once(shader).chain(described).collect();
+    let baked = volumes
+        .iter()
+        .map(|(p, b)| (Some(p.as_path()), b.as_slice(), true));
+    let mut writes: Vec<_> = std::iter::once(shader)
+        .chain(described)
+        .chain(baked)
+        .collect();
     writes.sort_by_key(|(p, _, _)| !stdout(*p));
     let mut code = 0;
     for (path, bytes, binary) in writes {

@@ -71,6 +71,16 @@ pub enum Error {
         /// Bytes set.
         set: usize,
     },
+    /// The module reads a baked volume that was not set.
+    #[error(
+        "internal error: the module reads baked volume {index}, and {set} were set (Gpu::set_volumes)"
+    )]
+    Volumes {
+        /// The volume's index in `Scene::volumes`.
+        index: usize,
+        /// Volumes set.
+        set: usize,
+    },
     /// The read-back's completion never came.
     #[error("{0}")]
     ReadBackLost(std::sync::mpsc::RecvError),

@@ -98,6 +98,13 @@ impl Gpu {
                 resource: buffer.as_entire_binding(),
             });
         }
+        let volumes = self.volume_views(module)?;
+        for (binding, view) in &volumes {
+            entries.push(wgpu::BindGroupEntry {
+                binding: *binding,
+                resource: wgpu::BindingResource::TextureView(view),
+            });
+        }
         let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some(input_label),
             layout: &pipeline.get_bind_group_layout(GROUP),

@@ -14,6 +14,7 @@ mod open;
 mod prepare;
 mod readback;
 mod render;
+mod volumes;
 
 pub use dispatch::Timing;
 pub use error::{Consumed, Error};
@@ -51,6 +52,9 @@ pub struct Gpu {
     /// The bytes of the `Params` uniform the next prepared modules start with
     /// ([`Gpu::set_params`]).
     params: Arc<Mutex<Vec<u8>>>,
+    /// The baked volumes the next prepared modules read, each uploaded once
+    /// ([`Gpu::set_volumes`]).
+    volumes: Arc<Mutex<Vec<volumes::OnDevice>>>,
 }
 
 impl Gpu {

@@ -91,6 +91,7 @@ impl Gpu {
             features,
             trouble,
             params: Arc::default(),
+            volumes: Arc::default(),
             adapter: adapter.clone(),
         })
     }

@@ -99,6 +99,8 @@ struct Bindings<'a> {
     outputs: &'a [Output],
     params: Option<&'a (wgpu::Buffer, u32)>,
     hand_over: &'a [wgpu::Buffer],
+    /// The baked volumes' textures and their bindings.
+    volumes: &'a [(u32, wgpu::TextureView)],
 }
 
 impl Gpu {
@@ -128,6 +130,7 @@ impl Gpu {
         };
         let pipeline = self.pipeline(module);
         let params = self.params_buffer(module)?;
+        let volumes = self.volume_views(module)?;
         let outputs: Vec<Output> = layout
             .outputs()
             .iter()
@@ -152,6 +155,7 @@ impl Gpu {
             outputs: &outputs,
             params: params.as_ref(),
             hand_over: &hand_over,
+            volumes: &volumes,
         };
         let runs = (0..schedule.len())
             .map(|k| self.tiles(&bindings, schedule, passes.is_some(), k, tile))
@@ -270,6 +274,12 @@ impl Gpu {
             for (spec, b) in [(pass_in, k % 2), (pass_out, 1 - k % 2)] {
                 entries.push(entry(spec.binding, &bindings.hand_over[b]));
             }
+        }
+        for (binding, view) in bindings.volumes {
+            entries.push(wgpu::BindGroupEntry {
+                binding: *binding,
+                resource: wgpu::BindingResource::TextureView(view),
+            });
         }
         self.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("scene"),

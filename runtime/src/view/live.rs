@@ -349,6 +349,7 @@ fn prepare(
     let (module, _) =
         emit::module(scene, Entry::Compute, options).map_err(|e| Error::Compiler(e.0))?;
     gpu.set_params(&bytes(&scene.params));
+    gpu.set_volumes(&scene.volumes());
     let layout = Layout::Full { passes: false };
     let full = View::new(&scene.camera, size.0, size.1);
     let c = coarse_size(size);

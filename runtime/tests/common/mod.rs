@@ -81,7 +81,7 @@ pub fn gpu_trace(
 ) -> Vec<(f32, u32, u32)> {
     let (module, _) = emit::module(scene, Entry::Rays, &Options::from_scene(scene))
         .unwrap_or_else(|e| panic!("{}", e.0));
-    gpu.set_params(&sdfc_compiler::lower::params::bytes(&scene.params));
+    gpu.set_scene(scene);
     gpu.trace_rays(&module, rays).unwrap()
 }
 
@@ -374,7 +374,7 @@ pub fn within_levels(color: &[u32], rgba: &[u8], levels: i32) -> (f64, i32) {
 pub fn render(gpu: &Gpu, scene: &Scene, view: &sdfc_compiler::view::View) -> sdfc::gpu::Frame {
     let (module, _) = emit::module(scene, Entry::Compute, &Options::from_scene(scene))
         .unwrap_or_else(|e| panic!("{}", e.0));
-    gpu.set_params(&sdfc_compiler::lower::params::bytes(&scene.params));
+    gpu.set_scene(scene);
     gpu.render(&module, view, None, |_, _| {}).unwrap()
 }
 

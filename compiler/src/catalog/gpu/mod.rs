@@ -5,6 +5,7 @@
 //! walks the scene and calls them, and never builds a shape's IR itself.
 
 pub mod args;
+pub mod baked;
 pub mod domain;
 pub mod field;
 pub mod ops;

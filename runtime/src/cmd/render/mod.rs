@@ -145,6 +145,7 @@ fn prepare(args: &RenderArgs, (w, h): (u32, u32), started: Instant) -> Result<Jo
     // The defaults' module, the values in its uniform only (as a host sets them).
     let valued = scene.with_values(&values.values);
     gpu.set_params(&sdfc_compiler::lower::params::bytes(&valued.params));
+    gpu.set_volumes(&scene.volumes());
     if predicted.seconds >= SLOW_COMPILE {
         // The driver compiles the shader at pipeline creation, silently.
         say!(

@@ -2,6 +2,8 @@
 //! drive it (bindings, uniform layouts, parameters, entry points, functions, materials, the
 //! scene's camera and lights), read from the validated module itself. Format: docs/interface.md.
 
+mod volumes;
+
 use crate::emit::{Output, Reflection};
 use crate::lower::Entry;
 use crate::scene::{LightKind, Scene, Shadow};
@@ -28,6 +30,9 @@ pub struct Origin<'a> {
     /// What the back end wrote, when the manifest describes written code: the functions'
     /// declarations and GLSL's block names are read from it.
     pub written: Option<(&'a Output, &'a Reflection)>,
+    /// The files `emit` wrote each baked volume of `Scene::volumes` to (as the manifest names
+    /// them: beside it), if it wrote them.
+    pub volume_files: &'a [String],
 }
 
 /// The manifest of `module` (already prefixed, if it is) compiled from `scene`.
@@ -48,6 +53,7 @@ pub fn manifest(scene: &Scene, module: &Module, origin: &Origin) -> Value {
         "structs": structs(module),
         "view": view_section(module, origin.prefix),
         "params": params_section(module, origin.prefix, params, size),
+        "volumes": volumes::section(scene, module, origin.volume_files),
         "materials": materials(scene, origin),
         "fragment": fragment(origin.entry),
         "compile": (origin.entry != Entry::Library).then(|| compile_cost(module)),
@@ -140,6 +146,7 @@ fn binding(module: &Module, g: &naga::GlobalVariable, b: &naga::ResourceBinding)
                 "read"
             }),
         ),
+        AddressSpace::Handle => ("handle", None),
         _ => ("other", None),
     };
     let mut v = json!({
@@ -454,6 +461,17 @@ fn type_name(module: &Module, ty: naga::Handle<naga::Type>) -> String {
             _ => format!("array<{}>", type_name(module, *base)),
         },
         TypeInner::Struct { .. } => t.name.clone().unwrap_or_else(|| "struct".into()),
+        TypeInner::Image {
+            dim: naga::ImageDimension::D3,
+            class: naga::ImageClass::Sampled { kind, .. },
+            ..
+        } => format!(
+            "texture_3d<{}>",
+            scalar(naga::Scalar {
+                kind: *kind,
+                width: 4
+            })
+        ),
         other => format!("{other:?}"),
     }
 }

@@ -1,0 +1,72 @@
+//! Baked volumes kept while a part's content and resolution do not change: in memory for the
+//! process (the viewer recompiles on every edit), and in a store the host may provide (the
+//! command line's cache directory), so that editing other parts does not bake again.
+
+use super::Volume;
+use std::sync::{Arc, Mutex, RwLock};
+
+/// Where volumes outlive the process, keyed as [`get_or_bake`] keys them.
+pub trait Store: Send + Sync {
+    /// The volume saved under `key`, if any (and readable).
+    fn load(&self, key: u64) -> Option<Volume>;
+    /// Saves a volume under `key` (failures are the store's to report or ignore: the volume is
+    /// in memory either way).
+    fn save(&self, key: u64, volume: &Volume);
+}
+
+/// Most bytes of values kept in memory; the least recently used go first past it.
+pub const MEMORY_BYTES: u64 = 1 << 30;
+
+/// Volumes in memory, most recently used last.
+static MEMORY: Mutex<Vec<(u64, Arc<Volume>)>> = Mutex::new(Vec::new());
+
+/// The host's store, if it set one.
+static STORE: RwLock<Option<Box<dyn Store>>> = RwLock::new(None);
+
+/// Sets (or clears) the store volumes are also looked up in and saved to.
+pub fn set_store(store: Option<Box<dyn Store>>) {
+    *STORE.write().unwrap_or_else(|e| e.into_inner()) = store;
+}
+
+/// Where [`get_or_bake`] found a volume.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Origin {
+    /// Baked now.
+    Baked,
+    /// Kept in memory from an earlier compile in this process.
+    Memory,
+    /// Read from the host's store.
+    Store,
+}
+
+/// The volume under `key` from memory or the store, else `make()`'s, kept for next time.
+pub fn get_or_bake(key: u64, make: impl FnOnce() -> Volume) -> (Arc<Volume>, Origin) {
+    {
+        let mut memory = MEMORY.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some(at) = memory.iter().position(|(k, _)| *k == key) {
+            let entry = memory.remove(at);
+            let v = entry.1.clone();
+            memory.push(entry);
+            return (v, Origin::Memory);
+        }
+    }
+    let store = STORE.read().unwrap_or_else(|e| e.into_inner());
+    let (volume, origin) = match store.as_ref().and_then(|s| s.load(key)) {
+        Some(v) => (Arc::new(v), Origin::Store),
+        None => {
+            let v = make();
+            if let Some(s) = store.as_ref() {
+                s.save(key, &v);
+            }
+            (Arc::new(v), Origin::Baked)
+        }
+    };
+    drop(store);
+    let mut memory = MEMORY.lock().unwrap_or_else(|e| e.into_inner());
+    memory.push((key, volume.clone()));
+    let mut total: u64 = memory.iter().map(|(_, v)| v.bytes()).sum();
+    while total > MEMORY_BYTES && memory.len() > 1 {
+        total -= memory.remove(0).1.bytes();
+    }
+    (volume, origin)
+}
