@@ -125,3 +125,105 @@ fn baked_random_scenes_keep_their_lambda_and_the_ball_test() {
     println!("{baked} scenes baked; λ claimed up to {ratio:.2}× the steepest slope sampled");
     assert!(baked * 3 >= cases as usize, "only {baked} of {cases}");
 }
+
+/// The baked volumes of every reachable `bake` of a scene.
+fn volumes_of(source: &str) -> Vec<std::sync::Arc<Volume>> {
+    let checked = sdfc_compiler::check::compile(source);
+    let scene = checked
+        .scene
+        .unwrap_or_else(|| panic!("{source}: {:?}", checked.diagnostics));
+    scene.volumes()
+}
+
+/// A baked part is reused while its shape and resolution do not change: checking the scene
+/// again, or with another part edited, gives the same volume (not baked again); another `res`
+/// or another shape bakes anew.
+#[test]
+fn a_volume_is_reused_until_its_shape_or_resolution_changes() {
+    let part = "bake(res = 24) { torus(0.6, 0.21) |> rotate(x, 37deg) }";
+    let first = volumes_of(&format!("{part}\nsphere(0.3) at (3, 0, 0)"));
+    let again = volumes_of(&format!("{part}\nsphere(0.3) at (3, 0, 0)"));
+    let edited = volumes_of(&format!("{part}\nbox(0.5) at (-3, 1, 0)"));
+    assert!(
+        std::sync::Arc::ptr_eq(&first[0], &again[0]),
+        "checked again: baked again"
+    );
+    assert!(
+        std::sync::Arc::ptr_eq(&first[0], &edited[0]),
+        "another part edited: baked again"
+    );
+    let finer = volumes_of(&part.replace("res = 24", "res = 25"));
+    let other = volumes_of(&part.replace("0.21", "0.22"));
+    for (what, v) in [("another res", &finer[0]), ("another shape", &other[0])] {
+        assert!(!std::sync::Arc::ptr_eq(&first[0], v), "{what}: reused");
+    }
+    assert_ne!(first[0].grid.n, finer[0].grid.n);
+}
+
+/// A shape with no Lipschitz bound (a ramp whose height jumps where `atan2` crosses its cut)
+/// is refused as it is and baked inside `bake`; more than two cells from the surface (by the
+/// field's own local bound |f|/|∇f|, and away from the wall at the cut) the baked field puts
+/// every point on the same side as the shape does.
+#[test]
+fn a_shape_without_a_bound_is_refused_and_bakes_with_the_right_sides() {
+    let shape =
+        "intersect { implicit { y - 0.12 * atan2(z, x) }  cylinder(radius = 0.9, height = 1.2) }";
+    let refused = sdfc_compiler::check::compile(shape);
+    assert!(refused.scene.is_none(), "the ramp compiled without a bound");
+    let source = format!("bake(res = 48) {{ {shape} }}");
+    let scene = sdfc_compiler::check::compile(&source).scene.expect("baked");
+    let v = &scene.volumes()[0];
+    let exact = |p: DVec3| {
+        let ramp = p.y - 0.12 * p.z.atan2(p.x);
+        let q = DVec3::new(
+            DVec3::new(p.x, 0.0, p.z).length() - 0.9,
+            p.y.abs() - 0.6,
+            0.0,
+        );
+        let cyl = q.x.max(q.y).min(0.0) + q.max(DVec3::ZERO).length();
+        ramp.max(cyl)
+    };
+    let (mut checked, mut wrong) = (0, 0);
+    let mut r = Rng::new(36);
+    for _ in 0..20_000 {
+        let p = DVec3::new(r.range(-1.1, 1.1), r.range(-0.8, 0.8), r.range(-1.1, 1.1));
+        // The true distance is at least |f|/|∇f| with |∇f| ≤ 1 + 0.12/ρ away from the axis;
+        // points nearer than two cells to the surface (or to the axis) are not judged.
+        let rho = DVec3::new(p.x, 0.0, p.z).length();
+        if rho < 0.1 || exact(p).abs() / (1.0 + 0.12 / rho) < 2.0 * v.grid.h {
+            continue;
+        }
+        // Nor beside the cut (z = 0, x < 0), whose wall that bound does not see.
+        if p.x < 0.0 && p.z.abs() < 2.0 * v.grid.h {
+            continue;
+        }
+        checked += 1;
+        if (exact(p) < 0.0) != (eval::distance(&scene, p) < 0.0) {
+            wrong += 1;
+            println!(
+                "wrong side at {p}: {} against {}",
+                exact(p),
+                eval::distance(&scene, p)
+            );
+        }
+    }
+    println!(
+        "{checked} points judged, {wrong} on the wrong side; cell {:.4}",
+        v.grid.h
+    );
+    assert!(checked > 5_000);
+    assert_eq!(wrong, 0);
+}
+
+/// The cache's file holds the values and the grid, and reads back to the same volume (λ proven
+/// again); a truncated or foreign file is not a volume.
+#[test]
+fn a_volume_file_reads_back_whole_or_not_at_all() {
+    use sdfc_compiler::bake::file;
+    let v = &volumes_of("bake(res = 16) { sphere(0.5) }")[0];
+    let bytes = file::with_header(v);
+    assert_eq!(file::from_header(&bytes).as_ref(), Some(v.as_ref()));
+    assert_eq!(file::raw(v).len(), 4 * v.values.len());
+    assert!(file::from_header(&bytes[..bytes.len() - 1]).is_none());
+    assert!(file::from_header(b"SDFCVOL0 and more bytes than a header has, surely ....").is_none());
+}

@@ -239,6 +239,14 @@ impl Checker<'_> {
                             ));
                     }
                 }
+                // (A baked shape reads no parameters: no such help for one that does.)
+                let mut reads = false;
+                if let NodeKind::Implicit { field } = &node.kind {
+                    field.params(&mut |_| reads = true);
+                }
+                if let (NodeKind::Implicit { .. }, false) = (&node.kind, reads) {
+                    d = d.help("or bake it into a distance map, which needs no bound: `bake(res = 64) { … }` around a bounded shape holding it (docs/bake.md)");
+                }
                 if let NodeKind::Implicit { field } = &node.kind
                     && crate::lipschitz::crosses_branch_cut(field)
                 {
