@@ -4,6 +4,7 @@
 
 mod common;
 
+mod bake;
 mod bench;
 mod blends;
 mod bounded;
