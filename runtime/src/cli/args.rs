@@ -257,6 +257,11 @@ pub struct BenchArgs {
     /// timed alternately with each cell's trace, same view and size.
     #[arg(long)]
     pub reference: Option<PathBuf>,
+    /// Measure the error against this scene's f64 ground truth instead of the benchmarked
+    /// scene's own (the same camera): e.g. the analytic form of a scene whose parts are baked
+    /// (docs/bake.md).
+    #[arg(long, value_name = "FILE")]
+    pub truth: Option<PathBuf>,
     /// Test every union's bounding boxes in `map` (as `render --bvh`).
     #[arg(long, conflicts_with = "no_bvh")]
     pub bvh: bool,

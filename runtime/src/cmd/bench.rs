@@ -67,6 +67,22 @@ fn bench(args: &BenchArgs) -> Result<(), Error> {
         return Err(Error::Reported);
     };
     let name = sources.main_name().to_string();
+    let truth_scene = match args.truth.as_deref() {
+        None => None,
+        Some(path) => {
+            let Some((_, other)) = load_scene(path) else {
+                return Err(Error::Reported);
+            };
+            if other.camera != scene.camera {
+                return Err(format!(
+                    "error: `--truth {}` has another camera than `{name}`: its picture is not this one's truth",
+                    path.display()
+                )
+                .into());
+            }
+            Some(other)
+        }
+    };
     let mut options = sdfc_compiler::lower::tracer::Options::from_scene(&scene);
     options.bounding_volumes = bvh(args);
     options.fixed_offset = args.fixed_offset;
@@ -81,7 +97,7 @@ fn bench(args: &BenchArgs) -> Result<(), Error> {
     let (truth, measured) = measure(
         (args, options.bounding_volumes),
         &gpu,
-        (&scene, &view),
+        (&scene, truth_scene.as_ref().unwrap_or(&scene), &view),
         &cells,
         reference,
     )?;
@@ -199,7 +215,7 @@ fn plan<'a>(args: &'a BenchArgs, scene: &Scene) -> Result<Vec<Planned<'a>>, Erro
 fn measure(
     (args, bvh): (&BenchArgs, sdfc_compiler::lower::tracer::BoundingVolumes),
     gpu: &Gpu,
-    (scene, view): (&Scene, &View),
+    (scene, truth_scene, view): (&Scene, &Scene, &View),
     cells: &[Planned],
     reference: Option<(&str, &str)>,
 ) -> Result<(Truth, Vec<Cell>), Error> {
@@ -209,7 +225,7 @@ fn measure(
         b.set_message("ground truth (CPU)");
     }
     let clock = std::time::Instant::now();
-    let depth = truth::depth_map(scene, view);
+    let depth = truth::depth_map(truth_scene, view);
     let truth = Truth {
         steps: truth::STEPS,
         epsilon: truth::EPSILON,
