@@ -182,3 +182,38 @@ fn every_primitive_baked_renders_as_itself_within_a_cell() {
         lines.len()
     );
 }
+
+/// `sdfc emit --bake-res N` bakes at N whatever the scene's `res` says: the manifest's size
+/// and the volume file's length agree with N; a volume file that cannot be written (a folder
+/// in its place) is refused before anything is written.
+#[test]
+fn emit_writes_the_volume_at_bake_res_and_refuses_an_unwritable_one() {
+    let dir = crate::common::scratch("bake-res");
+    let scene = crate::common::write(&dir, "ball.sdf", "bake(res = 16) { sphere(1) }\n");
+    let out = dir.join("ball.wgsl");
+    let manifest = dir.join("ball.json");
+    let (o, m) = (out.to_str().unwrap(), manifest.to_str().unwrap());
+    let run = crate::common::sdfc(&["emit", &scene, "-o", o, "--manifest", m, "--bake-res", "9"]);
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&manifest).unwrap()).unwrap();
+    let volume = &json["volumes"][0];
+    assert_eq!(volume["size"], serde_json::json!([9, 9, 9]), "{volume}");
+    let file = dir.join(volume["file"].as_str().unwrap());
+    assert_eq!(std::fs::metadata(&file).unwrap().len(), 9 * 9 * 9 * 4);
+    // Out of range: refused by the command line, nothing written.
+    let other = dir.join("other.wgsl");
+    let o2 = other.to_str().unwrap();
+    crate::common::refused(
+        &["emit", &scene, "-o", o2, "--bake-res", "513"],
+        "513",
+        &other,
+    );
+    // A folder where the volume goes.
+    std::fs::create_dir_all(dir.join("other.volume0.r32f")).unwrap();
+    crate::common::refused(&["emit", &scene, "-o", o2], "other.volume0.r32f", &other);
+}

@@ -25,11 +25,11 @@ pub const BAKE: Operator = Operator {
     doc: "Replaces its shape by a distance map baked on a grid of `res` points along the longest \
           side of its bound (or of the box of half extents `size`, if given): trilinear inside, \
           the box's distance outside; its shape may have no Lipschitz bound (λ proven from the \
-          map, about 1.3); materials from its shape.",
+          map: 1.3–1.7 measured); materials from its shape.",
     params: &[
         opt(
             "res",
-            Ty::WholeIn(4, crate::bake::MAX_RES as u32),
+            Ty::WholeIn(crate::bake::MIN_RES as u32, crate::bake::MAX_RES as u32),
             num(64.0),
         ),
         opt("size", Ty::Size, num(0.0)),

@@ -26,7 +26,26 @@ impl Checker<'_> {
             );
             return None;
         }
-        let res = ctx.num(0) as usize;
+        let res = match self.overrides.get(super::BAKE_RES).and_then(|v| v.first()) {
+            Some(&n)
+                if n.fract() == 0.0 && (bake::MIN_RES..=bake::MAX_RES).contains(&(n as usize)) =>
+            {
+                n as usize
+            }
+            Some(&n) => {
+                self.diags.push(
+                    Diagnostic::error(span, format!("cannot bake at the resolution {n} asked for"))
+                        .label("this `bake`'s `res` was set from outside (`--bake-res`)")
+                        .note(format!(
+                            "`res` is a whole number from {} to {}",
+                            bake::MIN_RES,
+                            bake::MAX_RES
+                        )),
+                );
+                return None;
+            }
+            None => ctx.num(0) as usize,
+        };
         let size = ctx.vec(1);
         let (lo, hi) = if size != DVec3::ZERO {
             (-size, size)
@@ -85,6 +104,27 @@ impl Checker<'_> {
             return None;
         }
         let key = self.bake_key(child, &grid);
+        if !self.bakes.contains(&key) {
+            if self.bakes.len() == crate::layout::MAX_VOLUMES {
+                self.diags.push(
+                    Diagnostic::error(span, "too many baked maps")
+                        .label(format!(
+                            "the {}th distinct map of this scene",
+                            crate::layout::MAX_VOLUMES + 1
+                        ))
+                        .note(format!(
+                            "a shader binds at most {} volumes (bindings {}…{} of group {})",
+                            crate::layout::MAX_VOLUMES,
+                            crate::layout::VOLUME_BINDING,
+                            crate::layout::VOLUME_BINDING as usize + crate::layout::MAX_VOLUMES - 1,
+                            crate::layout::GROUP
+                        ))
+                        .help("bake a union of several parts as one shape"),
+                );
+                return None;
+            }
+            self.bakes.push(key);
+        }
         let nodes = self.nodes_for_baking(&subtree);
         let field = |p: DVec3| crate::reference::eval::raw(&nodes, child, p);
         let (volume, _) = bake::cache::get_or_bake(key, || Volume::bake(&field, lo, hi, res));

@@ -69,6 +69,11 @@ pub struct Checked {
     pub sources: Sources,
 }
 
+/// The key of `values` (for [`compile_with`] and the others) that sets the `res` of every
+/// `bake` in the scene, as `sdfc --bake-res N` does: one number within `bake`'s range. Not a
+/// name a parameter can have.
+pub const BAKE_RES: &str = "bake.res";
+
 /// Parses and checks source text (its imports may name the standard library only: a file's
 /// imports are relative to it, see [`compile_file`]).
 pub fn compile(source: &str) -> Checked {
@@ -126,7 +131,7 @@ pub fn unknown_params<'v>(
 ) -> Vec<(&'v str, Option<String>)> {
     let mut out: Vec<(&str, Option<String>)> = values
         .keys()
-        .filter(|n| *n != TIME && !scene.params.iter().any(|p| &p.name == *n))
+        .filter(|n| *n != TIME && *n != BAKE_RES && !scene.params.iter().any(|p| &p.name == *n))
         .map(|n| {
             let near = crate::diag::did_you_mean(n, scene.params.iter().map(|p| p.name.as_str()));
             (n.as_str(), near.map(str::to_string))
@@ -243,6 +248,8 @@ pub(crate) struct Checker<'a> {
     /// "Did you mean" suggestions left to compute: a report shows only the first
     /// `diag::MAX_SHOWN` diagnostics, and 10 000 misspelt names against 10 000 took 35 s.
     suggestions_left: std::cell::Cell<usize>,
+    /// The cache keys of the distinct maps baked so far (at most `layout::MAX_VOLUMES`).
+    bakes: Vec<u64>,
 }
 
 impl<'a> Checker<'a> {
@@ -317,6 +324,7 @@ impl<'a> Checker<'a> {
             call_site: Vec::new(),
             keyword_typo_line: None,
             forms: lattice::Forms::default(),
+            bakes: Vec::new(),
         }
     }
 

@@ -64,6 +64,15 @@ pub enum Command {
     Man(ManArgs),
 }
 
+/// `--bake-res`: one resolution for every `bake` of the scene.
+#[derive(Args, Debug, Default, Clone, Copy)]
+pub struct BakeArgs {
+    /// Bake every `bake { … }` of the scene at N points along its box's longest side instead
+    /// of its own `res` (7 to 512; docs/bake.md).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(sdfc_compiler::bake::MIN_RES as i64..=sdfc_compiler::bake::MAX_RES as i64))]
+    pub bake_res: Option<u32>,
+}
+
 /// `sdfc check`'s arguments.
 #[derive(Args)]
 pub struct CheckArgs {
@@ -76,6 +85,8 @@ pub struct CheckArgs {
     /// that `check`, `render` and `emit` always run).
     #[arg(long)]
     pub lipschitz: bool,
+    #[command(flatten)]
+    pub bake: BakeArgs,
 }
 
 /// `sdfc emit`'s arguments.
@@ -119,6 +130,8 @@ pub struct EmitArgs {
     /// 9 lets two scenes' libraries (with `--prefix`) share a shader.
     #[arg(long, value_name = "N", default_value_t = 9)]
     pub params_binding: u32,
+    #[command(flatten)]
+    pub bake: BakeArgs,
 }
 
 /// `sdfc render`'s arguments.
@@ -176,6 +189,8 @@ pub struct RenderArgs {
     /// Render again on every save of the scene file, until interrupted.
     #[arg(long)]
     pub watch: bool,
+    #[command(flatten)]
+    pub bake: BakeArgs,
 }
 
 /// `sdfc view`'s arguments.
@@ -210,6 +225,8 @@ pub struct ViewArgs {
     /// (as `render`).
     #[arg(long)]
     pub allow_slow_compile: bool,
+    #[command(flatten)]
+    pub bake: BakeArgs,
 }
 
 /// `sdfc bench`'s arguments.
@@ -274,6 +291,8 @@ pub struct BenchArgs {
     /// Measure a shader larger than the driver compiles in reasonable time (as `render`).
     #[arg(long)]
     pub allow_slow_compile: bool,
+    #[command(flatten)]
+    pub bake: BakeArgs,
 }
 
 /// `sdfc completions`'s arguments.
@@ -348,4 +367,6 @@ pub struct MeshArgs {
     /// Print when each step starts and what the mesh cost (cells, field evaluations).
     #[arg(long)]
     pub stats: bool,
+    #[command(flatten)]
+    pub bake: BakeArgs,
 }

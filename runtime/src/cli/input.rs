@@ -26,8 +26,18 @@ pub fn exit_code(result: Result<(), Error>) -> i32 {
 }
 
 /// Reads and checks a scene, printing diagnostics; `None` (after printing) when it has errors.
-pub fn load_scene(path: &Path) -> Option<(Sources, sdfc_compiler::scene::Scene)> {
-    load_scene_with(path, &ParamArgs::default())
+/// (every `bake` at `bake_res`, when given: `--bake-res`).
+pub fn load_scene(
+    path: &Path,
+    bake_res: Option<u32>,
+) -> Option<(Sources, sdfc_compiler::scene::Scene)> {
+    load_scene_with(
+        path,
+        &ParamArgs {
+            bake_res,
+            ..ParamArgs::default()
+        },
+    )
 }
 
 /// How a `--param` value was written: what its parameter's kind must accept.
@@ -49,6 +59,26 @@ pub struct ParamArgs {
     pub values: std::collections::HashMap<String, Vec<f64>>,
     /// How each `--param` was written, in the order given.
     pub written: Vec<(String, String, Written)>,
+    /// `--bake-res`: the `res` of every `bake`.
+    pub bake_res: Option<u32>,
+}
+
+impl ParamArgs {
+    /// What the scene's defaults are compiled with: only `--bake-res` (not a parameter, so it
+    /// applies to the host's module too).
+    pub fn base(&self) -> std::collections::HashMap<String, Vec<f64>> {
+        self.bake_res
+            .map(|n| (check::BAKE_RES.to_string(), vec![f64::from(n)]))
+            .into_iter()
+            .collect()
+    }
+
+    /// The values and [`ParamArgs::base`] together.
+    pub fn all(&self) -> std::collections::HashMap<String, Vec<f64>> {
+        let mut all = self.values.clone();
+        all.extend(self.base());
+        all
+    }
 }
 
 /// A `--param` written in a way its parameter's kind does not take: an angle needs its unit
@@ -89,7 +119,8 @@ pub fn load_scene_with(
     path: &Path,
     args: &ParamArgs,
 ) -> Option<(Sources, sdfc_compiler::scene::Scene)> {
-    let values = &args.values;
+    let base = args.base();
+    let values = &args.all();
     let (name, source) = match read_source(path) {
         Ok(x) => x,
         Err(e) => {
@@ -101,18 +132,24 @@ pub fn load_scene_with(
         scene,
         mut diagnostics,
         sources,
-    } = compile((path, &name), &source, &std::collections::HashMap::new());
+    } = compile((path, &name), &source, &base);
     // The scene checked at the values asked for, once: for the annotations there and to
     // refuse values it cannot take.
     let at_values =
-        (scene.is_some() && !values.is_empty()).then(|| compile((path, &name), &source, values));
+        (scene.is_some() && *values != base).then(|| compile((path, &name), &source, values));
     if let Some(scene) = &scene {
         let found = lipschitz::verify_annotations(scene, Effort::Fast);
-        let at = |v: &_| match &at_values {
-            Some(c) if v == values => c.scene.clone(),
-            _ => compile((path, &name), &source, v).scene,
+        // (`--bake-res` holds at every setting.)
+        let at = |v: &std::collections::HashMap<String, Vec<f64>>| {
+            let mut v = v.clone();
+            v.extend(base.clone());
+            match &at_values {
+                Some(c) if v == *values => c.scene.clone(),
+                _ => compile((path, &name), &source, &v).scene,
+            }
         };
-        let more = lipschitz::verify_over_ranges(&at, scene, Effort::Fast, (values, &found));
+        let asked = (&args.values, &found[..]);
+        let more = lipschitz::verify_over_ranges(&at, scene, Effort::Fast, asked);
         diagnostics.extend(found);
         diagnostics.extend(more);
     }
@@ -267,6 +304,7 @@ pub fn param_values(params: &[String], time: Option<f64>) -> Result<ParamArgs, E
     Ok(ParamArgs {
         values: out,
         written,
+        bake_res: None,
     })
 }
 

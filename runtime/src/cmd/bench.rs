@@ -63,14 +63,14 @@ fn bench(args: &BenchArgs) -> Result<(), Error> {
         None => None,
     };
     check_passes(args.passes)?;
-    let Some((sources, scene)) = load_scene(&args.file) else {
+    let Some((sources, scene)) = load_scene(&args.file, args.bake.bake_res) else {
         return Err(Error::Reported);
     };
     let name = sources.main_name().to_string();
     let truth_scene = match args.truth.as_deref() {
         None => None,
         Some(path) => {
-            let Some((_, other)) = load_scene(path) else {
+            let Some((_, other)) = load_scene(path, None) else {
                 return Err(Error::Reported);
             };
             if other.camera != scene.camera {

@@ -23,12 +23,18 @@ pub fn run(args: &CheckArgs) -> i32 {
     } else {
         Effort::Fast
     };
-    check(file, effort)
+    check(file, effort, args.bake.bake_res)
 }
 
-/// Checks the scene at `path` with `effort` for its `@lipschitz` annotations; prints the
+/// Checks the scene at `path` (every `bake` at `bake_res`, if given) with `effort` for its
+/// `@lipschitz` annotations; prints the
 /// diagnostics and the summary.
-fn check(path: &Path, effort: Effort) -> i32 {
+fn check(path: &Path, effort: Effort, bake_res: Option<u32>) -> i32 {
+    let base = crate::cli::input::ParamArgs {
+        bake_res,
+        ..Default::default()
+    }
+    .base();
     let (name, source) = match read_source(path) {
         Ok(x) => x,
         Err(e) => {
@@ -40,11 +46,15 @@ fn check(path: &Path, effort: Effort) -> i32 {
         scene,
         mut diagnostics,
         sources,
-    } = compile((path, &name), &source, &std::collections::HashMap::new());
+    } = compile((path, &name), &source, &base);
     if let Some(scene) = &scene {
         let found = lipschitz::verify_annotations(scene, effort);
+        let at = |v: &std::collections::HashMap<String, Vec<f64>>| {
+            let mut v = v.clone();
+            v.extend(base.clone());
+            compile((path, &name), &source, &v).scene
+        };
         let none = std::collections::HashMap::new();
-        let at = |v: &_| compile((path, &name), &source, v).scene;
         let more = lipschitz::verify_over_ranges(&at, scene, effort, (&none, &found));
         diagnostics.extend(found);
         diagnostics.extend(more);

@@ -28,10 +28,16 @@ pub fn write_output(path: Option<&Path>, bytes: &[u8], binary: bool) -> i32 {
 }
 
 /// Whether `path` (a file, or `-` for standard output) can be written as far as can be known
-/// before writing: its folder exists. The error says which folder is missing.
+/// before writing: its folder exists, and it is not a folder itself. The error says which.
 pub fn writable(path: &Path) -> Result<(), String> {
     if path == Path::new("-") {
         return Ok(());
+    }
+    if path.is_dir() {
+        return Err(format!(
+            "error: cannot write `{}`: it is a folder",
+            path.display()
+        ));
     }
     match path.parent() {
         Some(dir) if !dir.as_os_str().is_empty() && !dir.is_dir() => Err(format!(

@@ -48,7 +48,7 @@ fn once(args: &EmitArgs, plan: &Plan) -> i32 {
         say!("{e}");
         return 1;
     }
-    let Some((sources, mut scene)) = load_scene(&args.file) else {
+    let Some((sources, mut scene)) = load_scene(&args.file, args.bake.bake_res) else {
         return 1;
     };
     let name = sources.main_name();
@@ -259,11 +259,16 @@ fn write(
         .collect();
     writes.sort_by_key(|(p, _, _)| !stdout(*p));
     let mut code = 0;
+    // Files this run created, removed again if a later write fails: nothing partial.
+    let mut created = Vec::new();
     for (path, bytes, binary) in writes {
+        let new = path.filter(|p| !stdout(Some(p)) && !p.exists());
         code = write_output(path, bytes, binary);
         if code != 0 {
+            created.iter().for_each(|p| _ = std::fs::remove_file(p));
             return code;
         }
+        created.extend(new);
     }
     if code == 0 {
         let what = if plan.shadertoy {

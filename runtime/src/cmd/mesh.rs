@@ -27,7 +27,8 @@ fn mesh_scene(args: &MeshArgs) -> Result<(), Error> {
     let started = Instant::now();
     let format = output_format(args)?;
     writable(&args.output)?;
-    let values = param_values(&args.params, args.time)?;
+    let mut values = param_values(&args.params, args.time)?;
+    values.bake_res = args.bake.bake_res;
     let Some((sources, scene)) = load_scene_with(&args.file, &values) else {
         return Err(Error::Reported);
     };

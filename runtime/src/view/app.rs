@@ -62,7 +62,7 @@ impl Started {
 
 /// Reads and checks the scene with the tracer overrides; diagnostics printed.
 pub fn load(args: &ViewArgs) -> Option<(Scene, Options)> {
-    let (sources, mut scene) = load_scene(&args.file)?;
+    let (sources, mut scene) = load_scene(&args.file, args.bake.bake_res)?;
     let options = args.tracer.settle(&mut scene).and_then(|mut options| {
         // One pass: the viewer's coarse frames take the passes' place.
         options.passes = false;

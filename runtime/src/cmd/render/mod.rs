@@ -134,7 +134,8 @@ fn check_samples(args: &RenderArgs, wants_npy: bool) -> Result<(), Error> {
 
 /// Reads, checks and compiles the scene, and opens the device with its parameters set.
 fn prepare(args: &RenderArgs, (w, h): (u32, u32), started: Instant) -> Result<Job, Error> {
-    let values = param_values(&args.params, args.time)?;
+    let mut values = param_values(&args.params, args.time)?;
+    values.bake_res = args.bake.bake_res;
     let Some((sources, mut scene)) = load_scene_with(&args.file, &values) else {
         return Err(Error::Reported);
     };
