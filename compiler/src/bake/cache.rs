@@ -17,8 +17,12 @@ pub trait Store: Send + Sync {
 /// Most bytes of values kept in memory; the least recently used go first past it.
 pub const MEMORY_BYTES: u64 = 1 << 30;
 
+/// A volume in memory: its key, itself, and the seconds its bake took (`None`: read from the
+/// store).
+type Entry = (u64, Arc<Volume>, Option<f64>);
+
 /// Volumes in memory, most recently used last.
-static MEMORY: Mutex<Vec<(u64, Arc<Volume>)>> = Mutex::new(Vec::new());
+static MEMORY: Mutex<Vec<Entry>> = Mutex::new(Vec::new());
 
 /// The host's store, if it set one.
 static STORE: RwLock<Option<Box<dyn Store>>> = RwLock::new(None);
@@ -43,7 +47,7 @@ pub enum Origin {
 pub fn get_or_bake(key: u64, make: impl FnOnce() -> Volume) -> (Arc<Volume>, Origin) {
     {
         let mut memory = MEMORY.lock().unwrap_or_else(|e| e.into_inner());
-        if let Some(at) = memory.iter().position(|(k, _)| *k == key) {
+        if let Some(at) = memory.iter().position(|(k, _, _)| *k == key) {
             let entry = memory.remove(at);
             let v = entry.1.clone();
             memory.push(entry);
@@ -51,22 +55,34 @@ pub fn get_or_bake(key: u64, make: impl FnOnce() -> Volume) -> (Arc<Volume>, Ori
         }
     }
     let store = STORE.read().unwrap_or_else(|e| e.into_inner());
-    let (volume, origin) = match store.as_ref().and_then(|s| s.load(key)) {
-        Some(v) => (Arc::new(v), Origin::Store),
+    let (volume, origin, seconds) = match store.as_ref().and_then(|s| s.load(key)) {
+        Some(v) => (Arc::new(v), Origin::Store, None),
         None => {
+            let clock = std::time::Instant::now();
             let v = make();
+            let seconds = clock.elapsed().as_secs_f64();
             if let Some(s) = store.as_ref() {
                 s.save(key, &v);
             }
-            (Arc::new(v), Origin::Baked)
+            (Arc::new(v), Origin::Baked, Some(seconds))
         }
     };
     drop(store);
     let mut memory = MEMORY.lock().unwrap_or_else(|e| e.into_inner());
-    memory.push((key, volume.clone()));
-    let mut total: u64 = memory.iter().map(|(_, v)| v.bytes()).sum();
+    memory.push((key, volume.clone(), seconds));
+    let mut total: u64 = memory.iter().map(|(_, v, _)| v.bytes()).sum();
     while total > MEMORY_BYTES && memory.len() > 1 {
         total -= memory.remove(0).1.bytes();
     }
     (volume, origin)
+}
+
+/// The wall-clock seconds `volume` took to bake in this process (sampling, distance transform
+/// and λ), while it is in memory; `None` if it was read from the store or is no longer kept.
+pub fn bake_seconds(volume: &Arc<Volume>) -> Option<f64> {
+    let memory = MEMORY.lock().unwrap_or_else(|e| e.into_inner());
+    memory
+        .iter()
+        .find(|(_, v, _)| Arc::ptr_eq(v, volume))
+        .and_then(|(_, _, s)| *s)
 }

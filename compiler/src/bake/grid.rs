@@ -72,4 +72,79 @@ impl Grid {
         })
         .concat()
     }
+
+    /// [`Grid::sample`] for a field with Lipschitz constant `lambda`, evaluated only where the
+    /// sign may change: a block of points (an octree over blocks of [`BLOCK`]³ points, on all
+    /// cores) whose centre value c has |c| > λ·(half its diagonal + h) has that sign at every
+    /// point and every grid neighbour, so no edge touching it crosses the surface; its points
+    /// get c. The sign at every point, and the value at every point beside a crossing, are
+    /// [`Grid::sample`]'s — all the distance transform reads (`edt.rs`).
+    pub fn sample_lipschitz(&self, field: &(dyn Fn(DVec3) -> f64 + Sync), lambda: f64) -> Vec<f64> {
+        let starts = |n: usize| (0..n).step_by(BLOCK);
+        let blocks: Vec<[usize; 3]> = starts(self.n[2])
+            .flat_map(|k| {
+                starts(self.n[1]).flat_map(move |j| starts(self.n[0]).map(move |i| [i, j, k]))
+            })
+            .collect();
+        let parts = crate::parallel::par_map(&blocks, |&lo| {
+            let hi = [0, 1, 2].map(|a| (lo[a] + BLOCK).min(self.n[a]));
+            let mut out = Vec::new();
+            self.fill(field, lambda, (lo, hi), &mut out);
+            out
+        });
+        let mut values = vec![0.0; self.len()];
+        for (at, v) in parts.into_iter().flatten() {
+            values[at] = v;
+        }
+        values
+    }
+
+    /// The points `lo..hi` (per axis, `hi` excluded) with their values into `out`, as
+    /// [`Grid::sample_lipschitz`] says.
+    fn fill(
+        &self,
+        field: &(dyn Fn(DVec3) -> f64 + Sync),
+        lambda: f64,
+        (lo, hi): ([usize; 3], [usize; 3]),
+        out: &mut Vec<(usize, f64)>,
+    ) {
+        let each = |out: &mut Vec<(usize, f64)>, f: &dyn Fn(DVec3) -> f64| {
+            for k in lo[2]..hi[2] {
+                for j in lo[1]..hi[1] {
+                    for i in lo[0]..hi[0] {
+                        out.push((self.index(i, j, k), f(self.point(i, j, k))));
+                    }
+                }
+            }
+        };
+        let span = [0, 1, 2].map(|a| hi[a] - lo[a]);
+        if span.iter().product::<usize>() <= 8 {
+            return each(out, field);
+        }
+        let first = self.point(lo[0], lo[1], lo[2]);
+        let last = self.point(hi[0] - 1, hi[1] - 1, hi[2] - 1);
+        let c = field((first + last) / 2.0);
+        let reach = lambda * ((last - first).length() / 2.0 + self.h);
+        if c.abs() > reach * (1.0 + 1e-9) {
+            return each(out, &|_| c);
+        }
+        let mid = [0, 1, 2].map(|a| lo[a] + span[a].div_ceil(2));
+        let halves = |a: usize| {
+            let mut v = vec![(lo[a], mid[a])];
+            if mid[a] < hi[a] {
+                v.push((mid[a], hi[a]));
+            }
+            v
+        };
+        for &(z0, z1) in &halves(2) {
+            for &(y0, y1) in &halves(1) {
+                for &(x0, x1) in &halves(0) {
+                    self.fill(field, lambda, ([x0, y0, z0], [x1, y1, z1]), out);
+                }
+            }
+        }
+    }
 }
+
+/// Points per axis of [`Grid::sample_lipschitz`]'s blocks.
+pub const BLOCK: usize = 16;

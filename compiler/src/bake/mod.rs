@@ -106,7 +106,26 @@ impl Volume {
     pub fn bake(field: &(dyn Fn(DVec3) -> f64 + Sync), lo: DVec3, hi: DVec3, res: usize) -> Volume {
         let grid = Grid::around(lo, hi, res);
         let samples = grid.sample(field);
-        let values: Vec<f32> = edt::signed_distances(&grid, &samples, field)
+        Volume::from_samples(grid, &samples, field)
+    }
+
+    /// [`Volume::bake`] of a field whose Lipschitz constant is `lambda`: the same volume, with
+    /// the field evaluated only near its surface ([`Grid::sample_lipschitz`]).
+    pub fn bake_lipschitz(
+        field: &(dyn Fn(DVec3) -> f64 + Sync),
+        lambda: f64,
+        lo: DVec3,
+        hi: DVec3,
+        res: usize,
+    ) -> Volume {
+        let grid = Grid::around(lo, hi, res);
+        let samples = grid.sample_lipschitz(field, lambda);
+        Volume::from_samples(grid, &samples, field)
+    }
+
+    /// The volume of `samples` on `grid`: distances propagated from the surface's crossings.
+    fn from_samples(grid: Grid, samples: &[f64], field: &(dyn Fn(DVec3) -> f64 + Sync)) -> Volume {
+        let values: Vec<f32> = edt::signed_distances(&grid, samples, field)
             .into_iter()
             .map(|d| d as f32)
             .collect();

@@ -127,7 +127,12 @@ impl Checker<'_> {
         }
         let nodes = self.nodes_for_baking(&subtree);
         let field = |p: DVec3| crate::reference::eval::raw(&nodes, child, p);
-        let (volume, _) = bake::cache::get_or_bake(key, || Volume::bake(&field, lo, hi, res));
+        // A shape with a bound is evaluated only near its surface.
+        let lambda = self.nodes[child].lambda;
+        let (volume, _) = bake::cache::get_or_bake(key, || match lambda.is_finite() {
+            true => Volume::bake_lipschitz(&field, lambda, lo, hi, res),
+            false => Volume::bake(&field, lo, hi, res),
+        });
         Some(volume)
     }
 

@@ -29,10 +29,42 @@ struct Report {
     timing: String,
     repeat: u32,
     truth: Truth,
+    /// The scene whose f64 field is the truth, when another than the benchmarked one
+    /// (`--truth`).
+    truth_scene: Option<String>,
+    /// The scene's baked parts, one row each.
+    volumes: Vec<Baked>,
     cells: Vec<Cell>,
     target_error: Option<f64>,
     max_mismatch: f64,
     fastest: Option<Cell>,
+}
+
+/// A baked part: its map's size, memory, λ and how long it took to bake.
+#[derive(Serialize)]
+struct Baked {
+    /// Points along x, y and z.
+    points: [usize; 3],
+    /// Its spacing in scene units.
+    spacing: f64,
+    /// Bytes on the GPU (one f32 per point).
+    bytes: u64,
+    /// The map's proven Lipschitz constant.
+    lambda: f64,
+    /// Seconds its bake took in this process (sampling, distance transform, λ), on the CPU.
+    bake_seconds: Option<f64>,
+}
+
+impl Baked {
+    fn of(v: &std::sync::Arc<sdfc_compiler::bake::Volume>) -> Baked {
+        Baked {
+            points: v.grid.n,
+            spacing: v.grid.h,
+            bytes: v.bytes(),
+            lambda: v.lambda,
+            bake_seconds: sdfc_compiler::bake::cache::bake_seconds(v),
+        }
+    }
 }
 
 /// How frames were timed on `gpu`.
@@ -118,6 +150,8 @@ fn bench(args: &BenchArgs) -> Result<(), Error> {
         timing: timing(&gpu),
         repeat: args.repeat,
         truth,
+        truth_scene: args.truth.as_ref().map(|p| p.display().to_string()),
+        volumes: scene.volumes().iter().map(Baked::of).collect(),
         cells: measured,
         target_error: args.target_error,
         max_mismatch: args.max_mismatch,
@@ -334,6 +368,26 @@ fn table(r: &Report) -> String {
         r.truth.seconds,
         r.timing
     );
+    if let Some(t) = &r.truth_scene {
+        out += &format!("truth: the f64 field of {t}\n");
+    }
+    for (i, v) in r.volumes.iter().enumerate() {
+        let [x, y, z] = v.points;
+        let took = v
+            .bake_seconds
+            .map_or("read from the cache".to_string(), |s| {
+                format!("baked in {s:.2} s")
+            });
+        out += &format!(
+            "baked part {i}: {x}×{y}×{z} points, spacing {:.4}, {:.1} MiB, λ {:.3}, {took}\n",
+            v.spacing,
+            v.bytes as f64 / f64::from(1u32 << 20),
+            v.lambda
+        );
+    }
+    if r.truth_scene.is_some() || !r.volumes.is_empty() {
+        out += "\n";
+    }
     out += &format!(
         "{:<9} {:>6} {:>6} {:>9} {:>9} {:>10} {:>9} {:>9} {:>11} {:>9} {:>11}\n",
         "tracer",
