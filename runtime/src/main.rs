@@ -39,6 +39,10 @@ fn main() {
     }
     // The front end recurses over the syntax tree; a large stack keeps pathological input (which
     // it rejects past its nesting limits) from overflowing before it is rejected.
+    // Baked volumes outlive the process in the cache folder.
+    if let Some(store) = sdfc::bake_store::DiskStore::open() {
+        sdfc_compiler::bake::cache::set_store(Some(Box::new(store)));
+    }
     let code = std::thread::Builder::new()
         .stack_size(256 << 20)
         .spawn(cmd::run)

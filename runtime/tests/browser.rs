@@ -68,8 +68,10 @@ pub(crate) fn drawn_scenes(
 
 /// The page draws five examples (the lamp with parameters, unions of five parts and more) and
 /// a scene whose materials, lights and shapes read parameters, at the defaults and (the
-/// parametric ones) at other values: each within 2 levels of `sdfc render` on 99.5% of pixels.
-/// The live page on the lamp makes its five sliders, draws, and turns with a drag.
+/// parametric ones) at other values, and the example that bakes two parts (its maps loaded from
+/// the volume files `emit` wrote beside the shader, as the manifest names them): each within 2
+/// levels of `sdfc render` on 99.5% of pixels. The live page on the lamp makes its five
+/// sliders, draws, and turns with a drag.
 #[test]
 fn the_webgpu_page_draws_what_render_draws() {
     let Some((chrome, driver)) = browser() else {
@@ -78,7 +80,13 @@ fn the_webgpu_page_draws_what_render_draws() {
     let dir = scratch("browser");
     let (w, h) = (96u32, 64u32);
     let mut jobs = Vec::new();
-    for (name, file, settings) in &drawn_scenes(&dir) {
+    let mut scenes = drawn_scenes(&dir);
+    scenes.push((
+        "baked".into(),
+        root().join("examples/baked.sdf"),
+        vec!["{}"],
+    ));
+    for (name, file, settings) in &scenes {
         let (wgsl, json) = (
             dir.join(format!("{name}.wgsl")),
             dir.join(format!("{name}.json")),
@@ -152,7 +160,7 @@ fn the_webgpu_page_draws_what_render_draws() {
         least = least.min(share);
     }
     crate::common::report(&format!(
-        "Chrome's WebGPU page: {} pictures (5 examples and a parametric scene, defaults and other values), each >= {:.2}% within 2 levels of sdfc render",
+        "Chrome's WebGPU page: {} pictures (6 examples, one with 2 baked maps read from their files, and a parametric scene, defaults and other values), each >= {:.2}% within 2 levels of sdfc render",
         jobs.len(),
         least * 100.0
     ));

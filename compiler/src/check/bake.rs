@@ -129,10 +129,15 @@ impl Checker<'_> {
         let field = |p: DVec3| crate::reference::eval::raw(&nodes, child, p);
         // A shape with a bound is evaluated only near its surface.
         let lambda = self.nodes[child].lambda;
-        let (volume, _) = bake::cache::get_or_bake(key, || match lambda.is_finite() {
+        let make = || match lambda.is_finite() {
             true => Volume::bake_lipschitz(&field, lambda, lo, hi, res),
             false => Volume::bake(&field, lo, hi, res),
-        });
+        };
+        let (volume, _) = bake::cache::get_or_bake(key, make);
+        // (A stored volume on another grid is not this one, whatever its key.)
+        if volume.grid != grid {
+            return Some(Arc::new(make()));
+        }
         Some(volume)
     }
 
@@ -197,6 +202,7 @@ impl Checker<'_> {
         let mut h = std::hash::DefaultHasher::new();
         self.content_hash(id, &mut memo).hash(&mut h);
         format!("{grid:?}").hash(&mut h);
+        bake::VERSION.hash(&mut h);
         h.finish()
     }
 

@@ -14,6 +14,7 @@ const types = {
   ".js": "text/javascript",
   ".json": "application/json",
   ".glb": "model/gltf-binary",
+  ".r32f": "application/octet-stream",
 };
 
 /**

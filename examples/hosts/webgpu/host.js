@@ -4,7 +4,8 @@
 // parameter from the manifest (its range, its default). `time` runs with the clock.
 //
 // Files it loads, written by:  sdfc emit SCENE.sdf --entry library -o scene.wgsl --manifest scene.json
-// (the page's `?scene=NAME` loads NAME.wgsl and NAME.json instead).
+// (the page's `?scene=NAME` loads NAME.wgsl and NAME.json instead), and the distance maps of a
+// scene that bakes parts (`bake`), written beside them and named by the manifest's `volumes`.
 
 // The host's own shader: a full-screen triangle, and the pixel's ray given to the library's
 // `color` (its name from the manifest, so a `--prefix`ed library works too).
@@ -74,6 +75,35 @@ function paramsBytes(manifest, values) {
   return data;
 }
 
+/**
+ * The scene's baked distance maps (the manifest's `volumes`, docs/bake.md), each an r32float 3D
+ * texture filled from its raw file beside the manifest: the bind group entries for them.
+ */
+async function volumeEntries(device, manifest, manifestUrl) {
+  return Promise.all(
+    (manifest.volumes ?? []).map(async (v) => {
+      if (v.format !== "r32float") throw new Error(`volume ${v.global}: unknown format ${v.format}`);
+      const url = new URL(v.file, manifestUrl);
+      const r = await fetch(url);
+      if (!r.ok) throw new Error(`${v.file}: ${r.status}`);
+      const bytes = await r.arrayBuffer();
+      const [w, h, d] = v.size;
+      if (bytes.byteLength !== 4 * w * h * d) {
+        throw new Error(`${v.file}: ${bytes.byteLength} bytes, but ${w}×${h}×${d} r32float texels take ${4 * w * h * d}`);
+      }
+      const texture = device.createTexture({
+        size: [w, h, d],
+        dimension: "3d",
+        format: "r32float",
+        usage: GPUTextureUsage.TEXTURE_BINDING | GPUTextureUsage.COPY_DST,
+      });
+      // x fastest, then y, then z: the file's layout is the texture's.
+      device.queue.writeTexture({ texture }, bytes, { bytesPerRow: 4 * w, rowsPerImage: h }, [w, h, d]);
+      return { binding: v.binding.binding, resource: texture.createView({ dimension: "3d" }) };
+    }),
+  );
+}
+
 /** Everything the page draws with: the device, pipeline and buffers for one scene. */
 export async function createHost(base, format) {
   if (!navigator.gpu) throw new Error("this browser has no WebGPU");
@@ -102,19 +132,20 @@ export async function createHost(base, format) {
     layout: pipeline.getBindGroupLayout(1),
     entries: [{ binding: 0, resource: { buffer: cameraBuffer } }],
   });
-  // The scene's parameters, where the manifest gives their binding (docs/interface.md).
+  // The scene's parameters, where the manifest gives their binding (docs/interface.md), and
+  // its baked maps: the library's group 0.
+  const entries = await volumeEntries(device, manifest, new URL(`${base}.json`, location.href));
   let paramsBuffer = null;
-  let paramsGroup = null;
   if (manifest.params.binding) {
     paramsBuffer = device.createBuffer({
       size: Math.max(manifest.params.size, 16),
       usage: GPUBufferUsage.UNIFORM | GPUBufferUsage.COPY_DST,
     });
-    paramsGroup = device.createBindGroup({
-      layout: pipeline.getBindGroupLayout(0),
-      entries: [{ binding: manifest.params.binding.binding, resource: { buffer: paramsBuffer } }],
-    });
+    entries.push({ binding: manifest.params.binding.binding, resource: { buffer: paramsBuffer } });
   }
+  const paramsGroup = entries.length
+    ? device.createBindGroup({ layout: pipeline.getBindGroupLayout(0), entries })
+    : null;
   /** Draws into `view` (a texture view of `width`×`height`) from `eye` with `values`. */
   function draw(view, width, height, eye, values) {
     const c = manifest.camera;

@@ -58,6 +58,7 @@ pub fn measure(gpu: &Gpu, job: &Job) -> Result<Cell, Error> {
     let times = time(&all, job.repeat)?;
     let rays = tracing.rays()?;
     let (mse, mismatch) = errors(&rays, job.truth, trace.max_distance);
+    let hit_depth_error = hit_depth_error(&rays, job.truth);
     let n = job.truth.len().max(1) as f64;
     // What shading evaluated, counted by the full frame's module itself.
     let shaded = full.frame(0.0)?.shading;
@@ -80,6 +81,7 @@ pub fn measure(gpu: &Gpu, job: &Job) -> Result<Cell, Error> {
         shading_evals_mean,
         mse,
         mismatch,
+        hit_depth_error,
         error_x_time: mse * seconds,
         reference,
     })
@@ -137,6 +139,23 @@ fn time(all: &[&Prepared], repeat: u32) -> Result<Vec<Vec<f64>>, Error> {
         }
     }
     Ok(times)
+}
+
+/// |t − truth| over the pixels both the ray and the truth hit: median, 99th percentile and
+/// largest (zeros when none do).
+fn hit_depth_error(rays: &[Ray], truth: &[Option<f64>]) -> [f64; 3] {
+    let mut e: Vec<f64> = rays
+        .iter()
+        .zip(truth)
+        .filter(|(r, _)| r.hit)
+        .filter_map(|(r, gt)| gt.map(|t| (f64::from(r.t) - t).abs()))
+        .collect();
+    if e.is_empty() {
+        return [0.0; 3];
+    }
+    e.sort_by(f64::total_cmp);
+    let at = |q: f64| e[((e.len() - 1) as f64 * q).round() as usize];
+    [at(0.5), at(0.99), e[e.len() - 1]]
 }
 
 /// The mean squared depth error over the pixels the truth hits, and the share of pixels

@@ -59,6 +59,9 @@ pub struct Cell {
     pub mse: f64,
     /// Share of pixels whose hit/miss differs from the ground truth.
     pub mismatch: f64,
+    /// |t − truth| where both the ray and the truth hit: median, 99th percentile, largest
+    /// (scene units): the error of the surface found, without the pixels whose hit differs.
+    pub hit_depth_error: [f64; 3],
     /// `mse × seconds` (Bálint's error × time).
     pub error_x_time: f64,
     /// A hand-written reference traced alternately with the trace-only module.

@@ -279,6 +279,11 @@ pub struct BenchArgs {
     /// (docs/bake.md).
     #[arg(long, value_name = "FILE")]
     pub truth: Option<PathBuf>,
+    /// Measure the scene once per resolution, every `bake` at N (comma-separated, e.g.
+    /// `32,64,128,256`), and the `--truth` scene itself, all against its one f64 truth:
+    /// Liktor's Table 1 with the error beside the time, plus bake time and memory per part.
+    #[arg(long, value_name = "N,N,…", requires = "truth", conflicts_with_all = ["bake_res", "csv", "plot", "target_error", "reference"])]
+    pub bake_sweep: Option<String>,
     /// Test every union's bounding boxes in `map` (as `render --bvh`).
     #[arg(long, conflicts_with = "no_bvh")]
     pub bvh: bool,

@@ -12,7 +12,7 @@ const MAX_BYTES: u64 = 256 << 20;
 
 /// The folder the cache lives in: `$SDFC_CACHE_DIR`, else `$XDG_CACHE_HOME/sdfc`, else
 /// `$HOME/.cache/sdfc`; `None` when `SDFC_CACHE_DIR` is `off` or empty, or no folder is known.
-fn folder() -> Option<PathBuf> {
+pub fn folder() -> Option<PathBuf> {
     if let Some(dir) = std::env::var_os(CACHE_ENV) {
         return (!dir.is_empty() && dir != "off").then(|| PathBuf::from(dir));
     }

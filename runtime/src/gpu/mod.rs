@@ -6,7 +6,7 @@ use sdfc_compiler::layout::GROUP;
 use std::borrow::Cow;
 use std::sync::{Arc, Mutex};
 
-mod cache;
+pub mod cache;
 mod dispatch;
 mod error;
 mod lists;

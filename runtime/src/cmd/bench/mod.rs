@@ -16,6 +16,8 @@ use sdfc_compiler::scene::{Scene, Trace};
 use sdfc_compiler::view::View;
 use serde::Serialize;
 
+mod sweep;
+
 /// Everything a run measured.
 #[derive(Serialize)]
 struct Report {
@@ -33,38 +35,13 @@ struct Report {
     /// (`--truth`).
     truth_scene: Option<String>,
     /// The scene's baked parts, one row each.
-    volumes: Vec<Baked>,
+    volumes: Vec<sweep::Baked>,
     cells: Vec<Cell>,
+    /// `--bake-sweep`: the scene at each resolution, then the `--truth` scene ("analytic").
+    sweep: Vec<sweep::Swept>,
     target_error: Option<f64>,
     max_mismatch: f64,
     fastest: Option<Cell>,
-}
-
-/// A baked part: its map's size, memory, λ and how long it took to bake.
-#[derive(Serialize)]
-struct Baked {
-    /// Points along x, y and z.
-    points: [usize; 3],
-    /// Its spacing in scene units.
-    spacing: f64,
-    /// Bytes on the GPU (one f32 per point).
-    bytes: u64,
-    /// The map's proven Lipschitz constant.
-    lambda: f64,
-    /// Seconds its bake took in this process (sampling, distance transform, λ), on the CPU.
-    bake_seconds: Option<f64>,
-}
-
-impl Baked {
-    fn of(v: &std::sync::Arc<sdfc_compiler::bake::Volume>) -> Baked {
-        Baked {
-            points: v.grid.n,
-            spacing: v.grid.h,
-            bytes: v.bytes(),
-            lambda: v.lambda,
-            bake_seconds: sdfc_compiler::bake::cache::bake_seconds(v),
-        }
-    }
 }
 
 /// How frames were timed on `gpu`.
@@ -115,24 +92,37 @@ fn bench(args: &BenchArgs) -> Result<(), Error> {
             Some(other)
         }
     };
+    let sweep = match args.bake_sweep.as_deref() {
+        Some(list) => sweep::resolutions(list)?,
+        None => Vec::new(),
+    };
     let mut options = sdfc_compiler::lower::tracer::Options::from_scene(&scene);
     options.bounding_volumes = bvh(args);
     options.fixed_offset = args.fixed_offset;
     driver_module(&scene, &sources, &mut options, args.allow_slow_compile)?;
     let cells = plan(args, &scene)?;
     let gpu = Gpu::new(args.backend.into())?;
-    // A scene with parameters is measured at their defaults, as its ground truth is.
-    gpu.set_params(&sdfc_compiler::lower::params::bytes(&scene.params));
-    gpu.set_volumes(&scene.volumes());
     let view = View::new(&scene.camera, w, h);
     let reference = reference.as_ref().map(|(t, p)| (t.as_str(), p.as_str()));
-    let (truth, measured) = measure(
-        (args, options.bounding_volumes),
-        &gpu,
-        (&scene, truth_scene.as_ref().unwrap_or(&scene), &view),
-        &cells,
-        reference,
-    )?;
+    let truth_of = truth_scene.as_ref().unwrap_or(&scene);
+    let (truth, depth) = ground_truth(truth_of, &view);
+    let bvh_now = options.bounding_volumes;
+    let mut measured = Vec::new();
+    let mut swept = Vec::new();
+    if sweep.is_empty() {
+        // A scene with parameters is measured at their defaults, as its ground truth is.
+        gpu.set_scene(&scene);
+        measured = measure(
+            (args, bvh_now),
+            &gpu,
+            (&scene, &view, &depth),
+            &cells,
+            reference,
+        )?;
+    } else {
+        let forms = (&sweep[..], truth_of);
+        swept = sweep::measure_all((args, bvh_now), &gpu, forms, (&view, &depth), reference)?;
+    }
     let fastest = args.target_error.and_then(|e| {
         measured
             .iter()
@@ -151,8 +141,9 @@ fn bench(args: &BenchArgs) -> Result<(), Error> {
         repeat: args.repeat,
         truth,
         truth_scene: args.truth.as_ref().map(|p| p.display().to_string()),
-        volumes: scene.volumes().iter().map(Baked::of).collect(),
+        volumes: scene.volumes().iter().map(sweep::Baked::of).collect(),
         cells: measured,
+        sweep: swept,
         target_error: args.target_error,
         max_mismatch: args.max_mismatch,
         fastest,
@@ -245,21 +236,14 @@ fn plan<'a>(args: &'a BenchArgs, scene: &Scene) -> Result<Vec<Planned<'a>>, Erro
     Ok(cells)
 }
 
-/// The ground truth on the CPU, then every cell on the GPU, with a progress bar.
-fn measure(
-    (args, bvh): (&BenchArgs, sdfc_compiler::lower::tracer::BoundingVolumes),
-    gpu: &Gpu,
-    (scene, truth_scene, view): (&Scene, &Scene, &View),
-    cells: &[Planned],
-    reference: Option<(&str, &str)>,
-) -> Result<(Truth, Vec<Cell>), Error> {
-    let bar = progress_bar("measuring");
-    if let Some(b) = &bar {
-        b.set_length(cells.len() as u64 + 1);
-        b.set_message("ground truth (CPU)");
-    }
+/// The ground truth of `scene` seen through `view`, on the CPU: its summary and its depths.
+fn ground_truth(scene: &Scene, view: &View) -> (Truth, Vec<Option<f64>>) {
+    let bar = progress_bar("ground truth (CPU)");
     let clock = std::time::Instant::now();
-    let depth = truth::depth_map(truth_scene, view);
+    let depth = truth::depth_map(scene, view);
+    if let Some(b) = bar {
+        b.finish_and_clear();
+    }
     let truth = Truth {
         steps: truth::STEPS,
         epsilon: truth::EPSILON,
@@ -268,6 +252,21 @@ fn measure(
         escaped: depth.iter().filter(|d| d.is_none()).count(),
         seconds: clock.elapsed().as_secs_f64(),
     };
+    (truth, depth)
+}
+
+/// Every cell on the GPU against the truth's `depth`, with a progress bar.
+fn measure(
+    (args, bvh): (&BenchArgs, sdfc_compiler::lower::tracer::BoundingVolumes),
+    gpu: &Gpu,
+    (scene, view, depth): (&Scene, &View, &[Option<f64>]),
+    cells: &[Planned],
+    reference: Option<(&str, &str)>,
+) -> Result<Vec<Cell>, Error> {
+    let bar = progress_bar("measuring");
+    if let Some(b) = &bar {
+        b.set_length(cells.len() as u64);
+    }
     let mut measured = Vec::new();
     for (i, (t, trace, passes)) in cells.iter().enumerate() {
         if let Some(b) = &bar {
@@ -279,7 +278,7 @@ fn measure(
             trace: (t, *trace),
             passes: *passes,
             view,
-            truth: &depth,
+            truth: depth,
             repeat: args.repeat,
             reference,
             bvh,
@@ -290,7 +289,7 @@ fn measure(
     if let Some(b) = bar {
         b.finish_and_clear();
     }
-    Ok((truth, measured))
+    Ok(measured)
 }
 
 /// Draws the plot (if asked for) and prints the report as asked: JSON, CSV or the table.
@@ -370,6 +369,9 @@ fn table(r: &Report) -> String {
     );
     if let Some(t) = &r.truth_scene {
         out += &format!("truth: the f64 field of {t}\n");
+    }
+    if !r.sweep.is_empty() {
+        return out + &sweep::table(&r.sweep);
     }
     for (i, v) in r.volumes.iter().enumerate() {
         let [x, y, z] = v.points;
