@@ -60,8 +60,11 @@ w("| --- | ---: | " + " | ".join("---:" for _ in budgets) + " |")
 for s in sweep:
     h = s["volumes"][0]["spacing"] if s["volumes"] else None
     unit = h or 1.0
+    # (All zeros: no pixel where both hit.)
     cells = " | ".join(
-        f"{c['hit_depth_error'][0] / unit:.3g} / {c['hit_depth_error'][1] / unit:.3g}" for c in s["cells"]
+        f"{c['hit_depth_error'][0] / unit:.3g} / {c['hit_depth_error'][1] / unit:.3g}"
+        if any(c["hit_depth_error"]) else "—"
+        for c in s["cells"]
     )
     w(f"| {form(s)} | {f'{h:.4f}' if h else '—'} | {cells} |")
 w("")

@@ -2,6 +2,7 @@
 //! `files`) and the tracers' benchmark (`bench`). The command line (`main.rs`: `cli`, `cmd`,
 //! `view`) is built on it.
 
+pub mod bake_gpu;
 pub mod bake_store;
 pub mod bench;
 pub mod files;

@@ -43,6 +43,8 @@ fn main() {
     if let Some(store) = sdfc::bake_store::DiskStore::open() {
         sdfc_compiler::bake::cache::set_store(Some(Box::new(store)));
     }
+    // Large bakes are sampled on the GPU.
+    sdfc_compiler::check::sampler::set_sampler(Some(Box::new(sdfc::bake_gpu::GpuSampler::new())));
     let code = std::thread::Builder::new()
         .stack_size(256 << 20)
         .spawn(cmd::run)

@@ -217,3 +217,59 @@ fn emit_writes_the_volume_at_bake_res_and_refuses_an_unwritable_one() {
     std::fs::create_dir_all(dir.join("other.volume0.r32f")).unwrap();
     crate::common::refused(&["emit", &scene, "-o", o2], "other.volume0.r32f", &other);
 }
+
+/// The GPU sampler (the part's `Entry::Field` module on lavapipe, a slab of points per
+/// dispatch) gives the CPU's samples to f32's precision, and the volume baked from them is
+/// the CPU's within a thousandth of a cell: a blob of 40 balls on a grid of 48 points.
+#[test]
+fn the_gpu_sampler_bakes_the_cpus_volume() {
+    use sdfc::bake_gpu::GpuSampler;
+    use sdfc_compiler::bake::{Grid, Volume};
+    use sdfc_compiler::check::sampler::Sampler;
+    let mut balls = String::new();
+    let mut r = sdfc_tests_rng(7);
+    for _ in 0..40 {
+        let (x, y, z) = (r() * 2.0 - 1.0, r() * 0.6 - 0.3, r() * 2.0 - 1.0);
+        balls += &format!(
+            "sphere({:.3}) at ({x:.3}, {y:.3}, {z:.3})\n",
+            0.08 + 0.1 * r()
+        );
+    }
+    let scene = compile(&format!("blob(radius = 0.3) {{\n{balls}}}"));
+    let b = scene.root_node().bound;
+    let grid = Grid::around(b.lo, b.hi, 48);
+    let gpu = GpuSampler::new()
+        .sample(&scene, &grid)
+        .expect("lavapipe samples");
+    let cpu = grid.sample(&|p| sdfc_compiler::reference::eval::distance(&scene, p));
+    let scale = cpu.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let worst = gpu
+        .iter()
+        .zip(&cpu)
+        .map(|(g, c)| (g - c).abs())
+        .fold(0.0, f64::max);
+    println!("GPU samples within {worst:.2e} of the CPU's (largest |value| {scale:.2e})");
+    assert!(worst <= 1e-5 * scale.max(1.0), "{worst}");
+    let field = |p: glam::DVec3| sdfc_compiler::reference::eval::distance(&scene, p);
+    let a = Volume::from_samples(grid, &gpu, &field);
+    let c = Volume::from_samples(grid, &cpu, &field);
+    let off = a
+        .values
+        .iter()
+        .zip(&c.values)
+        .map(|(x, y)| f64::from((x - y).abs()))
+        .fold(0.0, f64::max);
+    println!("volumes within {:.2e} cells", off / grid.h);
+    assert!(off <= 1e-3 * grid.h, "{} cells", off / grid.h);
+}
+
+/// A small deterministic generator of numbers in [0, 1).
+fn sdfc_tests_rng(seed: u64) -> impl FnMut() -> f64 {
+    let mut s = seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1;
+    move || {
+        s ^= s << 13;
+        s ^= s >> 7;
+        s ^= s << 17;
+        (s >> 11) as f64 / (1u64 << 53) as f64
+    }
+}

@@ -127,8 +127,14 @@ impl Volume {
         Volume::from_samples(grid, &samples, field)
     }
 
-    /// The volume of `samples` on `grid`: distances propagated from the surface's crossings.
-    fn from_samples(grid: Grid, samples: &[f64], field: &(dyn Fn(DVec3) -> f64 + Sync)) -> Volume {
+    /// The volume of `samples` (the field at `grid`'s points, in index order: any positive
+    /// multiple of it) on `grid`: distances propagated from the surface's crossings, the feet
+    /// found with `field` itself.
+    pub fn from_samples(
+        grid: Grid,
+        samples: &[f64],
+        field: &(dyn Fn(DVec3) -> f64 + Sync),
+    ) -> Volume {
         let values: Vec<f32> = edt::signed_distances(&grid, samples, field)
             .into_iter()
             .map(|d| d as f32)

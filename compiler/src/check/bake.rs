@@ -26,26 +26,7 @@ impl Checker<'_> {
             );
             return None;
         }
-        let res = match self.overrides.get(super::BAKE_RES).and_then(|v| v.first()) {
-            Some(&n)
-                if n.fract() == 0.0 && (bake::MIN_RES..=bake::MAX_RES).contains(&(n as usize)) =>
-            {
-                n as usize
-            }
-            Some(&n) => {
-                self.diags.push(
-                    Diagnostic::error(span, format!("cannot bake at the resolution {n} asked for"))
-                        .label("this `bake`'s `res` was set from outside (`--bake-res`)")
-                        .note(format!(
-                            "`res` is a whole number from {} to {}",
-                            bake::MIN_RES,
-                            bake::MAX_RES
-                        )),
-                );
-                return None;
-            }
-            None => ctx.num(0) as usize,
-        };
+        let res = self.bake_res(ctx, span)?;
         let size = ctx.vec(1);
         let (lo, hi) = if size != DVec3::ZERO {
             (-size, size)
@@ -104,34 +85,25 @@ impl Checker<'_> {
             return None;
         }
         let key = self.bake_key(child, &grid);
-        if !self.bakes.contains(&key) {
-            if self.bakes.len() == crate::layout::MAX_VOLUMES {
-                self.diags.push(
-                    Diagnostic::error(span, "too many baked maps")
-                        .label(format!(
-                            "the {}th distinct map of this scene",
-                            crate::layout::MAX_VOLUMES + 1
-                        ))
-                        .note(format!(
-                            "a shader binds at most {} volumes (bindings {}…{} of group {})",
-                            crate::layout::MAX_VOLUMES,
-                            crate::layout::VOLUME_BINDING,
-                            crate::layout::VOLUME_BINDING as usize + crate::layout::MAX_VOLUMES - 1,
-                            crate::layout::GROUP
-                        ))
-                        .help("bake a union of several parts as one shape"),
-                );
-                return None;
-            }
-            self.bakes.push(key);
-        }
+        self.count_map(key, span)?;
         let nodes = self.nodes_for_baking(&subtree);
         let field = |p: DVec3| crate::reference::eval::raw(&nodes, child, p);
         // A shape with a bound is evaluated only near its surface.
         let lambda = self.nodes[child].lambda;
-        let make = || match lambda.is_finite() {
-            true => Volume::bake_lipschitz(&field, lambda, lo, hi, res),
-            false => Volume::bake(&field, lo, hi, res),
+        // On the host's sampler (the GPU) when the work is worth it, else on the CPU.
+        let part = super::settings::Settings::default().finish(
+            nodes.clone(),
+            child,
+            self.materials.clone(),
+        );
+        let make = || {
+            if let Some(samples) = super::sampler::sample(&part, &grid, work) {
+                return Volume::from_samples(grid, &samples, &field);
+            }
+            match lambda.is_finite() {
+                true => Volume::bake_lipschitz(&field, lambda, lo, hi, res),
+                false => Volume::bake(&field, lo, hi, res),
+            }
         };
         let (volume, _) = bake::cache::get_or_bake(key, make);
         // (A stored volume on another grid is not this one, whatever its key.)
@@ -139,6 +111,58 @@ impl Checker<'_> {
             return Some(Arc::new(make()));
         }
         Some(volume)
+    }
+
+    /// The `res` to bake at: `--bake-res` when given (and valid), else the operator's.
+    fn bake_res(&mut self, ctx: &Ctx, span: Span) -> Option<usize> {
+        match self.overrides.get(super::BAKE_RES).and_then(|v| v.first()) {
+            Some(&n)
+                if n.fract() == 0.0 && (bake::MIN_RES..=bake::MAX_RES).contains(&(n as usize)) =>
+            {
+                Some(n as usize)
+            }
+            Some(&n) => {
+                self.diags.push(
+                    Diagnostic::error(span, format!("cannot bake at the resolution {n} asked for"))
+                        .label("this `bake`'s `res` was set from outside (`--bake-res`)")
+                        .note(format!(
+                            "`res` is a whole number from {} to {}",
+                            bake::MIN_RES,
+                            bake::MAX_RES
+                        )),
+                );
+                None
+            }
+            None => Some(ctx.num(0) as usize),
+        }
+    }
+
+    /// Counts the map `key` among the scene's distinct ones; `None` with an error past
+    /// `layout::MAX_VOLUMES`.
+    fn count_map(&mut self, key: u64, span: Span) -> Option<()> {
+        if self.bakes.contains(&key) {
+            return Some(());
+        }
+        if self.bakes.len() == crate::layout::MAX_VOLUMES {
+            self.diags.push(
+                Diagnostic::error(span, "too many baked maps")
+                    .label(format!(
+                        "the {}th distinct map of this scene",
+                        crate::layout::MAX_VOLUMES + 1
+                    ))
+                    .note(format!(
+                        "a shader binds at most {} volumes (bindings {}…{} of group {})",
+                        crate::layout::MAX_VOLUMES,
+                        crate::layout::VOLUME_BINDING,
+                        crate::layout::VOLUME_BINDING as usize + crate::layout::MAX_VOLUMES - 1,
+                        crate::layout::GROUP
+                    ))
+                    .help("bake a union of several parts as one shape"),
+            );
+            return None;
+        }
+        self.bakes.push(key);
+        Some(())
     }
 
     /// Every node below `id` (itself included), each once.

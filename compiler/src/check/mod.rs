@@ -23,6 +23,7 @@ mod param_decl;
 mod params;
 mod planar;
 mod ranges;
+pub mod sampler;
 mod settings;
 pub mod tracer;
 mod whole;
