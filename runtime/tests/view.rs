@@ -433,3 +433,35 @@ fn quit_after_counts_pictures_without_screenshots() {
     child.kill().unwrap();
     let _ = child.wait();
 }
+
+/// A scene with a baked part: the window's first picture is `sdfc render`'s (the map uploaded
+/// to the viewer's device as to the renderer's).
+#[test]
+fn the_window_shows_a_baked_part() {
+    if !xvfb() {
+        return;
+    }
+    let dir = scratch("view-baked");
+    let scene = "camera { eye (0, 1.5, -5)  target (0, 1, 0) }\n\
+                 bake(res = 32) { union { sphere(0.8)  box((0.5, 0.5, 0.5)) at (0.7, -0.4, 0) } } at (0, 1, 0)\n\
+                 plane(y, 0)\n";
+    let Viewer {
+        mut child,
+        shots,
+        log,
+        ..
+    } = start_view(&dir, scene, &["--quit-after", "1"]);
+    wait_for(&shots.join("000.png"), &mut child, &log);
+    let status = child.wait().unwrap();
+    assert!(
+        status.success(),
+        "{}",
+        std::fs::read_to_string(&log).unwrap()
+    );
+    let share = agreement(&shots.join("000.png"), &rendered(&dir, scene, "baked"));
+    println!(
+        "baked: {:.2}% of pixels within 2 levels of sdfc render",
+        share * 100.0
+    );
+    assert!(share >= 0.995, "only {:.2}%", share * 100.0);
+}
