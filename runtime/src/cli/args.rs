@@ -346,6 +346,11 @@ pub struct MeshArgs {
     /// The cells' edge length in scene units (instead of `--resolution`).
     #[arg(long, value_name = "SIZE")]
     pub cell: Option<f64>,
+    /// About this many triangles (instead of `--resolution` or `--cell`): the resolution is
+    /// chosen from a coarse mesh's count (triangles grow with its square), then corrected once;
+    /// the success line says what it chose and how near the count came.
+    #[arg(long, value_name = "N", conflicts_with_all = ["resolution", "cell"])]
+    pub triangles: Option<u64>,
     /// The box to mesh, `X0,Y0,Z0,X1,Y1,Z1`: the surface is cut there and capped, so the
     /// mesh stays closed. Default: the scene's own finite box, grown by 1%.
     #[arg(long, value_name = "X0,Y0,Z0,X1,Y1,Z1", allow_hyphen_values = true)]

@@ -46,7 +46,7 @@ fn mesh_scene(args: &MeshArgs) -> Result<(), Error> {
     if !(args.max_memory.is_finite() && args.max_memory > 0.0) {
         return Err("error: `--max-memory`: give a size above 0 (GiB)".into());
     }
-    let options = mesh::Options {
+    let mut options = mesh::Options {
         resolution,
         bounds,
         sharp: args.method == MeshMethodArg::Sharp,
@@ -63,7 +63,10 @@ fn mesh_scene(args: &MeshArgs) -> Result<(), Error> {
             b.set_message(what.to_string());
         }
     };
-    let mesh = mesh::mesh(&scene, &options, &stage).map_err(|e| format!("error: {e}"))?;
+    let mesh = match args.triangles {
+        Some(n) => toward_count(&scene, &mut options, n, &stage)?,
+        None => mesh::mesh(&scene, &options, &stage).map_err(|e| format!("error: {e}"))?,
+    };
     if mesh.triangles.is_empty() {
         return Err("error: no surface crosses the box: nothing to mesh (see `--bounds`)".into());
     }
@@ -100,6 +103,54 @@ fn mesh_scene(args: &MeshArgs) -> Result<(), Error> {
         );
     }
     Ok(())
+}
+
+/// Coarsest and finest resolutions `--triangles` chooses from.
+const COUNT_RESOLUTIONS: (u32, u32) = (4, 4096);
+
+/// Resolution of the probe mesh `--triangles` counts first.
+const PROBE: u32 = 24;
+
+/// The mesh nearest `target` triangles: a probe at [`PROBE`] cells, then the resolution whose
+/// count the probe's predicts (triangles grow with its square), corrected once more when the
+/// count is more than 10 % off. `options.resolution` is left at the one used.
+fn toward_count(
+    scene: &Scene,
+    options: &mut mesh::Options,
+    target: u64,
+    stage: &dyn Fn(&str),
+) -> Result<Mesh, Error> {
+    if target < 4 {
+        return Err(format!("error: `--triangles {target}`: a closed mesh has at least 4").into());
+    }
+    let (least, most) = COUNT_RESOLUTIONS;
+    let run = |resolution: u32| {
+        let o = mesh::Options {
+            resolution,
+            ..*options
+        };
+        mesh::mesh(scene, &o, stage).map_err(|e| Error::from(format!("error: {e}")))
+    };
+    let next = |r: u32, got: usize| -> u32 {
+        let k = (target as f64 / got.max(1) as f64).sqrt();
+        ((f64::from(r) * k).round() as u32).clamp(least, most)
+    };
+    let probe = run(PROBE)?;
+    if probe.triangles.is_empty() {
+        return Ok(probe);
+    }
+    let mut r = next(PROBE, probe.triangles.len());
+    let mut mesh = if r == PROBE { probe } else { run(r)? };
+    let off = |m: &Mesh| (m.triangles.len() as f64 / target as f64 - 1.0).abs();
+    let again = next(r, mesh.triangles.len());
+    if off(&mesh) > 0.1 && again != r {
+        let other = run(again)?;
+        if off(&other) < off(&mesh) {
+            (mesh, r) = (other, again);
+        }
+    }
+    options.resolution = r;
+    Ok(mesh)
 }
 
 /// The format `--format` or the output's extension names.
@@ -234,8 +285,15 @@ fn success(
         false => "near the surface",
         true => "evaluated, no pruning",
     };
+    let asked = match args.triangles {
+        Some(n) => format!(
+            " ({n} asked for: resolution {} chosen)",
+            g.iter().max().copied().unwrap_or(0)
+        ),
+        None => String::new(),
+    };
     format!(
-        "wrote {place} — {} triangles, {} vertices, {shape}; cells of {h:.3e} ({}×{}×{}, {} \
+        "wrote {place} — {} triangles{asked}, {} vertices, {shape}; cells of {h:.3e} ({}×{}×{}, {} \
          {cells}), {:.1} s; distance to the surface: vertices ≤ {:.1e}, faces ≤ {:.1e} \
          (rms {:.1e}, {} sampled) = {:.3} of a cell",
         mesh.triangles.len(),
