@@ -218,6 +218,26 @@ fn a_shape_without_a_bound_is_refused_and_bakes_with_the_right_sides() {
         "{checked} points judged, {wrong} on the wrong side; cell {:.4}",
         v.grid.h
     );
+    // Every grid point of a finer map has the ramp's own sign (the samples' sign is the
+    // stored one): no point is filled from a bound the ramp does not have.
+    let fine = sdfc_compiler::check::compile(&format!("bake(res = 96) {{ {shape} }}"))
+        .scene
+        .expect("baked");
+    let f = &fine.volumes()[0];
+    let [nx, ny, nz] = f.grid.n;
+    let mut flipped = 0;
+    for k in 0..nz {
+        for j in 0..ny {
+            for i in 0..nx {
+                let e = exact(f.grid.point(i, j, k));
+                let stored = f.values[f.grid.index(i, j, k)];
+                if e.abs() > 1e-9 && (e < 0.0) != (stored < 0.0) {
+                    flipped += 1;
+                }
+            }
+        }
+    }
+    assert_eq!(flipped, 0, "grid points on the wrong side at 96 points");
     assert!(checked > 5_000);
     assert_eq!(wrong, 0);
 }
@@ -230,6 +250,21 @@ fn a_volume_file_reads_back_whole_or_not_at_all() {
     let v = &volumes_of("bake(res = 16) { sphere(0.5) }")[0];
     let bytes = file::with_header(v);
     assert_eq!(file::from_header(&bytes).as_ref(), Some(v.as_ref()));
+    // Off-centre boxes too: the grid read back is the one baked to the last bit (its last
+    // point is not recomputed from the first), or the cache would never match it.
+    for k in 1..8 {
+        let source = format!(
+            "bake(res = 12) {{ sphere(0.5) at ({}, {}, 0) }}",
+            0.37 * f64::from(k),
+            -1.9 / f64::from(k)
+        );
+        let v = &volumes_of(&source)[0];
+        assert_eq!(
+            file::from_header(&file::with_header(v)).as_ref(),
+            Some(v.as_ref()),
+            "{source}"
+        );
+    }
     assert_eq!(file::raw(v).len(), 4 * v.values.len());
     assert!(file::from_header(&bytes[..bytes.len() - 1]).is_none());
     assert!(file::from_header(b"SDFCVOL0 and more bytes than a header has, surely ....").is_none());

@@ -273,3 +273,43 @@ fn sdfc_tests_rng(seed: u64) -> impl FnMut() -> f64 {
         (s >> 11) as f64 / (1u64 << 53) as f64
     }
 }
+
+/// A map baked by one run is read back from the cache folder by the next (`bench` says which
+/// it did), and not with `SDFC_CACHE_DIR=off`.
+#[test]
+fn the_next_run_reads_the_map_from_the_cache_folder() {
+    let dir = crate::common::scratch("bake-store");
+    let scene = crate::common::write(
+        &dir,
+        "ball.sdf",
+        "bake(res = 20) { torus(0.8, 0.3) at (0.37, -0.61, 0.2) }\n",
+    );
+    let bench = |cache: &str| {
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_sdfc"))
+            .args([
+                "bench",
+                &scene,
+                "--tracers",
+                "basic",
+                "--steps",
+                "8",
+                "--repeat",
+                "1",
+            ])
+            .args(["--size", "16x9"])
+            .env("SDFC_CACHE_DIR", cache)
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        String::from_utf8_lossy(&out.stdout).to_string()
+    };
+    let store = dir.join("cache");
+    let store = store.to_str().unwrap();
+    assert!(bench(store).contains("baked in"));
+    assert!(bench(store).contains("read from the cache"));
+    assert!(bench("off").contains("baked in"));
+}

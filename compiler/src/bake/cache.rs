@@ -43,19 +43,27 @@ pub enum Origin {
     Store,
 }
 
-/// The volume under `key` from memory or the store, else `make()`'s, kept for next time.
-pub fn get_or_bake(key: u64, make: impl FnOnce() -> Volume) -> (Arc<Volume>, Origin) {
+/// The volume under `key` from memory or the store, else `make()`'s, kept for next time; one
+/// found that is not `fits` (another grid under the same key) is baked again and replaced.
+pub fn get_or_bake(
+    key: u64,
+    fits: impl Fn(&Volume) -> bool,
+    make: impl FnOnce() -> Volume,
+) -> (Arc<Volume>, Origin) {
     {
         let mut memory = MEMORY.lock().unwrap_or_else(|e| e.into_inner());
         if let Some(at) = memory.iter().position(|(k, _, _)| *k == key) {
             let entry = memory.remove(at);
-            let v = entry.1.clone();
-            memory.push(entry);
-            return (v, Origin::Memory);
+            if fits(&entry.1) {
+                let v = entry.1.clone();
+                memory.push(entry);
+                return (v, Origin::Memory);
+            }
         }
     }
     let store = STORE.read().unwrap_or_else(|e| e.into_inner());
-    let (volume, origin, seconds) = match store.as_ref().and_then(|s| s.load(key)) {
+    let stored = store.as_ref().and_then(|s| s.load(key)).filter(|v| fits(v));
+    let (volume, origin, seconds) = match stored {
         Some(v) => (Arc::new(v), Origin::Store, None),
         None => {
             let clock = std::time::Instant::now();

@@ -173,8 +173,9 @@ fn sweep(near: &mut Nearest, up: [bool; 3]) {
 /// The foot on the surface of the point `p` beside it: Newton steps q − f(q)·∇f/|∇f|², while
 /// they stay within two cells of `p`; `None` where they do not settle. The value and gradient
 /// come from four evaluations at a regular tetrahedron's corners a thousandth of a cell
-/// around q (their mean and their differences: both exact to second order, as central
-/// differences are, with four evaluations instead of seven).
+/// around q (their mean, and their differences: the gradient's error is first order in that
+/// offset, a thousandth of a cell, where central differences' is second; four evaluations
+/// instead of seven).
 fn foot(field: &(dyn Fn(DVec3) -> f64 + Sync), p: DVec3, h: f64) -> Option<DVec3> {
     const CORNERS: [DVec3; 4] = [
         DVec3::new(1.0, -1.0, -1.0),

@@ -15,7 +15,7 @@ pub const MAX_RES: usize = 512;
 
 /// The baking method's version, part of every cache key: a volume stored by an earlier method
 /// is not read back as this one's.
-pub const VERSION: u32 = 2;
+pub const VERSION: u32 = 3;
 
 /// Fewest grid points per axis: the margin's cells on both sides and two cells for the shape.
 pub const MIN_RES: usize = 2 * MARGIN_CELLS as usize + 3;

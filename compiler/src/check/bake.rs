@@ -88,8 +88,14 @@ impl Checker<'_> {
         self.count_map(key, span)?;
         let nodes = self.nodes_for_baking(&subtree);
         let field = |p: DVec3| crate::reference::eval::raw(&nodes, child, p);
-        // A shape with a bound is evaluated only near its surface.
-        let lambda = self.nodes[child].lambda;
+        // A shape whose every node has a bound is evaluated only near its surface (one node
+        // without, combined as if it had λ 1, leaves the whole with none: a union's λ of 1
+        // assumes its children's).
+        let bounded = subtree.iter().all(|&n| self.nodes[n].lambda.is_finite());
+        let lambda = match bounded {
+            true => self.nodes[child].lambda,
+            false => f64::INFINITY,
+        };
         // On the host's sampler (the GPU) when the work is worth it, else on the CPU.
         let part = super::settings::Settings::default().finish(
             nodes.clone(),
@@ -105,11 +111,8 @@ impl Checker<'_> {
                 false => Volume::bake(&field, lo, hi, res),
             }
         };
-        let (volume, _) = bake::cache::get_or_bake(key, make);
         // (A stored volume on another grid is not this one, whatever its key.)
-        if volume.grid != grid {
-            return Some(Arc::new(make()));
-        }
+        let (volume, _) = bake::cache::get_or_bake(key, |v| v.grid == grid, make);
         Some(volume)
     }
 
@@ -237,9 +240,14 @@ impl Checker<'_> {
         let node = &self.nodes[id];
         let mut h = std::hash::DefaultHasher::new();
         node.kind_name().hash(&mut h);
+        node.lambda.to_bits().hash(&mut h);
         match &node.kind {
             NodeKind::Primitive { ctx, .. } | NodeKind::Operator { ctx, .. } => {
                 format!("{:?}", ctx.args).hash(&mut h);
+                // (A blend divides by its children's λ: an annotation changes the surface.)
+                for l in &ctx.child_lambda {
+                    l.to_bits().hash(&mut h);
+                }
             }
             NodeKind::Implicit { field } => format!("{field:?}").hash(&mut h),
         }

@@ -253,9 +253,11 @@ fn write(
     let baked = volumes
         .iter()
         .map(|(p, b)| (Some(p.as_path()), b.as_slice(), true));
-    let mut writes: Vec<_> = std::iter::once(shader)
+    // The volumes first (the largest, the likeliest to meet a full disk), so that a failure
+    // there leaves an earlier shader and manifest as they were.
+    let mut writes: Vec<_> = baked
         .chain(described)
-        .chain(baked)
+        .chain(std::iter::once(shader))
         .collect();
     writes.sort_by_key(|(p, _, _)| !stdout(*p));
     let mut code = 0;
