@@ -3,7 +3,6 @@
 //! the surface's area rather than the volume.
 
 use super::field::{Field, Grid, corner};
-use crate::parallel::par_map;
 use glam::IVec3;
 
 /// The cells a surface may cross, and what finding them cost.
@@ -45,13 +44,19 @@ pub fn active<E>(
     let mut blocks = vec![IVec3::ZERO];
     let mut evaluations = 0;
     loop {
-        let keep = par_map(&blocks, |&b| {
-            let centre = grid.origin + (b.as_dvec3() + 0.5 * size as f64) * grid.h;
-            let reach = 0.5 * 3f64.sqrt() * size as f64 * grid.h;
-            // A margin for rounding: a block kept in doubt costs only time.
-            let d = field.at(centre).abs();
-            d.is_nan() || d <= reach * (1.0 + 1e-9)
-        });
+        let reach = 0.5 * 3f64.sqrt() * size as f64 * grid.h;
+        let centres: Vec<_> = blocks
+            .iter()
+            .map(|&b| grid.origin + (b.as_dvec3() + 0.5 * size as f64) * grid.h)
+            .collect();
+        // A margin for rounding (f32's where the batches are): a block kept in doubt costs
+        // only time.
+        let limit = reach * (1.0 + 1e-9) + 64.0 * field.resolution();
+        let keep: Vec<bool> = field
+            .many(&centres)
+            .into_iter()
+            .map(|d| d.is_nan() || d.abs() <= limit)
+            .collect();
         evaluations += blocks.len();
         blocks = blocks
             .into_iter()

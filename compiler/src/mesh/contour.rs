@@ -7,6 +7,7 @@
 use super::faces::{self, Crossing, Face, Segment};
 use super::field::{Field, Grid, corner, inside};
 use super::polygons;
+use super::search::{self, Search};
 use crate::parallel::par_map;
 use glam::{DVec3, IVec3};
 use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
@@ -111,15 +112,21 @@ fn crossings(
         .collect();
     edges.sort_unstable_by_key(|&(p, a)| edge_key(grid, p, a));
     edges.dedup();
-    let found = par_map(&edges, |&(p, a)| {
-        crossing(field, grid, grid.point(p), at(p), a, at(p + IVec3::AXES[a]))
+    let mut searches: Vec<Root> = edges
+        .iter()
+        .map(|&(p, a)| Root::new(field, grid, grid.point(p), at(p), a, at(p + IVec3::AXES[a])))
+        .collect();
+    evaluations += search::run(field, &mut searches);
+    let found = searches.iter().map(|s| match s.stage {
+        Stage::Done(p, normal) => (p, normal),
+        // (`run` ends every search.)
+        _ => unreachable!("a crossing's search ended unfinished"),
     });
     let mut positions = Vec::with_capacity(edges.len() * 2);
     let mut normals = Vec::with_capacity(edges.len());
     let mut crossings: HashMap<u64, Crossing> =
         HashMap::with_capacity_and_hasher(edges.len(), Default::default());
-    for (&(p, a), (position, normal, spent)) in edges.iter().zip(found) {
-        evaluations += spent;
+    for (&(p, a), (position, normal)) in edges.iter().zip(found) {
         let vertex = positions.len() as u32;
         positions.push(position);
         normals.push(normal);
@@ -157,7 +164,8 @@ fn closed(field: &Field, grid: &Grid, cells: &[IVec3]) -> Closed {
                 }
             }
         }
-        let values = par_map(&points, |&p| field.at(grid.point(p)));
+        let at: Vec<DVec3> = points.iter().map(|&p| grid.point(p)).collect();
+        let values = field.many(&at);
         evaluations += points.len();
         value.extend(points.iter().map(|&p| grid.key(p)).zip(values));
         let inside_at = |p: IVec3| inside(value[&grid.key(p)]);
@@ -227,49 +235,108 @@ fn path(s: &Segment, positions: &mut Vec<DVec3>) -> Vec<u32> {
     out
 }
 
-/// Where the surface crosses the grid edge from `a` (field `fa`) along `axis` to the point of
-/// field `fb`: Illinois regula falsi on the side change, kept [`END_GAP`] off the ends; the
-/// position, the unit normal there and the evaluations spent.
-fn crossing(
-    field: &Field,
-    grid: &Grid,
+/// The search for where the surface crosses the grid edge from `a` (field `fa`) along an axis
+/// to the point of field `fb`: Illinois regula falsi on the side change, kept [`END_GAP`] off
+/// the ends; then the unit normal there.
+struct Root {
+    /// The edge's start and its extent.
     a: DVec3,
-    fa: f64,
-    axis: usize,
-    fb: f64,
-) -> (DVec3, DVec3, usize) {
-    let along = DVec3::AXES[axis] * grid.h;
-    let (mut t0, mut f0, mut t1, mut f1) = (0.0, fa, 1.0, fb);
-    let mut t = 0.5;
-    let mut evaluations = 0;
-    let mut last_side = 0;
-    for _ in 0..ROOT_STEPS {
+    along: DVec3,
+    /// The bracket: parameters along the edge and the field there (Illinois-scaled).
+    t0: f64,
+    f0: f64,
+    t1: f64,
+    f1: f64,
+    /// The parameter evaluated next.
+    t: f64,
+    /// Which end the last step replaced (−1 the low, 1 the high, 0 none yet).
+    last_side: i32,
+    steps: usize,
+    /// Stop once |f| or the bracket's length in scene units is below these.
+    tol_f: f64,
+    tol_t: f64,
+    /// The gradient's sample distance.
+    step: f64,
+    stage: Stage,
+}
+
+/// Where a [`Root`] search is.
+enum Stage {
+    Root,
+    Normal(DVec3),
+    Done(DVec3, DVec3),
+}
+
+impl Root {
+    fn new(field: &Field, grid: &Grid, a: DVec3, fa: f64, axis: usize, fb: f64) -> Root {
+        let res = field.resolution();
+        let mut root = Root {
+            a,
+            along: DVec3::AXES[axis] * grid.h,
+            t0: 0.0,
+            f0: fa,
+            t1: 1.0,
+            f1: fb,
+            t: 0.5,
+            last_side: 0,
+            steps: 0,
+            tol_f: (1e-9 * grid.h).max(res),
+            tol_t: 1e-9f64.max(res / grid.h),
+            step: field.gradient_step(grid.h),
+            stage: Stage::Root,
+        };
+        root.guess();
+        root
+    }
+
+    /// The next parameter: the secant's root inside the bracket, else its middle.
+    fn guess(&mut self) {
+        let (t0, f0, t1, f1) = (self.t0, self.f0, self.t1, self.f1);
         let guess = (t0 * f1 - t1 * f0) / (f1 - f0);
-        t = if guess.is_finite() && guess > t0 && guess < t1 {
+        self.t = if guess.is_finite() && guess > t0 && guess < t1 {
             guess
         } else {
             0.5 * (t0 + t1)
         };
-        let f = field.at(a + along * t);
-        evaluations += 1;
-        if f.abs() < 1e-9 * grid.h || t1 - t0 < 1e-9 {
-            break;
-        }
-        if inside(f) == inside(f0) {
-            (t0, f0) = (t, f);
-            if last_side == -1 {
-                f1 *= 0.5;
-            }
-            last_side = -1;
-        } else {
-            (t1, f1) = (t, f);
-            if last_side == 1 {
-                f0 *= 0.5;
-            }
-            last_side = 1;
+    }
+}
+
+impl Search for Root {
+    fn ask(&self, points: &mut Vec<DVec3>) {
+        match self.stage {
+            Stage::Root => points.push(self.a + self.along * self.t),
+            Stage::Normal(p) => search::gradient_points(p, self.step, points),
+            Stage::Done(..) => {}
         }
     }
-    let p = a + along * t.clamp(END_GAP, 1.0 - END_GAP);
-    let normal = field.normal(p, 1e-4 * grid.h);
-    (p, normal, evaluations + 4)
+
+    fn tell(&mut self, values: &[f64]) {
+        let Stage::Root = self.stage else {
+            if let Stage::Normal(p) = self.stage {
+                self.stage = Stage::Done(p, search::unit_gradient(values));
+            }
+            return;
+        };
+        let (f, t) = (values[0], self.t);
+        self.steps += 1;
+        if f.abs() < self.tol_f || self.t1 - self.t0 < self.tol_t || self.steps == ROOT_STEPS {
+            let p = self.a + self.along * t.clamp(END_GAP, 1.0 - END_GAP);
+            self.stage = Stage::Normal(p);
+            return;
+        }
+        if inside(f) == inside(self.f0) {
+            (self.t0, self.f0) = (t, f);
+            if self.last_side == -1 {
+                self.f1 *= 0.5;
+            }
+            self.last_side = -1;
+        } else {
+            (self.t1, self.f1) = (t, f);
+            if self.last_side == 1 {
+                self.f0 *= 0.5;
+            }
+            self.last_side = 1;
+        }
+        self.guess();
+    }
 }

@@ -1,9 +1,22 @@
 //! The field the mesher contours: the scene's distance bound clipped to the box being meshed,
 //! so that a cut part is capped and the mesh stays closed; and the grid of cells over the box.
 
+use crate::parallel::par_map;
 use crate::reference::eval;
 use crate::scene::Scene;
 use glam::{DVec3, IVec3};
+
+/// Evaluates the scene's field (f/λ, the root `map` of the same lowering) at many points at
+/// once: the runtime's evaluates it on the GPU in f32.
+pub trait Evaluator: Sync {
+    /// The field at each of `points`, in order, or `None` when it cannot (the CPU evaluates
+    /// them then).
+    fn values(&self, points: &[DVec3]) -> Option<Vec<f64>>;
+    /// The smallest difference of values or positions it resolves, in scene units (f32's
+    /// rounding at the box's largest coordinate): searches stop there instead of at the
+    /// CPU's f64 tolerances.
+    fn resolution(&self) -> f64;
+}
 
 /// The scene's f/λ intersected with a box: max(f/λ, box distance). Both are 1-Lipschitz, so
 /// the maximum is too, and |d(c)| > r proves that no surface crosses the ball of radius r at c.
@@ -11,19 +24,65 @@ pub struct Field<'a> {
     scene: &'a Scene,
     lo: DVec3,
     hi: DVec3,
+    /// Where batches are evaluated, if not on the CPU.
+    evaluator: Option<&'a dyn Evaluator>,
 }
 
 impl<'a> Field<'a> {
-    /// The scene's field clipped to the box from `lo` to `hi`.
+    /// The scene's field clipped to the box from `lo` to `hi`, evaluated on the CPU (f64).
     pub fn new(scene: &'a Scene, lo: DVec3, hi: DVec3) -> Field<'a> {
-        Field { scene, lo, hi }
+        Field {
+            scene,
+            lo,
+            hi,
+            evaluator: None,
+        }
     }
 
-    /// The clipped distance bound at `p` (NaN counts as outside where it is read).
+    /// The same field with its batches ([`Field::many`]) evaluated by `evaluator`.
+    pub fn with_evaluator(self, evaluator: &'a dyn Evaluator) -> Field<'a> {
+        Field {
+            evaluator: Some(evaluator),
+            ..self
+        }
+    }
+
+    /// The clipped distance bound at `p` (NaN counts as outside where it is read), on the CPU.
     pub fn at(&self, p: DVec3) -> f64 {
+        eval::distance(self.scene, p).max(self.outside(p))
+    }
+
+    /// The distance bound of the box at `p` (negative inside it).
+    fn outside(&self, p: DVec3) -> f64 {
         let centre = 0.5 * (self.lo + self.hi);
-        let outside = crate::catalog::primitives::sd_box(p - centre, 0.5 * (self.hi - self.lo));
-        eval::distance(self.scene, p).max(outside)
+        crate::catalog::primitives::sd_box(p - centre, 0.5 * (self.hi - self.lo))
+    }
+
+    /// The clipped field at every one of `points`: by the evaluator if there is one, else on
+    /// all cores (each value then equals [`Field::at`]'s).
+    pub fn many(&self, points: &[DVec3]) -> Vec<f64> {
+        if let Some(values) = self.evaluator.and_then(|e| e.values(points))
+            && values.len() == points.len()
+        {
+            return values
+                .into_iter()
+                .zip(points)
+                .map(|(v, &p)| v.max(self.outside(p)))
+                .collect();
+        }
+        par_map(points, |&p| self.at(p))
+    }
+
+    /// The smallest difference the batches resolve (0 on the CPU: its own tolerances hold).
+    pub fn resolution(&self) -> f64 {
+        self.evaluator.map_or(0.0, |e| e.resolution())
+    }
+
+    /// The distance between the samples of a gradient for cells of size `h`: 1e-4 of a cell
+    /// on the CPU, and at least 30 times the batches' resolution (the difference of two f32
+    /// values a hundredth of a cell apart is noise below that).
+    pub fn gradient_step(&self, h: f64) -> f64 {
+        (1e-4 * h).max(30.0 * self.resolution())
     }
 
     /// The field's unit gradient at `p` from the four samples of `eval::TETRAHEDRON` at

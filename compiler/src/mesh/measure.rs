@@ -3,7 +3,7 @@
 
 use super::Mesh;
 use super::field::Field;
-use crate::parallel::par_map;
+use super::search::{self, Search};
 use glam::DVec3;
 use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
 
@@ -112,28 +112,102 @@ pub struct Deviation {
 /// The most triangles, and the most vertices, [`deviation`] samples (an even stride of them).
 pub const SAMPLES: usize = 50_000;
 
-/// The distance from `p` to the surface of `field` found by Newton steps along the gradient
+/// The search for the distance from `p` to the surface by Newton steps along the gradient
 /// (p − d·∇d), an upper bound on the distance to the surface when they converge; |d| where they
 /// do not (a lower bound for a field that is a bound, the distance for an exact one).
-fn to_surface(field: &Field, p: DVec3, h: f64) -> f64 {
-    let d0 = field.at(p);
-    let mut q = p;
-    let mut d = d0;
-    for _ in 0..8 {
-        if d.abs() < 1e-9 * h {
-            return (q - p).length();
+struct Probe {
+    /// Where it started and the field there.
+    p: DVec3,
+    d0: f64,
+    /// Where it is and the field there.
+    q: DVec3,
+    d: f64,
+    steps: usize,
+    /// Cells' size, the gradient's sample distance and the batches' resolution.
+    h: f64,
+    step: f64,
+    res: f64,
+    phase: Phase,
+    /// The distance found.
+    found: f64,
+}
+
+/// What a [`Probe`] asks for next.
+#[derive(Clone, Copy)]
+enum Phase {
+    Value,
+    Normal,
+    Done,
+}
+
+/// The Newton steps a [`Probe`] takes at most.
+const PROBE_STEPS: usize = 8;
+
+impl Probe {
+    fn new(field: &Field, p: DVec3, h: f64) -> Probe {
+        Probe {
+            p,
+            d0: f64::NAN,
+            q: p,
+            d: f64::NAN,
+            steps: 0,
+            h,
+            step: (1e-3 * h).max(field.gradient_step(h)),
+            res: field.resolution(),
+            phase: Phase::Value,
+            found: f64::NAN,
         }
-        let n = field.normal(q, 1e-3 * h);
-        if n == DVec3::ZERO {
-            break;
-        }
-        q -= n * d;
-        d = field.at(q);
     }
-    if d.abs() < 1e-6 * h {
-        (q - p).length()
-    } else {
-        d0.abs()
+
+    /// Ends the search: the distance travelled if it reached the surface, else |d| at `p`.
+    fn end(&mut self) {
+        let on = self.d.abs() < (1e-6 * self.h).max(self.res);
+        self.found = if on {
+            (self.q - self.p).length()
+        } else {
+            self.d0.abs()
+        };
+        self.phase = Phase::Done;
+    }
+}
+
+impl Search for Probe {
+    fn ask(&self, points: &mut Vec<DVec3>) {
+        match self.phase {
+            Phase::Value => points.push(self.q),
+            Phase::Normal => search::gradient_points(self.q, self.step, points),
+            Phase::Done => {}
+        }
+    }
+
+    fn tell(&mut self, values: &[f64]) {
+        match self.phase {
+            Phase::Value => {
+                self.d = values[0];
+                if self.steps == 0 {
+                    self.d0 = self.d;
+                }
+                if self.d.abs() < (1e-9 * self.h).max(self.res) {
+                    self.found = (self.q - self.p).length();
+                    self.phase = Phase::Done;
+                } else if self.steps == PROBE_STEPS {
+                    self.end();
+                } else {
+                    self.phase = Phase::Normal;
+                }
+            }
+            Phase::Normal => {
+                let n = search::unit_gradient(values);
+                if n == DVec3::ZERO {
+                    self.end();
+                } else {
+                    self.q -= n * self.d;
+                    self.steps += 1;
+                    self.phase = Phase::Value;
+                }
+            }
+            Phase::Done => {}
+        }
     }
 }
 
@@ -142,20 +216,27 @@ fn to_surface(field: &Field, p: DVec3, h: f64) -> f64 {
 pub fn deviation(field: &Field, mesh: &Mesh, h: f64) -> Deviation {
     let stride = mesh.positions.len().div_ceil(SAMPLES).max(1);
     let points: Vec<DVec3> = mesh.positions.iter().step_by(stride).copied().collect();
-    let vertices = par_map(&points, |&p| to_surface(field, p, h));
     let stride = mesh.triangles.len().div_ceil(SAMPLES).max(1);
     let sampled: Vec<[u32; 3]> = mesh.triangles.iter().step_by(stride).copied().collect();
-    let faces = par_map(&sampled, |t| {
-        let c = t.iter().map(|&v| mesh.positions[v as usize]).sum::<DVec3>() / 3.0;
-        to_surface(field, c, h)
-    });
+    let centroids = sampled
+        .iter()
+        .map(|t| t.iter().map(|&v| mesh.positions[v as usize]).sum::<DVec3>() / 3.0);
+    let mut probes: Vec<Probe> = points
+        .iter()
+        .copied()
+        .chain(centroids)
+        .map(|p| Probe::new(field, p, h))
+        .collect();
+    search::run(field, &mut probes);
+    let found: Vec<f64> = probes.iter().map(|p| p.found).collect();
+    let (vertices, faces) = found.split_at(points.len());
     let stats = |d: &[f64]| {
         let max = d.iter().copied().fold(0.0, f64::max);
         let rms = (d.iter().map(|x| x * x).sum::<f64>() / d.len().max(1) as f64).sqrt();
         (max, rms)
     };
-    let (vertex_max, vertex_rms) = stats(&vertices);
-    let (face_max, face_rms) = stats(&faces);
+    let (vertex_max, vertex_rms) = stats(vertices);
+    let (face_max, face_rms) = stats(faces);
     Deviation {
         vertex_max,
         vertex_rms,

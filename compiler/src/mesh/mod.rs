@@ -14,6 +14,7 @@ pub mod formats;
 pub mod measure;
 mod polygons;
 mod qef;
+mod search;
 
 use crate::parallel::par_map;
 use crate::reference::eval;

@@ -4,6 +4,7 @@
 use super::faces::{self, Face};
 use super::field::{Field, Grid};
 use super::qef;
+use super::search::{self, Search};
 use crate::parallel::par_map;
 use glam::{DVec3, IVec3};
 use rustc_hash::FxHashMap as HashMap;
@@ -30,31 +31,52 @@ pub fn fan(
     positions: &mut Vec<DVec3>,
     sharp: bool,
 ) -> Fans {
-    let mut evaluations = 0;
-    let placed = {
+    let starts = {
         let positions = &*positions;
         par_map(cells, |&c| {
-            let mut spent = 0;
-            let rings = polygons(c, segments)?
+            let rings = polygons(c, segments)?;
+            let starts = rings
                 .into_iter()
                 .map(|ring| {
-                    let (centre, n) = place(field, grid, c, &ring, (positions, normals), sharp);
-                    spent += n;
+                    let centre = start(grid, c, &ring, (positions, normals), sharp);
                     (ring, centre)
                 })
                 .collect::<Vec<_>>();
-            Some((rings, spent))
+            Some((c, starts))
         })
     };
+    // Sharp vertices settle on the surface, all cells' searches in lockstep.
+    let mut settles: Vec<Settle> = starts
+        .iter()
+        .flatten()
+        .filter(|_| sharp)
+        .flat_map(|(c, rings)| {
+            let lo = grid.point(*c);
+            rings
+                .iter()
+                .map(move |(_, p)| Settle::new(field, *p, lo, grid.h))
+        })
+        .collect();
+    let evaluations = search::run(field, &mut settles);
+    let mut settled = settles.into_iter().map(|s| s.p);
     let mut triangles = Vec::new();
     let mut broken = 0;
-    for found in placed {
-        let Some((rings, spent)) = found else {
+    for found in starts {
+        let Some((_, rings)) = found else {
             broken += 1;
             continue;
         };
-        evaluations += spent;
-        for (ring, centre) in rings {
+        let centres: Vec<DVec3> = rings
+            .iter()
+            .map(|(ring, start)| {
+                let centre = match sharp {
+                    true => settled.next().unwrap_or(*start),
+                    false => *start,
+                };
+                away(centre, ring, positions, grid.h)
+            })
+            .collect();
+        for ((ring, _), centre) in rings.into_iter().zip(centres) {
             let vertex = positions.len() as u32;
             positions.push(centre);
             for k in 0..ring.len() {
@@ -71,32 +93,30 @@ pub fn fan(
     }
 }
 
-/// Where the vertex of `ring` (a polygon of cell `c`) goes, and the evaluations spent: sharp,
-/// where the QEF of its crossings puts it (around the mass point of all its vertices: a face's
-/// sharp points lie on the creases inside the cell, so a crease's line is followed to them),
-/// settled on the surface; plain, the mean of its crossings. Vertex `v` of `positions` is a
+/// Where the vertex of `ring` (a polygon of cell `c`) starts: sharp, where the QEF of its
+/// crossings puts it (around the mass point of all its vertices: a face's sharp points lie on
+/// the creases inside the cell, so a crease's line is followed to them), to be settled on the
+/// surface by a [`Settle`]; plain, the mean of its crossings. Vertex `v` of `positions` is a
 /// crossing of normal `normals[v]` if `v < normals.len()`.
-fn place(
-    field: &Field,
+fn start(
     grid: &Grid,
     c: IVec3,
     ring: &[u32],
     (positions, normals): (&[DVec3], &[DVec3]),
     sharp: bool,
-) -> (DVec3, usize) {
+) -> DVec3 {
     let lo = grid.point(c);
     let sheet: Vec<(DVec3, DVec3)> = ring
         .iter()
         .filter_map(|&v| normals.get(v as usize).map(|&n| (positions[v as usize], n)))
         .collect();
-    let (centre, spent) = if sharp {
+    if sharp {
         let mass = ring.iter().map(|&v| positions[v as usize]).sum::<DVec3>() / ring.len() as f64;
-        onto_surface(field, qef::solve(&sheet, mass), lo, grid.h)
+        qef::solve(&sheet, mass)
     } else {
         let mean = sheet.iter().map(|s| s.0).sum::<DVec3>() / sheet.len().max(1) as f64;
-        (mean.clamp(lo, lo + grid.h), 0)
-    };
-    (away(centre, ring, positions, grid.h), spent)
+        mean.clamp(lo, lo + grid.h)
+    }
 }
 
 /// The polygons of cell `c`: its faces' segments, oriented as seen from outside the cell, chained
@@ -138,37 +158,98 @@ fn polygons(c: IVec3, segments: &HashMap<Face, Vec<Vec<u32>>>) -> Option<Vec<Vec
     Some(rings)
 }
 
-/// Newton steps of the QEF's point `p` onto the surface (p − d·∇d, the nearest surface point for
-/// an exact field), kept in the cell at `lo`: where the sheet in a cell shows only two of a
-/// corner's three faces, the QEF puts the point on the crease's line past the corner, and the
-/// step brings it back to the corner. A point the QEF put outside the cell is clamped to the
-/// cell's side and moves within that side (the surface's point there nearest a corner just
-/// outside). A point already on the surface does not move. Returns the point and the
-/// evaluations spent.
-fn onto_surface(field: &Field, p: DVec3, lo: DVec3, h: f64) -> (DVec3, usize) {
-    let hi = lo + h;
-    let free = DVec3::select(p.cmplt(lo) | p.cmpgt(hi), DVec3::ZERO, DVec3::ONE);
-    let mut p = p.clamp(lo, hi);
-    let mut d = field.at(p);
-    let mut spent = 1;
-    for _ in 0..PROJECTION_STEPS {
-        if d.is_nan() || d.abs() <= 1e-7 * h {
-            break;
+/// Newton steps of the QEF's point onto the surface (p − d·∇d, the nearest surface point for
+/// an exact field), kept in the cell: where the sheet in a cell shows only two of a corner's
+/// three faces, the QEF puts the point on the crease's line past the corner, and the step
+/// brings it back to the corner. A point the QEF put outside the cell is clamped to the cell's
+/// side and moves within that side (the surface's point there nearest a corner just outside).
+/// A point already on the surface does not move; a step that does not bring it nearer ends.
+struct Settle {
+    /// The point and the field there.
+    p: DVec3,
+    d: f64,
+    /// The cell.
+    lo: DVec3,
+    hi: DVec3,
+    /// 1 along the axes the point may move on, 0 along those it was clamped on.
+    free: DVec3,
+    steps: usize,
+    /// On the surface below this |d|.
+    tol: f64,
+    /// The gradient's sample distance.
+    step: f64,
+    phase: Phase,
+}
+
+/// What a [`Settle`] asks for next.
+#[derive(Clone, Copy)]
+enum Phase {
+    Value,
+    Normal,
+    Try(DVec3),
+    Done,
+}
+
+impl Settle {
+    fn new(field: &Field, p: DVec3, lo: DVec3, h: f64) -> Settle {
+        let hi = lo + h;
+        Settle {
+            free: DVec3::select(p.cmplt(lo) | p.cmpgt(hi), DVec3::ZERO, DVec3::ONE),
+            p: p.clamp(lo, hi),
+            d: f64::NAN,
+            lo,
+            hi,
+            steps: 0,
+            tol: (1e-7 * h).max(field.resolution()),
+            step: field.gradient_step(h),
+            phase: Phase::Value,
         }
-        let n = field.normal(p, 1e-4 * h) * free;
-        let g = n.length_squared();
-        if g < 1e-6 {
-            break;
-        }
-        let q = (p - n * (d / g)).clamp(lo, hi);
-        let dq = field.at(q);
-        spent += 5;
-        if dq.is_nan() || dq.abs() >= d.abs() {
-            break;
-        }
-        (p, d) = (q, dq);
     }
-    (p, spent)
+
+    /// After a value: done, or the gradient next.
+    fn next(&mut self) {
+        let stop = self.steps == PROJECTION_STEPS || self.d.is_nan() || self.d.abs() <= self.tol;
+        self.phase = if stop { Phase::Done } else { Phase::Normal };
+    }
+}
+
+impl Search for Settle {
+    fn ask(&self, points: &mut Vec<DVec3>) {
+        match self.phase {
+            Phase::Value => points.push(self.p),
+            Phase::Normal => search::gradient_points(self.p, self.step, points),
+            Phase::Try(q) => points.push(q),
+            Phase::Done => {}
+        }
+    }
+
+    fn tell(&mut self, values: &[f64]) {
+        match self.phase {
+            Phase::Value => {
+                self.d = values[0];
+                self.next();
+            }
+            Phase::Normal => {
+                let n = search::unit_gradient(values) * self.free;
+                let g = n.length_squared();
+                self.phase = match g < 1e-6 {
+                    true => Phase::Done,
+                    false => Phase::Try((self.p - n * (self.d / g)).clamp(self.lo, self.hi)),
+                };
+            }
+            Phase::Try(q) => {
+                let dq = values[0];
+                self.steps += 1;
+                if dq.is_nan() || dq.abs() >= self.d.abs() {
+                    self.phase = Phase::Done;
+                } else {
+                    (self.p, self.d) = (q, dq);
+                    self.next();
+                }
+            }
+            Phase::Done => {}
+        }
+    }
 }
 
 /// The polygon's vertex `centre`, moved toward the ring's mean while it lies within

@@ -4,6 +4,12 @@
 use super::{Error, Gpu};
 use sdfc_compiler::layout::{GROUP, LIST_BINDINGS, LIST_STRIDE};
 
+/// A list entry's module and its compiled pipeline.
+pub struct ListProgram {
+    module: naga::Module,
+    pipeline: wgpu::ComputePipeline,
+}
+
 impl Gpu {
     /// Traces a list of rays with a module compiled for `Entry::Rays`: each ray is an origin,
     /// a direction and the pixel footprint (for ε `pixel`); returns (t, steps, flags) per ray.
@@ -30,7 +36,8 @@ impl Gpu {
             .flat_map(|(o, d, px)| [o[0], o[1], o[2], *px, d[0], d[1], d[2], 0.0])
             .collect();
         let groups = (rays.len() as u32).div_ceil(sdfc_compiler::layout::RAYS_WORKGROUP);
-        self.run_list(module, ("rays", "hits"), &input, rays.len(), groups)
+        let program = self.list_program(module);
+        self.run_list(&program, ("rays", "hits"), &input, rays.len(), groups)
     }
 
     /// Evaluates the scene's field at a list of points with a module compiled for
@@ -41,12 +48,30 @@ impl Gpu {
         module: &naga::Module,
         points: &[[f32; 3]],
     ) -> Result<Vec<f32>, Error> {
+        self.eval_points_with(&self.list_program(module), points)
+    }
+
+    /// A list entry's pipeline, compiled once for many dispatches ([`Gpu::eval_points_with`]).
+    pub fn list_program(&self, module: &naga::Module) -> ListProgram {
+        ListProgram {
+            module: module.clone(),
+            pipeline: self.pipeline(module),
+        }
+    }
+
+    /// [`Gpu::eval_points`] with a pipeline already compiled (from a module for
+    /// `Entry::Field`).
+    pub fn eval_points_with(
+        &self,
+        program: &ListProgram,
+        points: &[[f32; 3]],
+    ) -> Result<Vec<f32>, Error> {
         let input: Vec<f32> = points
             .iter()
             .flat_map(|p| [p[0], p[1], p[2], 0.0])
             .collect();
         let groups = (points.len() as u32).div_ceil(sdfc_compiler::layout::FIELD_WORKGROUP);
-        let out = self.run_list(module, ("points", "values"), &input, points.len(), groups)?;
+        let out = self.run_list(program, ("points", "values"), &input, points.len(), groups)?;
         Ok(out.iter().map(|v| v[0]).collect())
     }
 
@@ -54,7 +79,7 @@ impl Gpu {
     /// item) in one dispatch of `groups` workgroups and reads the output back.
     fn run_list(
         &self,
-        module: &naga::Module,
+        program: &ListProgram,
         (input_label, output_label): (&str, &str),
         input: &[f32],
         items: usize,
@@ -65,7 +90,7 @@ impl Gpu {
         }
         let device = &self.device;
         let validation = device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let pipeline = self.pipeline(module);
+        let (module, pipeline) = (&program.module, &program.pipeline);
         let bytes: Vec<u8> = input.iter().copied().flat_map(f32::to_le_bytes).collect();
         let input_buf = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some(input_label),
@@ -113,7 +138,7 @@ impl Gpu {
         let mut enc = device.create_command_encoder(&Default::default());
         {
             let mut pass = enc.begin_compute_pass(&Default::default());
-            pass.set_pipeline(&pipeline);
+            pass.set_pipeline(pipeline);
             pass.set_bind_group(GROUP, &bind, &[]);
             pass.dispatch_workgroups(groups, 1, 1);
         }

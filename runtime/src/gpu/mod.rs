@@ -18,6 +18,7 @@ mod volumes;
 
 pub use dispatch::Timing;
 pub use error::{Consumed, Error};
+pub use lists::ListProgram;
 pub use prepare::{Layout, MAX_SIDE, Prepared, Source, TILE};
 pub use readback::{Frame, Ray};
 

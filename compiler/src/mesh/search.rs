@@ -1,0 +1,60 @@
+//! Many small searches run in lockstep, so that every round's field values are asked for in one
+//! batch (the GPU evaluates them in one dispatch): a search says which points it needs next
+//! and is told their values, until it needs none.
+
+use super::field::Field;
+use crate::reference::eval::TETRAHEDRON;
+use glam::DVec3;
+
+/// One search as a state machine over batches of points.
+pub trait Search: Send {
+    /// Appends the points whose values the next step needs; none when the search is done.
+    fn ask(&self, points: &mut Vec<DVec3>);
+    /// Takes the values of the points the last [`Search::ask`] appended, in order.
+    fn tell(&mut self, values: &[f64]);
+}
+
+/// Runs every search of `searches` to its end, a round of [`Field::many`] per step; returns
+/// the evaluations spent.
+pub fn run<S: Search>(field: &Field, searches: &mut [S]) -> usize {
+    let mut open: Vec<usize> = (0..searches.len()).collect();
+    let mut evaluations = 0;
+    let mut points = Vec::new();
+    // (search, its points' range) for every search that asked this round
+    let mut asked: Vec<(usize, usize, usize)> = Vec::new();
+    while !open.is_empty() {
+        points.clear();
+        asked.clear();
+        open.retain(|&i| {
+            let start = points.len();
+            searches[i].ask(&mut points);
+            let more = points.len() > start;
+            if more {
+                asked.push((i, start, points.len()));
+            }
+            more
+        });
+        if points.is_empty() {
+            break;
+        }
+        let values = field.many(&points);
+        evaluations += points.len();
+        for &(i, start, end) in &asked {
+            searches[i].tell(&values[start..end]);
+        }
+    }
+    evaluations
+}
+
+/// The four points whose values [`unit_gradient`] takes, at distance `step` around `p`.
+pub fn gradient_points(p: DVec3, step: f64, points: &mut Vec<DVec3>) {
+    let e = step / 3f64.sqrt();
+    points.extend(TETRAHEDRON.iter().map(|&k| p + k * e));
+}
+
+/// The unit gradient from the values at [`gradient_points`] (as `eval::unit_gradient`); the
+/// zero vector where it vanishes.
+pub fn unit_gradient(values: &[f64]) -> DVec3 {
+    let g: DVec3 = TETRAHEDRON.iter().zip(values).map(|(&k, &v)| k * v).sum();
+    g.try_normalize().unwrap_or(DVec3::ZERO)
+}
