@@ -8,3 +8,4 @@ pub mod bench;
 pub mod files;
 pub mod gpu;
 pub mod images;
+pub mod mesh_gpu;

@@ -337,3 +337,93 @@ fn a_triangle_count_is_met_within_a_fifth() {
         assert!(said.contains(&format!("{target} asked for")), "{said}");
     }
 }
+
+/// The GPU field (f32, the scene's `map` as the pictures compile it) meshes as the CPU's f64
+/// reference does: examples whose field is costly (the GPU's purpose), a hand-written blob of
+/// 60 balls and a turned box (creases), each closed and 2-manifold, its triangle count and
+/// volume near the reference's, and its distance to the surface — measured by the f64 field,
+/// not by the GPU — within a fiftieth of a cell of the reference mesh's.
+#[test]
+fn the_gpu_field_meshes_as_the_f64_reference_does() {
+    use sdfc::mesh_gpu::GpuField;
+    use sdfc_compiler::mesh::measure;
+    let mut scenes: Vec<(String, String)> = ["blobs", "shapes", "temple", "tori_terrain"]
+        .iter()
+        .map(|n| {
+            let path = root().join(format!("examples/{n}.sdf"));
+            (n.to_string(), std::fs::read_to_string(path).unwrap())
+        })
+        .collect();
+    let balls: Vec<String> = (0..60)
+        .map(|i| {
+            let a = i as f64 * 2.399_963;
+            let (r, y) = (0.9 * (i as f64 / 60.0).sqrt(), 0.4 * (a * 1.7).sin());
+            format!(
+                "sphere({:.3}) at ({:.3}, {y:.3}, {:.3})",
+                0.12 + 0.05 * (a * 0.7).cos().abs(),
+                r * a.cos(),
+                r * a.sin()
+            )
+        })
+        .collect();
+    scenes.push((
+        "blob of 60 balls".into(),
+        format!("blob(0.25) {{ {} }}", balls.join(" ")),
+    ));
+    scenes.push((
+        "turned box".into(),
+        "box((1, 1, 1)) |> rotate(y, 30deg) |> rotate(x, 20deg)".into(),
+    ));
+    for (name, source) in scenes {
+        let scene = compile(&source);
+        let bounds = meshed_box(&scene, box_of(&scene));
+        let options = mesh::Options {
+            resolution: RESOLUTION,
+            bounds,
+            sharp: true,
+            prune: true,
+            max_bytes: 1 << 32,
+        };
+        let gpu = crate::common::gpu();
+        let field = GpuField::on((*gpu).clone(), &scene, bounds).expect("the field compiles");
+        let on_gpu = mesh::mesh_with(&scene, &options, Some(&field), &|_| {}).unwrap();
+        let reference = mesh::mesh(&scene, &options, &|_| {}).unwrap();
+        let f64_field = Field::new(&scene, bounds.0, bounds.1);
+        let h = on_gpu.stats.cell;
+        let (dg, dc) = (
+            measure::deviation(&f64_field, &on_gpu, h),
+            measure::deviation(&f64_field, &reference, h),
+        );
+        let (vg, vc) = (measure::volume(&on_gpu), measure::volume(&reference));
+        let count = on_gpu.triangles.len() as f64 / reference.triangles.len() as f64 - 1.0;
+        report(&format!(
+            "mesh on the GPU, {name}: {} triangles ({:+.2}% of the f64 reference's), volume \
+             {:+.3}%, vertices ≤ {:.1e} (reference {:.1e}), faces ≤ {:.1e} (reference {:.1e}) \
+             of a cell, by the f64 field",
+            on_gpu.triangles.len(),
+            100.0 * count,
+            100.0 * (vg / vc - 1.0),
+            dg.vertex_max / h,
+            dc.vertex_max / h,
+            dg.face_max / h,
+            dc.face_max / h
+        ));
+        assert!(
+            measure::topology(&on_gpu).is_closed_manifold(),
+            "{name}: the GPU's mesh is not closed"
+        );
+        assert!(count.abs() < 0.02, "{name}: {count}");
+        assert!(
+            (vg / vc - 1.0).abs() < 0.002,
+            "{name}: volume {vg} against {vc}"
+        );
+        assert!(
+            dg.vertex_max <= dc.vertex_max + 0.02 * h,
+            "{name}: {dg:?} {dc:?}"
+        );
+        assert!(
+            dg.face_max <= dc.face_max + 0.02 * h,
+            "{name}: {dg:?} {dc:?}"
+        );
+    }
+}

@@ -61,9 +61,38 @@ pub fn contour(field: &Field, grid: &Grid, cells: &[IVec3], sharp: bool) -> Cont
         .filter(|&(c, (f, far))| !far || !listed.contains(&(c + IVec3::AXES[f.axis])))
         .map(|(_, (f, _))| f)
         .collect();
-    let drawn = par_map(&face_list, |&f| {
+    // The ambiguous faces' centres, in one batch.
+    let mut centres: Vec<(Face, f64)> = face_list.iter().map(|&f| (f, f64::NAN)).collect();
+    let ambiguous: Vec<usize> = (0..face_list.len())
+        .filter(|&i| faces::ambiguous(face_list[i], at))
+        .collect();
+    let points: Vec<DVec3> = ambiguous
+        .iter()
+        .map(|&i| faces::centre(grid, face_list[i]))
+        .collect();
+    evaluations += points.len();
+    for (&i, v) in ambiguous.iter().zip(field.many(&points)) {
+        centres[i].1 = v;
+    }
+    let mut drawn = par_map(&centres, |&f| {
         faces::segments(field, grid, f, at, crossing_at, sharp)
     });
+    // The faces' sharp points inside them, in lockstep batches.
+    let mut owners = Vec::new();
+    let mut pending: Vec<faces::Bisect> = Vec::new();
+    for (i, (list, _)) in drawn.iter_mut().enumerate() {
+        for (j, s) in list.iter_mut().enumerate() {
+            if let Some(b) = s.pending.take() {
+                owners.push((i, j));
+                pending.push(b);
+            }
+        }
+    }
+    evaluations += search::run(field, &mut pending);
+    for ((i, j), b) in owners.into_iter().zip(pending) {
+        let (a, e) = b.ends;
+        drawn[i].0[j].sharp = faces::apart(a, b.found.into_iter().collect(), e, grid.h);
+    }
     let mut segments: HashMap<Face, Vec<Vec<u32>>> =
         HashMap::with_capacity_and_hasher(face_list.len(), Default::default());
     for (&f, (list, spent)) in face_list.iter().zip(drawn) {
@@ -74,7 +103,6 @@ pub fn contour(field: &Field, grid: &Grid, cells: &[IVec3], sharp: bool) -> Cont
         let paths = list.iter().map(|s| path(s, &mut positions)).collect();
         segments.insert(f, paths);
     }
-
     // One polygon per sheet in each cell, fanned around its QEF vertex.
     let fans = polygons::fan(
         field,

@@ -4,6 +4,7 @@
 //! *Cubical Marching Squares*, 2005, §3–4).
 
 use super::field::{Field, Grid, inside};
+use super::search::{self, Search};
 use glam::{DVec3, IVec3};
 
 /// Where the surface crosses a grid edge: the vertex's index, position and unit normal.
@@ -35,6 +36,9 @@ pub struct Segment {
     pub sharp: Vec<DVec3>,
     /// The crossing it ends at.
     pub to: u32,
+    /// The search for its sharp point, where one runs in the next batches (its result, kept
+    /// [`MIN_GAP`] off the ends, becomes `sharp`).
+    pub pending: Option<Bisect>,
 }
 
 /// The smallest sine of the angle between the tangent lines of a face's two crossings at
@@ -84,13 +88,15 @@ impl Face {
 /// The segments the surface draws on `face`, oriented so that, seen from the normal's positive
 /// side, the inside lies to their left. `value` gives the field at a grid point and `crossing`
 /// the crossing on a grid edge. An ambiguous face (inside corners on a diagonal) joins its
-/// inside corners where the field at its centre is inside, else keeps them apart; with `sharp`,
-/// a face of two crossings whose tangent lines meet at an angle, inside the face and on the
-/// surface, gets that point. Returns the segments and the evaluations spent.
+/// inside corners where the field at its centre (`centre`, from [`centre`]'s point) is inside,
+/// else keeps them apart; with `sharp`, a face of two crossings whose tangent lines meet at an
+/// angle, inside the face and on the surface, gets that point (a [`Bisect`] left pending in the
+/// segment; where they meet outside, the trace's bends are searched here on the CPU). Returns
+/// the segments and the evaluations spent.
 pub fn segments(
     field: &Field,
     grid: &Grid,
-    face: Face,
+    (face, centre): (Face, f64),
     value: impl Fn(IVec3) -> f64,
     crossing: impl Fn((IVec3, usize)) -> Option<Crossing>,
     sharp: bool,
@@ -110,10 +116,7 @@ pub fn segments(
             vec![(exit, entry)]
         }
         4 => {
-            let centre = grid.point(face.base)
-                + 0.5 * grid.h * (DVec3::AXES[face.span().0] + DVec3::AXES[face.span().1]);
-            evaluations += 1;
-            let joined = inside(field.at(centre));
+            let joined = inside(centre);
             // Exits are the edges leaving an inside corner.
             let exits = (0..4).filter(|&i| s[i]);
             exits
@@ -129,18 +132,36 @@ pub fn segments(
             from: vertex(exit),
             sharp: Vec::new(),
             to: vertex(entry),
+            pending: None,
         };
         if sharp
             && on.len() == 2
             && let (Some(a), Some(b)) = (x[exit], x[entry])
         {
             let ends = ((a.position, a.normal), (b.position, b.normal));
-            let found = bends(field, grid, face, ends, &mut evaluations);
-            segment.sharp = apart(a.position, found, b.position, grid.h);
+            match bends(field, grid, face, ends, &mut evaluations) {
+                Bends::Found(found) => {
+                    segment.sharp = apart(a.position, found, b.position, grid.h);
+                }
+                Bends::Pending(search) => segment.pending = Some(search),
+            }
         }
         out.push(segment);
     }
     (out, evaluations)
+}
+
+/// Whether the face is ambiguous (its inside corners on a diagonal, by `value` at grid points)
+/// and so needs the field at its [`centre`].
+pub fn ambiguous(face: Face, value: impl Fn(IVec3) -> f64) -> bool {
+    let s = face.corners().map(|c| inside(value(c)));
+    s[0] == s[2] && s[1] == s[3] && s[0] != s[1]
+}
+
+/// The centre of `face`.
+pub fn centre(grid: &Grid, face: Face) -> DVec3 {
+    let (u, v) = face.span();
+    grid.point(face.base) + 0.5 * grid.h * (DVec3::AXES[u] + DVec3::AXES[v])
 }
 
 /// How near (in cells) two vertices of a path may come: nearer ones would share a position
@@ -149,7 +170,7 @@ pub const MIN_GAP: f64 = 1e-4;
 
 /// The points of `found` (a path from `a` to `b`) at least [`MIN_GAP`] cells from the point
 /// before them and from `b`.
-fn apart(a: DVec3, found: Vec<DVec3>, b: DVec3, h: f64) -> Vec<DVec3> {
+pub fn apart(a: DVec3, found: Vec<DVec3>, b: DVec3, h: f64) -> Vec<DVec3> {
     let mut last = a;
     let mut out = Vec::with_capacity(found.len());
     for p in found {
@@ -177,27 +198,27 @@ type Point = (DVec3, DVec3);
 /// `b`: where their tangent lines meet, settled on the surface. Where the lines meet outside
 /// the face, the trace bends more than once (across a corner's three faces): it is sampled
 /// across the chord at [`STATIONS`] points and each pair of neighbours searched the same way;
-/// the samples are kept too.
+/// the samples are kept too (on the CPU, point by point: corners are few). Where they meet
+/// inside, the search for the one bend is left to the batches.
 fn bends(
     field: &Field,
     grid: &Grid,
     face: Face,
     (a, b): (Point, Point),
     evaluations: &mut usize,
-) -> Vec<DVec3> {
+) -> Bends {
     match meet(face, grid, a, b) {
-        None => return Vec::new(),
+        None => return Bends::Found(Vec::new()),
         Some(Meet::Inside(p)) => {
-            return between(field, grid, p, 0.5 * (a.0 + b.0), evaluations)
-                .into_iter()
-                .collect();
+            return Bends::Pending(Bisect::new(field, grid, p, 0.5 * (a.0 + b.0), (a.0, b.0)));
         }
         // Two faces of a corner meet at a wide angle; a rough surface (a fractal) bends between
         // every two crossings by less, and sampling each of its faces would cost a dozen
         // evaluations and six vertices for nothing a chord does not do.
-        Some(Meet::Outside) if a.1.dot(b.1) > CORNER_COSINE => return Vec::new(),
+        Some(Meet::Outside) if a.1.dot(b.1) > CORNER_COSINE => return Bends::Found(Vec::new()),
         Some(Meet::Outside) => {}
     }
+    let field = &field.on_cpu();
     let (u, v) = face.span();
     let mut across = DVec3::ZERO;
     across[u] = -(b.0 - a.0)[v];
@@ -214,7 +235,7 @@ fn bends(
             .min_by(|p, q| (*p - station).length().total_cmp(&(*q - station).length()));
         if let Some(p) = nearest {
             *evaluations += 4;
-            samples.push((p, field.normal(p, 1e-4 * grid.h)));
+            samples.push((p, field.normal(p, field.gradient_step(grid.h))));
         }
     }
     samples.push(b);
@@ -228,7 +249,15 @@ fn bends(
             out.push(q.0);
         }
     }
-    out
+    Bends::Found(out)
+}
+
+/// What [`bends`] finds.
+enum Bends {
+    /// The bends, in order from `a` to `b`.
+    Found(Vec<DVec3>),
+    /// The one bend, once this search has run.
+    Pending(Bisect),
 }
 
 /// Where two tangent lines meet.
@@ -266,31 +295,94 @@ fn meet(face: Face, grid: &Grid, a: Point, b: Point) -> Option<Meet> {
 }
 
 /// The surface point on the segment from `p` to `q`, where the field changes side between
-/// them (or `p` itself, on the surface), by bisection.
+/// them (or `p` itself, on the surface), by bisection, on the CPU.
 fn between(field: &Field, grid: &Grid, p: DVec3, q: DVec3, spent: &mut usize) -> Option<DVec3> {
-    let (mut lo, mut hi) = (p, q);
-    let (fp, fq) = (field.at(p), field.at(q));
-    *spent += 2;
-    if fp.abs() <= ON_SURFACE * grid.h {
-        return Some(p);
-    }
-    if inside(fp) == inside(fq) {
-        return None;
-    }
-    while (hi - lo).length() > 1e-7 * grid.h {
-        let mid = 0.5 * (lo + hi);
-        let f = field.at(mid);
-        *spent += 1;
-        if f.abs() <= ON_SURFACE * grid.h {
-            return Some(mid);
+    let mut search = [Bisect::new(field, grid, p, q, (p, q))];
+    *spent += search::run(field, &mut search);
+    let [search] = search;
+    search.found
+}
+
+/// The search for the surface point on the segment from `p` to `q` (see [`between`]), for a
+/// segment of a face's trace from `ends.0` to `ends.1`.
+#[derive(Clone, Debug)]
+pub struct Bisect {
+    lo: DVec3,
+    hi: DVec3,
+    /// The field at `p` (NaN until told).
+    fp: f64,
+    /// Done below these: |f| and the bracket's length.
+    tol_f: f64,
+    tol_len: f64,
+    /// The values of both ends are asked for first.
+    started: bool,
+    done: bool,
+    /// The point found.
+    pub found: Option<DVec3>,
+    /// The trace's segment this point lies on.
+    pub ends: (DVec3, DVec3),
+}
+
+impl Bisect {
+    fn new(field: &Field, grid: &Grid, p: DVec3, q: DVec3, ends: (DVec3, DVec3)) -> Bisect {
+        let res = field.resolution();
+        Bisect {
+            lo: p,
+            hi: q,
+            fp: f64::NAN,
+            tol_f: (ON_SURFACE * grid.h).max(res),
+            tol_len: (1e-7 * grid.h).max(res),
+            started: false,
+            done: false,
+            found: None,
+            ends,
         }
-        if inside(f) == inside(fp) {
-            lo = mid;
+    }
+
+    /// Done where the bracket is short enough: its middle.
+    fn settle(&mut self) {
+        if (self.hi - self.lo).length() <= self.tol_len {
+            self.found = Some(0.5 * (self.lo + self.hi));
+            self.done = true;
+        }
+    }
+}
+
+impl Search for Bisect {
+    fn ask(&self, points: &mut Vec<DVec3>) {
+        match (self.done, self.started) {
+            (true, _) => {}
+            (false, false) => points.extend([self.lo, self.hi]),
+            (false, true) => points.push(0.5 * (self.lo + self.hi)),
+        }
+    }
+
+    fn tell(&mut self, values: &[f64]) {
+        if !self.started {
+            self.started = true;
+            let (fp, fq) = (values[0], values[1]);
+            self.fp = fp;
+            if fp.abs() <= self.tol_f {
+                (self.found, self.done) = (Some(self.lo), true);
+            } else if inside(fp) == inside(fq) {
+                self.done = true;
+            } else {
+                self.settle();
+            }
+            return;
+        }
+        let (f, mid) = (values[0], 0.5 * (self.lo + self.hi));
+        if f.abs() <= self.tol_f {
+            (self.found, self.done) = (Some(mid), true);
+            return;
+        }
+        if inside(f) == inside(self.fp) {
+            self.lo = mid;
         } else {
-            hi = mid;
+            self.hi = mid;
         }
+        self.settle();
     }
-    Some(0.5 * (lo + hi))
 }
 
 /// The first surface point from `p` toward `q`: eight even steps, then [`between`].

@@ -20,6 +20,7 @@ pub trait Evaluator: Sync {
 
 /// The scene's f/λ intersected with a box: max(f/λ, box distance). Both are 1-Lipschitz, so
 /// the maximum is too, and |d(c)| > r proves that no surface crosses the ball of radius r at c.
+#[derive(Clone, Copy)]
 pub struct Field<'a> {
     scene: &'a Scene,
     lo: DVec3,
@@ -44,6 +45,15 @@ impl<'a> Field<'a> {
         Field {
             evaluator: Some(evaluator),
             ..self
+        }
+    }
+
+    /// The same field with its batches on the CPU (for searches of a few points, where a
+    /// batch would cost more than it saves).
+    pub fn on_cpu(&self) -> Field<'a> {
+        Field {
+            evaluator: None,
+            ..*self
         }
     }
 
@@ -78,17 +88,21 @@ impl<'a> Field<'a> {
         self.evaluator.map_or(0.0, |e| e.resolution())
     }
 
-    /// The distance between the samples of a gradient for cells of size `h`: 1e-4 of a cell
-    /// on the CPU, and at least 30 times the batches' resolution (the difference of two f32
-    /// values a hundredth of a cell apart is noise below that).
-    pub fn gradient_step(&self, h: f64) -> f64 {
-        (1e-4 * h).max(30.0 * self.resolution())
-    }
-
     /// The field's unit gradient at `p` from the four samples of `eval::TETRAHEDRON` at
-    /// distance `h`; zero where it vanishes.
+    /// distance `h`, on the CPU; zero where it vanishes.
     pub fn normal(&self, p: DVec3, h: f64) -> DVec3 {
         eval::unit_gradient(|q| self.at(q), p, h)
+    }
+
+    /// The distance between the samples of a gradient for cells of size `h`: 1e-4 of a cell
+    /// on the CPU; a hundredth of a cell where the batches are f32 (their values' rounding is
+    /// relative to the magnitudes inside the field — a ball of radius 40 rounds at 2.4e-6 —
+    /// and the difference of two samples nearer than that is noise, read as false creases).
+    pub fn gradient_step(&self, h: f64) -> f64 {
+        match self.evaluator {
+            None => 1e-4 * h,
+            Some(e) => (1e-2 * h).max(30.0 * e.resolution()),
+        }
     }
 }
 

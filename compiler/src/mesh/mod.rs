@@ -126,8 +126,20 @@ pub fn scene_bounds(scene: &Scene) -> Option<(DVec3, DVec3)> {
     (b.lo.is_finite() && b.hi.is_finite()).then_some((b.lo, b.hi))
 }
 
-/// Meshes the surface of `scene` inside `options.bounds`; `stage` is told what runs next.
+/// Meshes the surface of `scene` inside `options.bounds` on the CPU; `stage` is told what runs
+/// next.
 pub fn mesh(scene: &Scene, options: &Options, stage: &dyn Fn(&str)) -> Result<Mesh, Error> {
+    mesh_with(scene, options, None, stage)
+}
+
+/// [`mesh`] with the field's batches evaluated by `evaluator` where one is given (the GPU);
+/// the faces' few searches and the materials stay on the CPU.
+pub fn mesh_with(
+    scene: &Scene,
+    options: &Options,
+    evaluator: Option<&dyn field::Evaluator>,
+    stage: &dyn Fn(&str),
+) -> Result<Mesh, Error> {
     if options.resolution == 0 || options.resolution > MAX_RESOLUTION {
         return Err(Error::Resolution(options.resolution));
     }
@@ -135,7 +147,10 @@ pub fn mesh(scene: &Scene, options: &Options, stage: &dyn Fn(&str)) -> Result<Me
     if !(lo.is_finite() && hi.is_finite() && lo.cmplt(hi).all()) {
         return Err(Error::Bounds);
     }
-    let field = Field::new(scene, lo, hi);
+    let mut field = Field::new(scene, lo, hi);
+    if let Some(e) = evaluator {
+        field = field.with_evaluator(e);
+    }
     let grid = Grid::over(lo, hi, options.resolution);
     stage("finding the cells the surface crosses");
     // The memory `cells` cells would need, refused past the limit.

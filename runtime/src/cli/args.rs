@@ -360,6 +360,13 @@ pub struct MeshArgs {
     /// crossings, as marching cubes places them (chamfered edges; the baseline).
     #[arg(long, value_enum, default_value = "sharp")]
     pub method: super::values::MeshMethodArg,
+    /// Where the field is evaluated: the octree's blocks, the corners, the edge crossings, the
+    /// vertices' Newton steps and the measuring, in batches — on the GPU in f32 (the scene's
+    /// `map` as the pictures compile it) or on all cores in f64. `auto`: the GPU when the
+    /// scene costs at least 16 primitive evaluations a point (below that the CPU is as fast
+    /// as opening a device), the CPU if no device opens.
+    #[arg(long, value_enum, default_value = "auto")]
+    pub backend: super::values::MeshBackendArg,
     /// Contour every cell of the grid instead of only those the field's bound cannot rule out
     /// (the brute-force baseline the pruning is measured against; memory grows with the cube
     /// of the resolution).

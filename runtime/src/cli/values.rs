@@ -159,6 +159,19 @@ impl From<MeshFormatArg> for sdfc_compiler::mesh::formats::Format {
     }
 }
 
+/// `sdfc mesh --backend`.
+#[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum MeshBackendArg {
+    /// The GPU (Vulkan, then GL) for a scene whose evaluation is costly, else the CPU.
+    Auto,
+    /// The CPU in f64 (the reference).
+    Cpu,
+    /// Vulkan only (lavapipe on machines without a GPU).
+    Vulkan,
+    /// GL only (llvmpipe over EGL on machines without a GPU).
+    Gl,
+}
+
 /// `sdfc mesh --method`.
 #[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
 pub enum MeshMethodArg {

@@ -4,12 +4,15 @@
 use super::common::{progress_bar, writable, write_output};
 use crate::cli::input::{exit_code, load_scene_with, param_values};
 use crate::cli::messages::{self, done};
-use crate::cli::values::MeshMethodArg;
+use crate::cli::values::{MeshBackendArg, MeshMethodArg};
 use crate::cli::{Error, MeshArgs};
 use glam::DVec3;
+use sdfc::gpu::BackendChoice;
+use sdfc::mesh_gpu::GpuField;
 use sdfc_compiler::diag::Diagnostic;
+use sdfc_compiler::mesh::field::{Evaluator, Field};
 use sdfc_compiler::mesh::formats::{self, Format};
-use sdfc_compiler::mesh::{self, Mesh, field::Field, measure};
+use sdfc_compiler::mesh::{self, Mesh, measure};
 use sdfc_compiler::scene::Scene;
 use std::path::Path;
 use std::time::Instant;
@@ -53,6 +56,8 @@ fn mesh_scene(args: &MeshArgs) -> Result<(), Error> {
         prune: !args.no_prune,
         max_bytes: (args.max_memory * (1u64 << 30) as f64) as u64,
     };
+    let gpu = gpu_field(args.backend, &scene, bounds)?;
+    let evaluator = gpu.as_ref().map(|g| g as &dyn Evaluator);
     let bar = progress_bar("meshing");
     let t0 = Instant::now();
     let stage = |what: &str| {
@@ -64,8 +69,9 @@ fn mesh_scene(args: &MeshArgs) -> Result<(), Error> {
         }
     };
     let mesh = match args.triangles {
-        Some(n) => toward_count(&scene, &mut options, n, &stage)?,
-        None => mesh::mesh(&scene, &options, &stage).map_err(|e| format!("error: {e}"))?,
+        Some(n) => toward_count(&scene, &mut options, n, evaluator, &stage)?,
+        None => mesh::mesh_with(&scene, &options, evaluator, &stage)
+            .map_err(|e| format!("error: {e}"))?,
     };
     if mesh.triangles.is_empty() {
         return Err("error: no surface crosses the box: nothing to mesh (see `--bounds`)".into());
@@ -81,7 +87,10 @@ fn mesh_scene(args: &MeshArgs) -> Result<(), Error> {
         );
     }
     stage("measuring");
-    let field = Field::new(&scene, bounds.0, bounds.1);
+    let mut field = Field::new(&scene, bounds.0, bounds.1);
+    if let Some(e) = evaluator {
+        field = field.with_evaluator(e);
+    }
     let deviation = measure::deviation(&field, &mesh, mesh.stats.cell);
     let topology = measure::topology(&mesh);
     stage("writing");
@@ -89,7 +98,11 @@ fn mesh_scene(args: &MeshArgs) -> Result<(), Error> {
     if let Some(b) = bar {
         b.finish_and_clear();
     }
-    done(&success(args, &mesh, &topology, &deviation, started));
+    let on = match &gpu {
+        Some(g) => format!("field on {} (f32)", g.device_name()),
+        None => "field on the CPU (f64)".to_string(),
+    };
+    done(&success(args, &mesh, &topology, &deviation, started, &on));
     if !topology.is_closed_manifold() {
         say!(
             "warning: the mesh is not closed and 2-manifold: {} open, {} shared by more than two \
@@ -105,6 +118,33 @@ fn mesh_scene(args: &MeshArgs) -> Result<(), Error> {
     Ok(())
 }
 
+/// Fewest primitive evaluations a point for which `--backend auto` evaluates on the GPU:
+/// below, opening a device and compiling the field cost more than they save (measured in
+/// docs/mesh.md).
+const GPU_FROM: f64 = 16.0;
+
+/// The GPU field `--backend` asks for: `auto` opens one for a costly scene (none if it cannot),
+/// `vulkan` and `gl` must.
+fn gpu_field(
+    backend: MeshBackendArg,
+    scene: &Scene,
+    bounds: (DVec3, DVec3),
+) -> Result<Option<GpuField>, Error> {
+    let choice = match backend {
+        MeshBackendArg::Cpu => return Ok(None),
+        MeshBackendArg::Auto if scene.root_node().evaluations < GPU_FROM => return Ok(None),
+        MeshBackendArg::Auto => return Ok(GpuField::new(scene, BackendChoice::Auto, bounds).ok()),
+        MeshBackendArg::Vulkan => BackendChoice::Vulkan,
+        MeshBackendArg::Gl => BackendChoice::Gl,
+    };
+    GpuField::new(scene, choice, bounds).map(Some).map_err(|e| {
+        format!(
+            "error: no GPU to evaluate the field on: {e} (`--backend cpu` evaluates it on the CPU)"
+        )
+        .into()
+    })
+}
+
 /// Coarsest and finest resolutions `--triangles` chooses from.
 const COUNT_RESOLUTIONS: (u32, u32) = (4, 4096);
 
@@ -118,6 +158,7 @@ fn toward_count(
     scene: &Scene,
     options: &mut mesh::Options,
     target: u64,
+    evaluator: Option<&dyn Evaluator>,
     stage: &dyn Fn(&str),
 ) -> Result<Mesh, Error> {
     if target < 4 {
@@ -129,7 +170,7 @@ fn toward_count(
             resolution,
             ..*options
         };
-        mesh::mesh(scene, &o, stage).map_err(|e| Error::from(format!("error: {e}")))
+        mesh::mesh_with(scene, &o, evaluator, stage).map_err(|e| Error::from(format!("error: {e}")))
     };
     let next = |r: u32, got: usize| -> u32 {
         let k = (target as f64 / got.max(1) as f64).sqrt();
@@ -268,6 +309,7 @@ fn success(
     topology: &measure::Topology,
     d: &measure::Deviation,
     started: Instant,
+    on: &str,
 ) -> String {
     let place = match args.output.to_str() {
         Some("-") => "standard output".to_string(),
@@ -295,7 +337,7 @@ fn success(
     format!(
         "wrote {place} — {} triangles{asked}, {} vertices, {shape}; cells of {h:.3e} ({}×{}×{}, {} \
          {cells}), {:.1} s; distance to the surface: vertices ≤ {:.1e}, faces ≤ {:.1e} \
-         (rms {:.1e}, {} sampled) = {:.3} of a cell",
+         (rms {:.1e}, {} sampled) = {:.3} of a cell; {on}",
         mesh.triangles.len(),
         mesh.positions.len(),
         g[0],
