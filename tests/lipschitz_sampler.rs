@@ -168,7 +168,8 @@ pub(crate) fn plain_value(r: &mut Rng, owner: &str, p: &Param) -> String {
 pub(crate) fn args(r: &mut Rng, owner: &str, params: &[Param]) -> String {
     let mut out = Vec::new();
     for p in params {
-        if p.default.is_some() && r.below(3) == 0 {
+        // A bake's `res` always given (small, as `scenes::args` says why).
+        if p.default.is_some() && p.name != "res" && r.below(3) == 0 {
             continue;
         }
         out.push(format!("{} = {}", p.name, value(r, owner, p)));
