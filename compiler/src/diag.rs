@@ -1,5 +1,7 @@
 //! Diagnostics: errors and warnings with source spans, rendered with codespan-reporting.
 
+pub mod json;
+
 use crate::source::Sources;
 pub use crate::source::Span;
 use codespan_reporting::diagnostic as cs;

@@ -36,4 +36,5 @@ mod textures;
 mod tracers;
 mod view;
 mod watch;
+mod web;
 mod webgl2;

@@ -66,13 +66,11 @@ pub fn get_or_bake(
     let (volume, origin, seconds) = match stored {
         Some(v) => (Arc::new(v), Origin::Store, None),
         None => {
-            let clock = std::time::Instant::now();
-            let v = make();
-            let seconds = clock.elapsed().as_secs_f64();
+            let (v, seconds) = timed(make);
             if let Some(s) = store.as_ref() {
                 s.save(key, &v);
             }
-            (Arc::new(v), Origin::Baked, Some(seconds))
+            (Arc::new(v), Origin::Baked, seconds)
         }
     };
     drop(store);
@@ -93,4 +91,15 @@ pub fn bake_seconds(volume: &Arc<Volume>) -> Option<f64> {
         .iter()
         .find(|(_, v, _)| Arc::ptr_eq(v, volume))
         .and_then(|(_, _, s)| *s)
+}
+
+/// `make()` and the seconds it took, where there is a clock (WebAssembly in a page has none:
+/// `Instant::now` panics there).
+fn timed<T>(make: impl FnOnce() -> T) -> (T, Option<f64>) {
+    if cfg!(target_arch = "wasm32") {
+        return (make(), None);
+    }
+    let clock = std::time::Instant::now();
+    let v = make();
+    (v, Some(clock.elapsed().as_secs_f64()))
 }

@@ -1,0 +1,163 @@
+//! The compiler as WebAssembly (`web/`, built by `scripts/build_web.sh`) run by Node — V8, the
+//! engine of Chromium's pages — gives what the CLI gives: every example's WGSL and GLSL ES
+//! fragment shader and manifest byte for byte as `sdfc emit`, and every file of the error
+//! corpus the diagnostics of `sdfc check --message-format json`. Issue 36's first step.
+//!
+//! Needs the `wasm32-unknown-unknown` target and Node (`.ci/run` installs both); without them
+//! the test says SKIPPED loudly, and fails instead when `SDFC_REQUIRE_WASM=1` (as `.ci/run`
+//! sets).
+
+use crate::common::{examples, report, root, scratch, sdfc};
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+/// Builds the module (its own target folder); its path, or `None` (said loudly) without the
+/// target or Node.
+fn wasm() -> Option<PathBuf> {
+    let node = Command::new("node").arg("--version").output().is_ok();
+    let built = node
+        && Command::new("bash")
+            .arg(root().join("scripts/build_web.sh"))
+            .output()
+            .map(|o| {
+                if !o.status.success() {
+                    eprintln!("build_web.sh: {}", String::from_utf8_lossy(&o.stderr));
+                } else {
+                    report(String::from_utf8_lossy(&o.stdout).trim());
+                }
+                o.status.success()
+            })
+            .unwrap_or(false);
+    if !built {
+        assert!(
+            std::env::var("SDFC_REQUIRE_WASM").is_err(),
+            "SDFC_REQUIRE_WASM is set but Node ({node}) or the wasm build is missing"
+        );
+        eprintln!(
+            "\n*** Node or the wasm32-unknown-unknown target is missing: the WebAssembly test is SKIPPED (`.ci/run` installs them) ***\n"
+        );
+        return None;
+    }
+    Some(root().join("target/web/sdfc.wasm"))
+}
+
+/// The module's responses for `files`, one JSON object per file (`file`, `ms`, `response`).
+fn in_node(wasm: &Path, target: &str, entry: &str, files: &[PathBuf]) -> Vec<serde_json::Value> {
+    let out = Command::new("node")
+        .arg(root().join("web/test/compile.mjs"))
+        .args([wasm.to_str().unwrap(), target, entry])
+        .args(files)
+        .output()
+        .expect("node");
+    assert!(
+        out.status.success(),
+        "node: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let lines: Vec<serde_json::Value> = String::from_utf8_lossy(&out.stdout)
+        .lines()
+        .map(|l| serde_json::from_str(l).expect("a JSON line"))
+        .collect();
+    assert_eq!(lines.len(), files.len());
+    lines
+}
+
+#[test]
+fn the_wasm_compiler_emits_and_reports_what_the_cli_does() {
+    let Some(wasm) = wasm() else {
+        return;
+    };
+    let dir = scratch("web");
+    let files = examples();
+    for (target, ext, extra) in [("wgsl", "wgsl", None), ("glsl", "frag", Some("300es"))] {
+        let mut slowest = (0.0, String::new());
+        for got in in_node(&wasm, target, "fragment", &files) {
+            let file = got["file"].as_str().unwrap();
+            let r = &got["response"];
+            assert_eq!(r["ok"], true, "{file}: {r}");
+            let stem = Path::new(file).file_stem().unwrap().to_string_lossy();
+            let (code, manifest) = (
+                dir.join(format!("{stem}.{ext}")),
+                dir.join(format!("{stem}.json")),
+            );
+            let mut args = vec![
+                "emit",
+                file,
+                "--target",
+                target,
+                "--entry",
+                "fragment",
+                "-o",
+                code.to_str().unwrap(),
+                "--manifest",
+                manifest.to_str().unwrap(),
+            ];
+            if let Some(v) = extra {
+                args.extend(["--glsl-version", v]);
+            }
+            let run = sdfc(&args);
+            assert!(
+                run.status.success(),
+                "{}",
+                String::from_utf8_lossy(&run.stderr)
+            );
+            let cli_code = std::fs::read_to_string(&code).unwrap();
+            assert!(
+                r["code"] == cli_code.as_str(),
+                "{file} {target}: the shaders differ"
+            );
+            let cli_manifest: serde_json::Value =
+                serde_json::from_str(&std::fs::read_to_string(&manifest).unwrap()).unwrap();
+            assert_eq!(
+                r["manifest"], cli_manifest,
+                "{file} {target}: the manifests differ"
+            );
+            let ms = got["first_ms"].as_f64().unwrap();
+            if ms > slowest.0 {
+                slowest = (ms, stem.into_owned());
+            }
+        }
+        report(&format!(
+            "wasm compiler in Node: {} examples' {target} fragment shaders and manifests equal \
+             `sdfc emit`'s; slowest first compile {:.1} ms ({})",
+            files.len(),
+            slowest.0,
+            slowest.1
+        ));
+    }
+    // The error corpus: the same diagnostics as `sdfc check --message-format json` (files that
+    // import other files are left out: the page has none).
+    let corpus: Vec<PathBuf> = std::fs::read_dir(root().join("tests/errors"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "sdf"))
+        .filter(|p| {
+            let text = std::fs::read_to_string(p).unwrap_or_default();
+            !text
+                .lines()
+                .any(|l| l.trim_start().starts_with("import") && !l.contains("\"std/"))
+        })
+        .collect();
+    let mut compared = 0;
+    for got in in_node(&wasm, "wgsl", "fragment", &corpus) {
+        let file = got["file"].as_str().unwrap();
+        let run = sdfc(&["check", file, "--message-format", "json"]);
+        let said: Vec<serde_json::Value> = String::from_utf8_lossy(&run.stderr)
+            .lines()
+            .filter_map(|l| serde_json::from_str(l).ok())
+            .collect();
+        let (cli_summary, cli): (Vec<_>, Vec<_>) =
+            said.into_iter().partition(|v| v.get("summary").is_some());
+        let r = &got["response"];
+        assert_eq!(r["diagnostics"], serde_json::Value::from(cli), "{file}");
+        if let Some(s) = cli_summary.first() {
+            assert_eq!(r["summary"], s["summary"], "{file}");
+        }
+        assert_eq!(r["ok"], run.status.success(), "{file}: {r}");
+        compared += 1;
+    }
+    report(&format!(
+        "wasm compiler in Node: {compared} files of the error corpus give `sdfc check`'s \
+         diagnostics"
+    ));
+}

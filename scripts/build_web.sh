@@ -1,0 +1,16 @@
+#!/usr/bin/env bash
+# Builds sdfc's compiler for the browser (web/: WebAssembly, no wasm-bindgen) into
+# target/web/sdfc.wasm and says its size, raw and gzipped. Needs the wasm32-unknown-unknown
+# target (`rustup target add wasm32-unknown-unknown`). Its own target folder, so that it does
+# not wait on (or invalidate) the native build's.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+# Nested scenes recurse: a 32 MiB stack in the module's memory (the CLI's thread has 256 MiB
+# for the deepest hostile inputs; whether 32 suffices for them in the page is not yet tested).
+export RUSTFLAGS="-C link-arg=-zstack-size=33554432"
+cargo build --quiet --release -p sdfc-web --target wasm32-unknown-unknown --target-dir target/wasm
+mkdir -p target/web
+cp target/wasm/wasm32-unknown-unknown/release/sdfc_web.wasm target/web/sdfc.wasm
+raw=$(stat -c %s target/web/sdfc.wasm)
+gz=$(gzip -9 -c target/web/sdfc.wasm | wc -c)
+echo "target/web/sdfc.wasm: $raw bytes, $gz gzipped"

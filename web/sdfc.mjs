@@ -1,0 +1,30 @@
+// sdfc's compiler as WebAssembly, for pages and for Node: `const sdfc = await load(bytes)`,
+// then `sdfc.compile({ source, name, target, entry })` returns `{ ok, code, manifest,
+// diagnostics, summary }` (see web/src/lib.rs). The module's four exports are used directly:
+// a request is written into memory from `sdfc_alloc`, `sdfc_compile` returns the response's
+// length and text, both are given back with `sdfc_free`.
+
+export async function load(bytes) {
+  const { instance } = await WebAssembly.instantiate(bytes, {});
+  const wasm = instance.exports;
+  const encoder = new TextEncoder();
+  const decoder = new TextDecoder();
+  const api = {
+    // The response as the compiler wrote it (JSON text: its numbers as written, `1.0` not `1`).
+    compileText(request) {
+      const input = encoder.encode(JSON.stringify(request));
+      const at = wasm.sdfc_alloc(input.length);
+      new Uint8Array(wasm.memory.buffer, at, input.length).set(input);
+      const out = wasm.sdfc_compile(at, input.length);
+      wasm.sdfc_free(at, input.length);
+      const len = new DataView(wasm.memory.buffer).getUint32(out, true);
+      const text = decoder.decode(new Uint8Array(wasm.memory.buffer, out + 4, len));
+      wasm.sdfc_free(out, 4 + len);
+      return text;
+    },
+    compile(request) {
+      return JSON.parse(api.compileText(request));
+    },
+  };
+  return api;
+}

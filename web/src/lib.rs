@@ -1,0 +1,192 @@
+//! sdfc's compiler in the browser: `compile(request)` takes a scene's source and returns the
+//! shader, its manifest and the diagnostics as `sdfc emit` and `sdfc check --message-format json`
+//! give them, as JSON, through four plain WebAssembly exports (`sdfc_alloc`, `sdfc_compile`,
+//! `sdfc_free`, and the memory) that `web/sdfc.mjs` wraps. No wasm-bindgen: a string in and
+//! a string out need no generated glue, and the build needs no tool beyond cargo (our choice;
+//! issue 36 suggested wasm-bindgen).
+//!
+//! Imports resolve against the built-in standard library only (`std/…`): the page has no files.
+
+use sdfc_compiler::check::{self, Checked};
+use sdfc_compiler::diag::{self, Diagnostic};
+use sdfc_compiler::emit::{self, GlslVersion, Output, Target};
+use sdfc_compiler::lipschitz::{self, Effort};
+use sdfc_compiler::lower::{Entry, tracer::Options};
+use sdfc_compiler::scene::Scene;
+use sdfc_compiler::syntax::NoFiles;
+use serde_json::{Value, json};
+use std::collections::HashMap;
+
+/// Parameter values by name (none: the scene's defaults).
+type Values = HashMap<String, Vec<f64>>;
+
+/// What the page asks for: `{"source", "name", "target": "wgsl"|"glsl", "entry":
+/// "fragment"|"compute"|"library"}` (GLSL is ES 3.00 for WebGL2: fragment or library only).
+/// Missing fields take those defaults: `scene.sdf`, WGSL, the fragment entry.
+pub fn compile(request: &str) -> String {
+    let request: Value = serde_json::from_str(request).unwrap_or(Value::Null);
+    let text = |key: &str, default: &'static str| -> String {
+        request
+            .get(key)
+            .and_then(Value::as_str)
+            .unwrap_or(default)
+            .to_string()
+    };
+    let source = text("source", "");
+    let name = text("name", "scene.sdf");
+    let wanted = (text("target", "wgsl"), text("entry", "fragment"));
+    let (target, entry) = match choose(&wanted) {
+        Ok(te) => te,
+        Err(why) => return json!({ "ok": false, "error": why }).to_string(),
+    };
+    let (checked, diagnostics) = checked(&name, &source);
+    let mut response = json!({
+        "ok": false,
+        "diagnostics": diagnostics
+            .iter()
+            .map(|d| diag::json::one(d, &checked.sources))
+            .collect::<Vec<_>>(),
+        "summary": diag::json::summary(&diag::shown(&diagnostics).1)["summary"],
+    });
+    let Some(scene) = checked
+        .scene
+        .filter(|_| !diagnostics.iter().any(Diagnostic::is_error))
+    else {
+        return response.to_string();
+    };
+    match emitted(&scene, &name, target, entry) {
+        Ok((code, manifest)) => {
+            response["ok"] = json!(true);
+            response["code"] = json!(code);
+            response["manifest"] = manifest;
+        }
+        Err(e) => response["error"] = json!(format!("internal compiler error: {e}")),
+    }
+    response.to_string()
+}
+
+/// The target and entry asked for, or why they cannot be had.
+fn choose((target, entry): &(String, String)) -> Result<(Target, Entry), String> {
+    let entry = match entry.as_str() {
+        "fragment" => Entry::Fragment,
+        "compute" => Entry::Compute,
+        "library" => Entry::Library,
+        other => {
+            return Err(format!(
+                "unknown entry `{other}`: fragment, compute or library"
+            ));
+        }
+    };
+    let target = match target.as_str() {
+        "wgsl" => Target::Wgsl,
+        "glsl" if entry == Entry::Compute => {
+            return Err("GLSL ES 3.00 (WebGL2) has no compute shaders".into());
+        }
+        "glsl" => Target::Glsl,
+        other => return Err(format!("unknown target `{other}`: wgsl or glsl")),
+    };
+    Ok((target, entry))
+}
+
+/// The scene checked as `sdfc check` checks it at its defaults: the checker's diagnostics,
+/// then the Lipschitz annotations verified at the defaults and over the parameters' ranges.
+fn checked(name: &str, source: &str) -> (Checked, Vec<Diagnostic>) {
+    let at = |v: &Values| check::compile_file(name, source, v, &NoFiles);
+    let checked = at(&Values::new());
+    let mut diagnostics = checked.diagnostics.clone();
+    if let Some(scene) = &checked.scene {
+        let found = lipschitz::verify_annotations(scene, Effort::Fast);
+        let at_values = |v: &Values| at(v).scene;
+        let more = lipschitz::verify_over_ranges(
+            &at_values,
+            scene,
+            Effort::Fast,
+            (&Values::new(), &found),
+        );
+        diagnostics.extend(found);
+        diagnostics.extend(more);
+    }
+    (checked, diagnostics)
+}
+
+/// The shader and its manifest, as `sdfc emit FILE --target … --entry … --manifest` writes them
+/// (baked volumes named as `emit` would write them beside `NAME.wgsl`; the page is not given
+/// their bytes yet).
+fn emitted(
+    scene: &Scene,
+    name: &str,
+    target: Target,
+    entry: Entry,
+) -> Result<(String, Value), String> {
+    let options = Options::from_scene(scene);
+    let (module, info) = emit::module(scene, entry, &options).map_err(|e| e.0)?;
+    let settings = emit::Settings {
+        glsl_version: GlslVersion::Es300,
+        ..emit::Settings::default()
+    };
+    let (out, reflection) =
+        emit::write_reflected(&module, &info, target, entry, &settings).map_err(|e| e.0)?;
+    let stem = std::path::Path::new(name)
+        .file_stem()
+        .map_or("scene".into(), |s| s.to_string_lossy().into_owned());
+    let volume_files: Vec<String> = (0..scene.volumes().len())
+        .map(|i| format!("{stem}.volume{i}.r32f"))
+        .collect();
+    let origin = sdfc_compiler::manifest::Origin {
+        volume_files: &volume_files,
+        scene: name,
+        target: if target == Target::Wgsl {
+            "wgsl"
+        } else {
+            "glsl"
+        },
+        entry,
+        prefix: None,
+        written: Some((&out, &reflection)),
+    };
+    let manifest = sdfc_compiler::manifest::manifest(scene, &module, &origin);
+    match out {
+        Output::Text(code) => Ok((code, manifest)),
+        Output::Binary(_) => Err("a binary output for a text target".into()),
+    }
+}
+
+/// Memory for `len` bytes the page writes its request into; give it back with [`sdfc_free`].
+#[unsafe(no_mangle)]
+pub extern "C" fn sdfc_alloc(len: usize) -> *mut u8 {
+    let mut bytes = Vec::<u8>::with_capacity(len.max(1));
+    let at = bytes.as_mut_ptr();
+    std::mem::forget(bytes);
+    at
+}
+
+/// Gives back memory from [`sdfc_alloc`] or [`sdfc_compile`] (`len` as allocated).
+///
+/// # Safety
+/// `at` and `len` must be what one of those returned (and said), not given back before.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sdfc_free(at: *mut u8, len: usize) {
+    // SAFETY: the caller gives back an allocation of capacity `len.max(1)` made by a Vec.
+    drop(unsafe { Vec::from_raw_parts(at, 0, len.max(1)) });
+}
+
+/// Compiles the request of `len` bytes at `at` (UTF-8 JSON, see [`compile`]); returns memory
+/// holding the response's length (4 bytes, little-endian) and its UTF-8 JSON. Free it with
+/// [`sdfc_free`] and 4 + that length.
+///
+/// # Safety
+/// `at` must point at `len` readable bytes.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sdfc_compile(at: *const u8, len: usize) -> *mut u8 {
+    // SAFETY: the caller wrote `len` bytes at `at`.
+    let request = unsafe { std::slice::from_raw_parts(at, len) };
+    let response = compile(&String::from_utf8_lossy(request));
+    let mut out = Vec::with_capacity(4 + response.len());
+    out.extend_from_slice(&(response.len() as u32).to_le_bytes());
+    out.extend_from_slice(response.as_bytes());
+    let cap = out.capacity();
+    debug_assert_eq!(cap, 4 + response.len());
+    let at = out.as_mut_ptr();
+    std::mem::forget(out);
+    at
+}
