@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Builds sdfc's compiler for the browser (web/: WebAssembly, no wasm-bindgen) into
-# target/web/sdfc.wasm and says its size, raw and gzipped. Needs the wasm32-unknown-unknown
+# target/web/sdfc.wasm and says its size, raw and gzipped; target/web/ is then the whole
+# playground (the page, the WebGPU host's code, the examples):
+#   python3 -m http.server -d target/web 8000     # and open http://localhost:8000 Needs the wasm32-unknown-unknown
 # target (`rustup target add wasm32-unknown-unknown`). Its own target folder, so that it does
 # not wait on (or invalidate) the native build's.
 set -euo pipefail
@@ -11,6 +13,10 @@ export RUSTFLAGS="-C link-arg=-zstack-size=33554432"
 cargo build --quiet --release -p sdfc-web --target wasm32-unknown-unknown --target-dir target/wasm
 mkdir -p target/web
 cp target/wasm/wasm32-unknown-unknown/release/sdfc_web.wasm target/web/sdfc.wasm
+cp web/index.html web/playground.js examples/hosts/webgpu/host.js target/web/
+cp web/sdfc.mjs target/web/sdfc.js
+mkdir -p target/web/examples
+cp examples/*.sdf target/web/examples/
 raw=$(stat -c %s target/web/sdfc.wasm)
 gz=$(gzip -9 -c target/web/sdfc.wasm | wc -c)
 echo "target/web/sdfc.wasm: $raw bytes, $gz gzipped"

@@ -28,6 +28,7 @@ mod nan;
 mod options;
 mod outputs;
 mod params;
+mod playground;
 mod render;
 mod shading;
 mod shadows;

@@ -11,9 +11,26 @@ use crate::common::{examples, report, root, scratch, sdfc};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-/// Builds the module (its own target folder); its path, or `None` (said loudly) without the
-/// target or Node.
-fn wasm() -> Option<PathBuf> {
+/// Builds the module and the page (`target/web`; once per run: the playground's test uses it
+/// too); the module's path, or `None` (said loudly) without the target or Node.
+pub(crate) fn wasm() -> Option<PathBuf> {
+    static BUILT: std::sync::OnceLock<(bool, bool)> = std::sync::OnceLock::new();
+    let (node, built) = *BUILT.get_or_init(build);
+    if !built {
+        assert!(
+            std::env::var("SDFC_REQUIRE_WASM").is_err(),
+            "SDFC_REQUIRE_WASM is set but Node ({node}) or the wasm build is missing"
+        );
+        eprintln!(
+            "\n*** Node or the wasm32-unknown-unknown target is missing: the WebAssembly test is SKIPPED (`.ci/run` installs them) ***\n"
+        );
+        return None;
+    }
+    Some(root().join("target/web/sdfc.wasm"))
+}
+
+/// Runs `scripts/build_web.sh`: whether Node is here, and whether the build succeeded.
+fn build() -> (bool, bool) {
     let node = Command::new("node").arg("--version").output().is_ok();
     let built = node
         && Command::new("bash")
@@ -28,17 +45,7 @@ fn wasm() -> Option<PathBuf> {
                 o.status.success()
             })
             .unwrap_or(false);
-    if !built {
-        assert!(
-            std::env::var("SDFC_REQUIRE_WASM").is_err(),
-            "SDFC_REQUIRE_WASM is set but Node ({node}) or the wasm build is missing"
-        );
-        eprintln!(
-            "\n*** Node or the wasm32-unknown-unknown target is missing: the WebAssembly test is SKIPPED (`.ci/run` installs them) ***\n"
-        );
-        return None;
-    }
-    Some(root().join("target/web/sdfc.wasm"))
+    (node, built)
 }
 
 /// The module's responses for `files`, one JSON object per file (`file`, `ms`, `response`).

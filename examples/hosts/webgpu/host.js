@@ -111,10 +111,18 @@ export async function createHost(base, format) {
     fetch(`${base}.wgsl`).then((r) => (r.ok ? r.text() : Promise.reject(new Error(`${base}.wgsl: ${r.status}`)))),
     fetch(`${base}.json`).then((r) => (r.ok ? r.json() : Promise.reject(new Error(`${base}.json: ${r.status}`)))),
   ]);
-  if (manifest.format !== "sdfc-manifest 1") throw new Error(`unknown manifest format ${manifest.format}`);
   const adapter = await navigator.gpu.requestAdapter();
   if (!adapter) throw new Error("no WebGPU adapter");
   const device = await adapter.requestDevice();
+  return createHostFrom(device, library, manifest, format, new URL(`${base}.json`, location.href));
+}
+
+/**
+ * [createHost] from a library's WGSL and manifest already in hand (the playground compiles them
+ * in the page) on `device`; baked maps are fetched beside `manifestUrl`.
+ */
+export async function createHostFrom(device, library, manifest, format, manifestUrl) {
+  if (manifest.format !== "sdfc-manifest 1") throw new Error(`unknown manifest format ${manifest.format}`);
   const color = manifest.functions.find((f) => f.name === (manifest.prefix ? `${manifest.prefix}_color` : "color"));
   if (!color) throw new Error("the manifest lists no `color`: emit with --entry library");
   const module = device.createShaderModule({ code: library + "\n" + HOST_WGSL(color.name) });
@@ -134,7 +142,7 @@ export async function createHost(base, format) {
   });
   // The scene's parameters, where the manifest gives their binding (docs/interface.md), and
   // its baked maps: the library's group 0.
-  const entries = await volumeEntries(device, manifest, new URL(`${base}.json`, location.href));
+  const entries = await volumeEntries(device, manifest, manifestUrl);
   let paramsBuffer = null;
   if (manifest.params.binding) {
     paramsBuffer = device.createBuffer({
@@ -170,8 +178,12 @@ export async function createHost(base, format) {
  * returns its RGBA8 pixels (sRGB, row-major, y down): what the tests compare with `sdfc render`.
  */
 export async function renderPixels(base, width, height, values = {}) {
+  return hostPixels(await createHost(base, "rgba8unorm"), width, height, values);
+}
+
+/** [renderPixels] with a host already made (its format rgba8unorm), from the scene's camera. */
+export async function hostPixels(host, width, height, values = {}, eye = host.manifest.camera.eye) {
   const format = "rgba8unorm";
-  const host = await createHost(base, format);
   const texture = host.device.createTexture({
     size: [width, height],
     format,
@@ -179,7 +191,7 @@ export async function renderPixels(base, width, height, values = {}) {
   });
   const row = Math.ceil((4 * width) / 256) * 256;
   const readback = host.device.createBuffer({ size: row * height, usage: GPUBufferUsage.COPY_DST | GPUBufferUsage.MAP_READ });
-  const encoder = host.draw(texture.createView(), width, height, host.manifest.camera.eye, values);
+  const encoder = host.draw(texture.createView(), width, height, eye, values);
   encoder.copyTextureToBuffer({ texture }, { buffer: readback, bytesPerRow: row }, [width, height]);
   host.device.queue.submit([encoder.finish()]);
   await readback.mapAsync(GPUMapMode.READ);
@@ -188,6 +200,14 @@ export async function renderPixels(base, width, height, values = {}) {
   for (let y = 0; y < height; y++) out.set(data.subarray(y * row, y * row + 4 * width), 4 * width * y);
   readback.unmap();
   return out;
+}
+
+/** The orbit camera's turn: `offset` (eye − target) after a drag of `dx`, `dy` pixels. */
+export function orbit(offset, dx, dy) {
+  const r = Math.hypot(...offset);
+  const azimuth = Math.atan2(offset[0], offset[2]) - dx * 0.01;
+  const elevation = Math.min(1.5, Math.max(-1.5, Math.asin(offset[1] / r) + dy * 0.01));
+  return [r * Math.cos(elevation) * Math.sin(azimuth), r * Math.sin(elevation), r * Math.cos(elevation) * Math.cos(azimuth)];
 }
 
 /** The interactive page: orbit camera, sliders from the manifest's parameters, `time` running. */
@@ -227,12 +247,8 @@ async function main() {
     window.onpointerup = () => (dragging = null);
     window.onpointermove = (e) => {
       if (!dragging) return;
-      const [dx, dy] = [e.clientX - dragging[0], e.clientY - dragging[1]];
+      offset = orbit(offset, e.clientX - dragging[0], e.clientY - dragging[1]);
       dragging = [e.clientX, e.clientY];
-      const r = Math.hypot(...offset);
-      let azimuth = Math.atan2(offset[0], offset[2]) - dx * 0.01;
-      let elevation = Math.min(1.5, Math.max(-1.5, Math.asin(offset[1] / r) + dy * 0.01));
-      offset = [r * Math.cos(elevation) * Math.sin(azimuth), r * Math.sin(elevation), r * Math.cos(elevation) * Math.cos(azimuth)];
     };
     canvas.onwheel = (e) => {
       e.preventDefault();
