@@ -15,6 +15,7 @@ mkdir -p target/web
 cp target/wasm/wasm32-unknown-unknown/release/sdfc_web.wasm target/web/sdfc.wasm
 cp web/index.html web/playground.js examples/hosts/webgpu/host.js target/web/
 cp web/sdfc.mjs target/web/sdfc.js
+cp examples/hosts/webgl2/host.js target/web/host_webgl2.js
 mkdir -p target/web/examples
 cp examples/*.sdf target/web/examples/
 raw=$(stat -c %s target/web/sdfc.wasm)

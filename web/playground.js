@@ -1,9 +1,11 @@
 // sdfc's playground: the scene's text compiled in this page by the WebAssembly compiler
 // (sdfc.mjs) on every edit, drawn with WebGPU by the host page's code (host.js: the library
-// entry and its manifest), orbited with the mouse; the compiler's diagnostics listed under the
+// entry and its manifest) — or, where WebGPU is missing, with WebGL2 by the WebGL2 host's
+// code (host_webgl2.js: the GLSL ES fragment entry) — orbited with the mouse; the compiler's diagnostics listed under the
 // text; parameters as sliders; the scene shareable in the address. docs/playground.md.
 import { load } from "./sdfc.js";
 import { createHostFrom, hostPixels, orbit } from "./host.js";
+import * as gl2 from "./host_webgl2.js";
 
 const EXAMPLES = ["baked", "blobs", "composition", "dodecahedron", "domain_ops", "gem", "implicit",
   "jewel", "lamp", "mandelbulb", "primitives", "shapes", "squircle", "temple", "textures",
@@ -52,16 +54,49 @@ function line(d) {
   return `${d.file}:${d.span.line}:${d.span.column}: ${d.severity}: ${d.message}${label}`;
 }
 
+/**
+ * How the page draws: WebGPU with the library entry in WGSL, or, where WebGPU is missing (or
+ * `?webgl2` asks), WebGL2 with the fragment entry in GLSL ES 3.00; `make` a host for a compile's
+ * response, `draw` a frame on the canvas, `pixels` the scene's camera offscreen for the tests.
+ */
+async function makeRenderer() {
+  const forced = new URLSearchParams(location.search).has("webgl2");
+  const adapter = !forced && navigator.gpu && (await navigator.gpu.requestAdapter());
+  if (adapter) {
+    const device = await adapter.requestDevice();
+    const format = navigator.gpu.getPreferredCanvasFormat();
+    const context = canvas.getContext("webgpu");
+    context.configure({ device, format, alphaMode: "opaque" });
+    const here = new URL("scene.json", location.href);
+    return {
+      kind: "webgpu", target: "wgsl", entry: "library", format,
+      make: (r, f) => createHostFrom(device, r.code, r.manifest, f, here),
+      draw(host, eye, values) {
+        const encoder = host.draw(context.getCurrentTexture().createView(), canvas.width, canvas.height, eye, values);
+        device.queue.submit([encoder.finish()]);
+      },
+      pixels: async (r, w, h, values) => hostPixels(await createHostFrom(device, r.code, r.manifest, "rgba8unorm", here), w, h, values),
+    };
+  }
+  const gl = canvas.getContext("webgl2");
+  if (!gl) {
+    status.textContent = "this browser has neither WebGPU nor WebGL2: the scene compiles, but cannot be drawn";
+    return { kind: "none", target: "wgsl", entry: "library", make: null, draw() {}, pixels: async () => [] };
+  }
+  status.textContent = "no WebGPU here: drawing with WebGL2";
+  return {
+    kind: "webgl2", target: "glsl", entry: "fragment",
+    make: async (r) => gl2.createHost(gl, r.code, r.manifest),
+    // The canvas: GL's origin, and not sRGB, so the entry encodes.
+    draw: (host, eye, values) => host.draw(canvas.width, canvas.height, eye, values, { yUp: true, srgb: true }),
+    pixels: async (r, w, h, values) => gl2.hostPixels(gl, gl2.createHost(gl, r.code, r.manifest), w, h, values),
+  };
+}
+
 async function main() {
   const sdfc = await load(await (await fetch("sdfc.wasm")).arrayBuffer());
-  if (!navigator.gpu) {
-    status.textContent = "this browser has no WebGPU: the picture needs it (the WebGL2 fallback is not built yet)";
-  }
-  const adapter = navigator.gpu && (await navigator.gpu.requestAdapter());
-  const device = adapter && (await adapter.requestDevice());
-  const format = navigator.gpu ? navigator.gpu.getPreferredCanvasFormat() : "bgra8unorm";
-  const context = device && canvas.getContext("webgpu");
-  context?.configure({ device, format, alphaMode: "opaque" });
+  const renderer = await makeRenderer();
+  state.renderer = renderer.kind;
   const values = {};
   let offset = null;
   let target = [0, 0, 0];
@@ -69,17 +104,17 @@ async function main() {
   async function compile() {
     const text = source.value;
     const t0 = performance.now();
-    const r = sdfc.compile({ source: text, name: "scene.sdf", target: "wgsl", entry: "library" });
+    const r = sdfc.compile({ source: text, name: "scene.sdf", target: renderer.target, entry: renderer.entry });
     const ms = performance.now() - t0;
     state.compiles += 1;
     state.diagnostics = r.diagnostics ?? [];
     $("diagnostics").textContent = [r.error, ...state.diagnostics.map(line)].filter(Boolean).join("\n");
     state.ok = Boolean(r.ok);
-    if (!r.ok || !device) {
+    if (!r.ok || !renderer.make) {
       state.compiledText = text;
       return;
     }
-    const host = await createHostFrom(device, r.code, r.manifest, format, new URL("scene.json", location.href));
+    const host = await renderer.make(r, renderer.format);
     const keepCamera = state.host && JSON.stringify(state.host.manifest.camera) === JSON.stringify(r.manifest.camera);
     state.host = host;
     state.response = r;
@@ -89,7 +124,7 @@ async function main() {
     }
     sliders(r.manifest);
     $("download").href = URL.createObjectURL(new Blob([r.code], { type: "text/plain" }));
-    status.textContent = `compiled in ${ms.toFixed(1)} ms`;
+    status.textContent = `${renderer.kind}: compiled in ${ms.toFixed(1)} ms`;
     state.compiledText = text;
   }
 
@@ -150,11 +185,7 @@ async function main() {
   };
   // For the test: the last compiled scene's picture from its own camera at time 0, as
   // `sdfc render` draws it, with the sliders' values.
-  state.pixels = async (w, h) => {
-    const r = state.response;
-    const host = await createHostFrom(device, r.code, r.manifest, "rgba8unorm", new URL("scene.json", location.href));
-    return Array.from(await hostPixels(host, w, h, { ...values, time: [0] }));
-  };
+  state.pixels = async (w, h) => Array.from(await renderer.pixels(state.response, w, h, { ...values, time: [0] }));
 
   source.value = (await fromAddress()) ?? FIRST;
   await compile();
@@ -162,12 +193,11 @@ async function main() {
   let last = performance.now();
   const frame = () => {
     const host = state.host;
-    if (host && context && offset) {
+    if (host && offset) {
       const time = host.manifest.params.fields.find((f) => f.name === "time");
       if (time) values.time = [(performance.now() - started) / 1000];
       const eye = offset.map((x, i) => x + target[i]);
-      const encoder = host.draw(context.getCurrentTexture().createView(), canvas.width, canvas.height, eye, values);
-      device.queue.submit([encoder.finish()]);
+      renderer.draw(host, eye, values);
       state.frames += 1;
       state.eye = eye;
       const now = performance.now();

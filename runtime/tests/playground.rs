@@ -2,7 +2,8 @@
 //! Chromium: a scene typed into it key by key is compiled in the page by the WebAssembly
 //! compiler and drawn with WebGPU as `sdfc render` draws it; its slider changes the picture
 //! without compiling; the share link reopens the same text; a typo lists the diagnostic
-//! `sdfc check` gives. Needs what `browser.rs` and `web.rs` need (`.ci/run` installs it).
+//! `sdfc check` gives — on WebGPU, and again in pages without WebGPU, where it falls back to
+//! WebGL2 (GLSL ES). Needs what `browser.rs` and `web.rs` need (`.ci/run` installs it).
 
 use crate::common::{compile, gpu, render, report, root, scratch, sdfc, within_levels};
 use sdfc_compiler::view::View;
@@ -29,7 +30,15 @@ fn the_playground_compiles_as_you_type_and_draws_what_sdfc_renders() {
     if crate::web::wasm().is_none() {
         return;
     }
-    let dir = scratch("playground");
+    for (mode, renderer) in [("webgpu", "webgpu"), ("no-webgpu", "webgl2")] {
+        playground(&chrome, &driver, mode, renderer);
+    }
+}
+
+/// The playground's session in Chromium (`mode`: `no-webgpu` takes WebGPU away), which must
+/// draw with `renderer`.
+fn playground(chrome: &str, driver: &std::path::Path, mode: &str, renderer: &str) {
+    let dir = scratch(&format!("playground-{mode}"));
     let typo_text = SCENE.replace("sphere(0.8) at", "sphere(0.8 at");
     let (scene, typo) = (dir.join("scene.sdf"), dir.join("typo.sdf"));
     std::fs::write(&scene, SCENE).unwrap();
@@ -39,8 +48,8 @@ fn the_playground_compiles_as_you_type_and_draws_what_sdfc_renders() {
         .arg(driver.join("playground.mjs"))
         .arg(root().join("target/web"))
         .args([&scene, &typo, &dir])
-        .args([w.to_string(), h.to_string()])
-        .env("CHROME", &chrome)
+        .args([w.to_string(), h.to_string(), mode.to_string()])
+        .env("CHROME", chrome)
         .output()
         .unwrap();
     let said = String::from_utf8_lossy(&run.stdout).to_string();
@@ -52,6 +61,7 @@ fn the_playground_compiles_as_you_type_and_draws_what_sdfc_renders() {
     let got: serde_json::Value = serde_json::from_str(said.trim()).expect("one JSON object");
     println!("{got}");
     assert_eq!(got["first"]["ok"], true, "the page's first scene: {got}");
+    assert_eq!(got["first"]["renderer"], renderer, "{got}");
     assert_eq!(got["typed"]["ok"], true, "the typed scene: {got}");
     assert_eq!(got["errors"], serde_json::json!([]), "{got}");
 
@@ -110,7 +120,7 @@ fn the_playground_compiles_as_you_type_and_draws_what_sdfc_renders() {
         "{got}"
     );
     report(&format!(
-        "playground in Chrome: a scene typed key by key ({} compiles, {} ms) drawn within 2 \
+        "playground in Chrome ({renderer}): a scene typed key by key ({} compiles, {} ms) drawn within 2 \
          levels of sdfc render on {:.2}% of pixels (worst {worst}); its slider redrew without a \
          compile ({:.1}% of pixels changed, {:.2}% within 2 levels of sdfc render at that value, \
          worst {slid_worst}); the share link ({} characters) reopened the same text; a typo \

@@ -2,15 +2,17 @@
 // scene into it character by character, then a typo, moves a slider, shares the scene and
 // reopens it; prints one JSON object of what happened and writes the pictures (RGBA8, y down):
 //
-//   node playground.mjs WEB_DIR SCENE_FILE TYPO_FILE OUT_DIR WIDTH HEIGHT
+//   node playground.mjs WEB_DIR SCENE_FILE TYPO_FILE OUT_DIR WIDTH HEIGHT [no-webgpu]
 //
+// With `no-webgpu` the pages have no `navigator.gpu` (a browser without WebGPU): the playground
+// falls back to WebGL2.
 // OUT_DIR/typed.rgba: the typed scene from its own camera; OUT_DIR/slid.rgba: after its first
 // slider moved to its maximum. CHROME names the browser.
 import fs from "node:fs";
 import path from "node:path";
 import { launch, serve } from "./browser.mjs";
 
-const [webDir, sceneFile, typoFile, outDir, width, height] = process.argv.slice(2);
+const [webDir, sceneFile, typoFile, outDir, width, height, mode] = process.argv.slice(2);
 const [w, h] = [Number(width), Number(height)];
 const { server, port } = await serve(webDir, null, { "/examples/": path.join(webDir, "examples") });
 const browser = await launch();
@@ -30,13 +32,21 @@ async function type(page, text) {
   await page.keyboard.type(text);
   await compiled(page, text);
 }
-try {
+/** A page, without WebGPU when asked. */
+async function newPage() {
   const page = await browser.newPage();
+  if (mode === "no-webgpu") {
+    await page.evaluateOnNewDocument(() => Object.defineProperty(Navigator.prototype, "gpu", { get: () => undefined }));
+  }
+  return page;
+}
+try {
+  const page = await newPage();
   page.on("console", (m) => logs.push(m.text()));
   page.on("pageerror", (e) => logs.push(String(e)));
   await page.goto(`http://127.0.0.1:${port}/index.html`);
   await page.waitForFunction(() => window.sdfcPlayground?.compiles > 0, { timeout: 60000 });
-  const first = await page.evaluate(() => ({ ok: window.sdfcPlayground.ok, frames: window.sdfcPlayground.frames }));
+  const first = await page.evaluate(() => ({ ok: window.sdfcPlayground.ok, frames: window.sdfcPlayground.frames, renderer: window.sdfcPlayground.renderer }));
 
   const scene = fs.readFileSync(sceneFile, "utf8");
   const t0 = Date.now();
@@ -60,7 +70,7 @@ try {
   await page.click("#share");
   await page.waitForFunction(() => location.hash.startsWith("#s="), { timeout: 10000 });
   const address = await page.evaluate(() => location.href);
-  const other = await browser.newPage();
+  const other = await newPage();
   other.on("pageerror", (e) => logs.push(String(e)));
   await other.goto(address);
   await other.waitForFunction(() => window.sdfcPlayground?.compiles > 0, { timeout: 60000 });

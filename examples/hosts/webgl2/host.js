@@ -174,7 +174,12 @@ export async function renderPixels(base, width, height, values = {}, options = {
   const canvas = document.createElement("canvas");
   const gl = canvas.getContext("webgl2");
   if (!gl) throw new Error("this browser has no WebGL2");
-  const host = createHost(gl, code, manifest, library);
+  return hostPixels(gl, createHost(gl, code, manifest, library), width, height, values, { target, yUp });
+}
+
+/** [renderPixels] with a host already made on `gl`, from the scene's camera. */
+export function hostPixels(gl, host, width, height, values = {}, options = {}) {
+  const { target = "rgba8", yUp = true } = options;
   const fbo = gl.createFramebuffer();
   gl.bindFramebuffer(gl.FRAMEBUFFER, fbo);
   const rb = gl.createRenderbuffer();
@@ -182,10 +187,13 @@ export async function renderPixels(base, width, height, values = {}, options = {
   gl.renderbufferStorage(gl.RENDERBUFFER, target === "srgb8" ? gl.SRGB8_ALPHA8 : gl.RGBA8, width, height);
   gl.framebufferRenderbuffer(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.RENDERBUFFER, rb);
   if (gl.checkFramebufferStatus(gl.FRAMEBUFFER) !== gl.FRAMEBUFFER_COMPLETE) throw new Error("incomplete framebuffer");
-  host.draw(width, height, manifest.camera.eye, values, { yUp, srgb: target === "rgba8" });
+  host.draw(width, height, host.manifest.camera.eye, values, { yUp, srgb: target === "rgba8" });
   const raw = new Uint8Array(4 * width * height);
   gl.readPixels(0, 0, width, height, gl.RGBA, gl.UNSIGNED_BYTE, raw);
   const error = gl.getError();
+  gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+  gl.deleteRenderbuffer(rb);
+  gl.deleteFramebuffer(fbo);
   if (error) throw new Error(`GL error ${error}`);
   // readPixels' rows start at the bottom: turn them to y down.
   const out = new Uint8Array(raw.length);
