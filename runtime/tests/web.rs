@@ -168,3 +168,47 @@ fn the_wasm_compiler_emits_and_reports_what_the_cli_does() {
          diagnostics"
     ));
 }
+
+/// Bad input never traps the module nor hangs the page: every file of the hostile suite
+/// (`runtime/tests/hostile`: huge counts, values past f32, a NUL byte, exponential sharing, 2 434
+/// spheres…) compiled in Node gives what `sdfc check` gives — compiled or refused, with the same
+/// first message. (`invalid_utf8.sdf` is bytes a page cannot hold as text: it only must not trap.)
+#[test]
+fn hostile_scenes_in_the_wasm_compiler_get_the_clis_answers() {
+    let Some(wasm) = wasm() else {
+        return;
+    };
+    let files: Vec<PathBuf> = std::fs::read_dir(root().join("runtime/tests/hostile"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "sdf"))
+        .collect();
+    let mut slowest = (0.0, String::new());
+    for got in in_node(&wasm, "wgsl", "fragment", &files) {
+        let file = got["file"].as_str().unwrap();
+        let r = &got["response"];
+        let ms = got["first_ms"].as_f64().unwrap();
+        if ms > slowest.0 {
+            slowest = (ms, file.rsplit('/').next().unwrap().to_string());
+        }
+        if file.ends_with("invalid_utf8.sdf") {
+            continue;
+        }
+        let run = sdfc(&["check", file, "--message-format", "json"]);
+        let first: Option<serde_json::Value> = String::from_utf8_lossy(&run.stderr)
+            .lines()
+            .filter_map(|l| serde_json::from_str::<serde_json::Value>(l).ok())
+            .find(|v| v.get("message").is_some());
+        assert_eq!(r["ok"], run.status.success(), "{file}: {r}");
+        if let Some(first) = first {
+            assert_eq!(r["diagnostics"][0]["message"], first["message"], "{file}");
+        }
+    }
+    report(&format!(
+        "wasm compiler in Node: {} hostile scenes answered as `sdfc check` answers them, none \
+         trapped; slowest first compile {:.0} ms ({})",
+        files.len(),
+        slowest.0,
+        slowest.1
+    ));
+}

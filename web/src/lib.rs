@@ -32,7 +32,8 @@ pub fn compile(request: &str) -> String {
             .unwrap_or(default)
             .to_string()
     };
-    let source = text("source", "");
+    // A byte-order mark dropped, as the CLI drops it from a file.
+    let source = sdfc_compiler::syntax::decode(text("source", "").into_bytes()).unwrap_or_default();
     let name = text("name", "scene.sdf");
     let wanted = (text("target", "wgsl"), text("entry", "fragment"));
     let (target, entry) = match choose(&wanted) {
