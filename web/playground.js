@@ -26,7 +26,7 @@ const canvas = $("picture");
 const status = $("status");
 
 // What the page is doing, for its test (examples/hosts/test/playground.mjs).
-const state = (window.sdfcPlayground = { compiles: 0, ok: false, diagnostics: [], frames: 0, host: null, response: null, compiledText: null });
+const state = (window.sdfcPlayground = { glErrors: [], compiles: 0, ok: false, diagnostics: [], frames: 0, host: null, response: null, compiledText: null });
 
 /** The scene's text from the address (`#s=…`, deflated and base64url), if it carries one. */
 async function fromAddress() {
@@ -88,7 +88,12 @@ async function makeRenderer() {
     kind: "webgl2", target: "glsl", entry: "fragment",
     make: async (r) => gl2.createHost(gl, r.code, r.manifest),
     // The canvas: GL's origin, and not sRGB, so the entry encodes.
-    draw: (host, eye, values) => host.draw(canvas.width, canvas.height, eye, values, { yUp: true, srgb: true }),
+    draw(host, eye, values) {
+      host.draw(canvas.width, canvas.height, eye, values, { yUp: true, srgb: true });
+      // GL's errors on the live canvas, counted for the test (and the page's status).
+      const error = gl.getError();
+      if (error) state.glErrors.push([state.frames, error]);
+    },
     pixels: async (r, w, h, values) => gl2.hostPixels(gl, gl2.createHost(gl, r.code, r.manifest), w, h, values),
   };
 }
@@ -126,6 +131,7 @@ async function main() {
     $("download").href = URL.createObjectURL(new Blob([r.code], { type: "text/plain" }));
     status.textContent = `${renderer.kind}: compiled in ${ms.toFixed(1)} ms`;
     state.compiledText = text;
+    state.framesAtCompile = state.frames;
   }
 
   function sliders(manifest) {

@@ -124,7 +124,9 @@ fn playground(chrome: &str, driver: &std::path::Path, mode: &str, renderer: &str
          levels of sdfc render on {:.2}% of pixels (worst {worst}); its slider redrew without a \
          compile ({:.1}% of pixels changed, {:.2}% within 2 levels of sdfc render at that value, \
          worst {slid_worst}); the share link ({} characters) reopened the same text; a typo \
-         listed `{}` at {}:{} as sdfc check does",
+         listed `{}` at {}:{} as sdfc check does; measured: keystroke to its first frame {} ms \
+         (3 edits), {:.1} frames a second while orbiting at 640×360; GL errors on the live canvas \
+         (frame, code): {}",
         got["typed"]["compiles"],
         got["typedMs"],
         100.0 * typed,
@@ -133,6 +135,9 @@ fn playground(chrome: &str, driver: &std::path::Path, mode: &str, renderer: &str
         got["addressLength"],
         first["message"].as_str().unwrap(),
         first["span"]["line"],
-        first["span"]["column"]
+        first["span"]["column"],
+        got["latencies"],
+        got["orbitFps"].as_f64().unwrap_or(f64::NAN),
+        got["glErrors"]
     ));
 }

@@ -55,6 +55,38 @@ try {
   const typed = await page.evaluate(() => ({ ok: window.sdfcPlayground.ok, compiles: window.sdfcPlayground.compiles, diagnostics: window.sdfcPlayground.diagnostics }));
   fs.writeFileSync(`${outDir}/typed.rgba`, Buffer.from(await page.evaluate((w, h) => window.sdfcPlayground.pixels(w, h), w, h)));
 
+  // Measured, not asserted: from a keystroke (a space at the end) to the first frame of the
+  // scene it makes (the 120 ms pause, the compile, the first draw), and the frame rate while
+  // orbiting (the canvas at 640×360, two seconds of dragging).
+  const latencies = [];
+  for (let k = 0; k < 3; k++) {
+    const text = await page.$eval("#source", (el) => el.value);
+    const t = Date.now();
+    await page.keyboard.type(" ");
+    await page.waitForFunction(
+      (t) => window.sdfcPlayground.compiledText === t && window.sdfcPlayground.framesAtCompile !== undefined && window.sdfcPlayground.frames > window.sdfcPlayground.framesAtCompile,
+      { timeout: 20000 },
+      text + " ",
+    );
+    latencies.push(Date.now() - t);
+  }
+  await page.$eval("#source", (el) => (el.value = el.value.trimEnd() + "\n"));
+  await page.$eval("#source", (el) => el.dispatchEvent(new Event("input")));
+  await compiled(page, scene);
+  const box = await (await page.$("#picture")).boundingBox();
+  await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
+  await page.mouse.down();
+  const [f0, start] = [await page.evaluate(() => window.sdfcPlayground.frames), Date.now()];
+  for (let k = 0; k < 40; k++) {
+    await page.mouse.move(box.x + box.width / 2 + 4 * k, box.y + box.height / 2 + (k % 7));
+    await new Promise((ok) => setTimeout(ok, 50));
+  }
+  const [f1, t1] = [await page.evaluate(() => window.sdfcPlayground.frames), Date.now()];
+  await page.mouse.up();
+  const orbitFps = (1000 * (f1 - f0)) / (t1 - start);
+  // Back to the scene's own camera for the pictures.
+  await page.click("#picture", { clickCount: 2 });
+
   // A slider: moved to its maximum, the picture changes and nothing is compiled.
   const compilesBefore = await page.evaluate(() => window.sdfcPlayground.compiles);
   const sliders = await page.$$eval("#sliders input", (all) => {
@@ -86,9 +118,10 @@ try {
     frames: window.sdfcPlayground.frames,
   }));
   console.log(JSON.stringify({
-    first, typed, typedMs, sliders, compilesBefore, compilesAfter,
+    first, typed, typedMs, latencies, orbitFps, sliders, compilesBefore, compilesAfter,
     shared: reopened === scene, addressLength: address.length, broken,
     errors: logs.filter((l) => /error/i.test(l)),
+    glErrors: await page.evaluate(() => window.sdfcPlayground.glErrors.slice(0, 5)),
   }));
 } catch (e) {
   console.error(String(e.message ?? e));

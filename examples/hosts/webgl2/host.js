@@ -180,6 +180,9 @@ export async function renderPixels(base, width, height, values = {}, options = {
 /** [renderPixels] with a host already made on `gl`, from the scene's camera. */
 export function hostPixels(gl, host, width, height, values = {}, options = {}) {
   const { target = "rgba8", yUp = true } = options;
+  // Errors from earlier work on this context are not this picture's (the caller may look
+  // at them first).
+  while (gl.getError() !== gl.NO_ERROR);
   const fbo = gl.createFramebuffer();
   gl.bindFramebuffer(gl.FRAMEBUFFER, fbo);
   const rb = gl.createRenderbuffer();
