@@ -100,6 +100,11 @@ fn baked_random_scenes_keep_their_lambda_and_the_ball_test() {
         if scene.root_node().evaluations > 256.0 {
             continue;
         }
+        // The mandelbulb's λ is its distance estimate's, not a proven bound (docs/lipschitz.md):
+        // no claim about it here (CI seed 455712268 found one whose pruned bake differs).
+        if source.contains("mandelbulb(") {
+            continue;
+        }
         let res = 8 + r.below(32);
         let field = |p: DVec3| eval::distance(&scene, p);
         let v = Volume::bake(&field, DVec3::splat(-2.0), DVec3::splat(2.0), res);
