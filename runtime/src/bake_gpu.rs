@@ -1,17 +1,14 @@
 //! Bakes sampled on the GPU: the compiler's `check::sampler::Sampler` evaluating a part's `map`
-//! with the field-list entry (`Entry::Field`) of the same lowering, a slab of points per
-//! dispatch, on a device of its own opened at the first bake that needs it.
+//! with the mesher's `GpuField` (the field-list entry of the same lowering), slab by slab, on a
+//! device of its own opened at the first bake that needs it.
 
 use crate::gpu::{BackendChoice, Gpu};
+use crate::mesh_gpu::{GpuField, POINTS_PER_DISPATCH};
 use sdfc_compiler::bake::Grid;
 use sdfc_compiler::check::sampler::Sampler;
-use sdfc_compiler::emit;
-use sdfc_compiler::lower::{Entry, tracer::Options};
+use sdfc_compiler::mesh::field::Evaluator;
 use sdfc_compiler::scene::Scene;
 use std::sync::Mutex;
-
-/// Most points per dispatch (16 bytes in and out each).
-const POINTS_PER_DISPATCH: usize = 1 << 20;
 
 /// The GPU sampler; its device is opened when first needed (`None` inside once that failed:
 /// the CPU samples from then on).
@@ -36,23 +33,22 @@ impl Default for GpuSampler {
 
 impl Sampler for GpuSampler {
     fn sample(&self, part: &Scene, grid: &Grid) -> Option<Vec<f64>> {
-        let (module, _) = emit::module(part, Entry::Field, &Options::from_scene(part)).ok()?;
         let mut slot = self.gpu.lock().unwrap_or_else(|e| e.into_inner());
         let gpu = slot
             .get_or_insert_with(|| Gpu::new(BackendChoice::Auto).ok())
             .as_ref()?;
-        gpu.set_scene(part);
+        // The part's field, its pipeline compiled once for every slab.
+        let field = GpuField::on(gpu.clone(), part, (grid.lo, grid.hi)).ok()?;
         let [nx, ny, nz] = grid.n;
-        // Whole z-slices per dispatch.
+        // Whole z-slices at a time.
         let slices = (POINTS_PER_DISPATCH / (nx * ny)).max(1);
         let mut out = Vec::with_capacity(grid.len());
         for k0 in (0..nz).step_by(slices) {
-            let points: Vec<[f32; 3]> = (k0..(k0 + slices).min(nz))
+            let points: Vec<glam::DVec3> = (k0..(k0 + slices).min(nz))
                 .flat_map(|k| (0..ny).flat_map(move |j| (0..nx).map(move |i| [i, j, k])))
-                .map(|[i, j, k]| grid.point(i, j, k).as_vec3().to_array())
+                .map(|[i, j, k]| grid.point(i, j, k))
                 .collect();
-            let values = gpu.eval_points(&module, &points).ok()?;
-            out.extend(values.into_iter().map(f64::from));
+            out.extend(field.values(&points)?);
         }
         Some(out)
     }

@@ -10,7 +10,7 @@ use sdfc_compiler::mesh::field::Evaluator;
 use sdfc_compiler::scene::Scene;
 
 /// Most points per dispatch (16 bytes in and out each).
-const POINTS_PER_DISPATCH: usize = 1 << 20;
+pub const POINTS_PER_DISPATCH: usize = 1 << 20;
 
 /// The scene's field on a device of its own, its pipeline compiled once.
 pub struct GpuField {

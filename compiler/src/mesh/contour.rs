@@ -317,6 +317,32 @@ impl Root {
         root
     }
 
+    /// Takes the field `f` at the parameter asked for: the bracket narrowed (Illinois), or the
+    /// root taken and its normal asked for next.
+    fn step(&mut self, f: f64) {
+        let t = self.t;
+        self.steps += 1;
+        if f.abs() < self.tol_f || self.t1 - self.t0 < self.tol_t || self.steps == ROOT_STEPS {
+            let p = self.a + self.along * t.clamp(END_GAP, 1.0 - END_GAP);
+            self.stage = Stage::Normal(p);
+            return;
+        }
+        if inside(f) == inside(self.f0) {
+            (self.t0, self.f0) = (t, f);
+            if self.last_side == -1 {
+                self.f1 *= 0.5;
+            }
+            self.last_side = -1;
+        } else {
+            (self.t1, self.f1) = (t, f);
+            if self.last_side == 1 {
+                self.f0 *= 0.5;
+            }
+            self.last_side = 1;
+        }
+        self.guess();
+    }
+
     /// The next parameter: the secant's root inside the bracket, else its middle.
     fn guess(&mut self) {
         let (t0, f0, t1, f1) = (self.t0, self.f0, self.t1, self.f1);
@@ -339,32 +365,10 @@ impl Search for Root {
     }
 
     fn tell(&mut self, values: &[f64]) {
-        let Stage::Root = self.stage else {
-            if let Stage::Normal(p) = self.stage {
-                self.stage = Stage::Done(p, search::unit_gradient(values));
-            }
-            return;
-        };
-        let (f, t) = (values[0], self.t);
-        self.steps += 1;
-        if f.abs() < self.tol_f || self.t1 - self.t0 < self.tol_t || self.steps == ROOT_STEPS {
-            let p = self.a + self.along * t.clamp(END_GAP, 1.0 - END_GAP);
-            self.stage = Stage::Normal(p);
-            return;
+        match self.stage {
+            Stage::Root => self.step(values[0]),
+            Stage::Normal(p) => self.stage = Stage::Done(p, search::unit_gradient(values)),
+            Stage::Done(..) => {}
         }
-        if inside(f) == inside(self.f0) {
-            (self.t0, self.f0) = (t, f);
-            if self.last_side == -1 {
-                self.f1 *= 0.5;
-            }
-            self.last_side = -1;
-        } else {
-            (self.t1, self.f1) = (t, f);
-            if self.last_side == 1 {
-                self.f0 *= 0.5;
-            }
-            self.last_side = 1;
-        }
-        self.guess();
     }
 }

@@ -40,12 +40,10 @@ impl<'a> Field<'a> {
         }
     }
 
-    /// The same field with its batches ([`Field::many`]) evaluated by `evaluator`.
-    pub fn with_evaluator(self, evaluator: &'a dyn Evaluator) -> Field<'a> {
-        Field {
-            evaluator: Some(evaluator),
-            ..self
-        }
+    /// The same field with its batches ([`Field::many`]) evaluated by `evaluator`, if given
+    /// (else on the CPU).
+    pub fn with_evaluator(self, evaluator: Option<&'a dyn Evaluator>) -> Field<'a> {
+        Field { evaluator, ..self }
     }
 
     /// The same field with its batches on the CPU (for searches of a few points, where a

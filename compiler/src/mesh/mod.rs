@@ -147,10 +147,7 @@ pub fn mesh_with(
     if !(lo.is_finite() && hi.is_finite() && lo.cmplt(hi).all()) {
         return Err(Error::Bounds);
     }
-    let mut field = Field::new(scene, lo, hi);
-    if let Some(e) = evaluator {
-        field = field.with_evaluator(e);
-    }
+    let field = Field::new(scene, lo, hi).with_evaluator(evaluator);
     let grid = Grid::over(lo, hi, options.resolution);
     stage("finding the cells the surface crosses");
     // The memory `cells` cells would need, refused past the limit.

@@ -46,17 +46,19 @@ pub fn fan(
         })
     };
     // Sharp vertices settle on the surface, all cells' searches in lockstep.
-    let mut settles: Vec<Settle> = starts
-        .iter()
-        .flatten()
-        .filter(|_| sharp)
-        .flat_map(|(c, rings)| {
-            let lo = grid.point(*c);
-            rings
-                .iter()
-                .map(move |(_, p)| Settle::new(field, *p, lo, grid.h))
-        })
-        .collect();
+    let mut settles: Vec<Settle> = match sharp {
+        false => Vec::new(),
+        true => starts
+            .iter()
+            .flatten()
+            .flat_map(|(c, rings)| {
+                let lo = grid.point(*c);
+                rings
+                    .iter()
+                    .map(move |(_, p)| Settle::new(field, *p, lo, grid.h))
+            })
+            .collect(),
+    };
     let evaluations = search::run(field, &mut settles);
     let mut settled = settles.into_iter().map(|s| s.p);
     let mut triangles = Vec::new();

@@ -3,7 +3,7 @@
 //! and is told their values, until it needs none.
 
 use super::field::Field;
-use crate::reference::eval::TETRAHEDRON;
+use crate::reference::eval;
 use glam::DVec3;
 
 /// One search as a state machine over batches of points.
@@ -48,13 +48,8 @@ pub fn run<S: Search>(field: &Field, searches: &mut [S]) -> usize {
 
 /// The four points whose values [`unit_gradient`] takes, at distance `step` around `p`.
 pub fn gradient_points(p: DVec3, step: f64, points: &mut Vec<DVec3>) {
-    let e = step / 3f64.sqrt();
-    points.extend(TETRAHEDRON.iter().map(|&k| p + k * e));
+    points.extend(eval::gradient_points(p, step));
 }
 
-/// The unit gradient from the values at [`gradient_points`] (as `eval::unit_gradient`); the
-/// zero vector where it vanishes.
-pub fn unit_gradient(values: &[f64]) -> DVec3 {
-    let g: DVec3 = TETRAHEDRON.iter().zip(values).map(|(&k, &v)| k * v).sum();
-    g.try_normalize().unwrap_or(DVec3::ZERO)
-}
+/// The unit gradient from the values at [`gradient_points`] (the reference's formula).
+pub use eval::unit_gradient_of as unit_gradient;

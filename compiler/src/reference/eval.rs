@@ -197,7 +197,18 @@ pub fn normal(scene: &Scene, p: DVec3, h: f64) -> DVec3 {
 /// The unit gradient of any field `f` at `p` by the same four samples as [`normal`] (the
 /// mesher's clipped field uses it); the zero vector where it vanishes.
 pub fn unit_gradient(f: impl Fn(DVec3) -> f64, p: DVec3, h: f64) -> DVec3 {
+    unit_gradient_of(&gradient_points(p, h).map(f))
+}
+
+/// The four points [`unit_gradient`] samples at distance `h` around `p`.
+pub fn gradient_points(p: DVec3, h: f64) -> [DVec3; 4] {
     let e = h / 3f64.sqrt();
-    let g: DVec3 = TETRAHEDRON.iter().map(|&k| k * f(p + k * e)).sum();
+    TETRAHEDRON.map(|k| p + k * e)
+}
+
+/// The unit gradient from the field's values at [`gradient_points`], in their order (for a
+/// caller that evaluates them in a batch); the zero vector where it vanishes.
+pub fn unit_gradient_of(values: &[f64]) -> DVec3 {
+    let g: DVec3 = TETRAHEDRON.iter().zip(values).map(|(&k, &v)| k * v).sum();
     g.try_normalize().unwrap_or(DVec3::ZERO)
 }

@@ -87,10 +87,7 @@ fn mesh_scene(args: &MeshArgs) -> Result<(), Error> {
         );
     }
     stage("measuring");
-    let mut field = Field::new(&scene, bounds.0, bounds.1);
-    if let Some(e) = evaluator {
-        field = field.with_evaluator(e);
-    }
+    let field = Field::new(&scene, bounds.0, bounds.1).with_evaluator(evaluator);
     let deviation = measure::deviation(&field, &mesh, mesh.stats.cell);
     let topology = measure::topology(&mesh);
     stage("writing");
