@@ -20,6 +20,19 @@ pub enum Target {
     Hlsl,
 }
 
+impl Target {
+    /// Its name as `--target` and the manifest spell it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Target::Wgsl => "wgsl",
+            Target::Spirv => "spirv",
+            Target::Glsl => "glsl",
+            Target::Msl => "msl",
+            Target::Hlsl => "hlsl",
+        }
+    }
+}
+
 /// What an emit produces: text, or SPIR-V words.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Output {

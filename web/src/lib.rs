@@ -10,15 +10,11 @@
 use sdfc_compiler::check::{self, Checked};
 use sdfc_compiler::diag::{self, Diagnostic};
 use sdfc_compiler::emit::{self, GlslVersion, Output, Target};
-use sdfc_compiler::lipschitz::{self, Effort};
+use sdfc_compiler::lipschitz::{self, Effort, Values};
 use sdfc_compiler::lower::{Entry, tracer::Options};
 use sdfc_compiler::scene::Scene;
 use sdfc_compiler::syntax::NoFiles;
 use serde_json::{Value, json};
-use std::collections::HashMap;
-
-/// Parameter values by name (none: the scene's defaults).
-type Values = HashMap<String, Vec<f64>>;
 
 /// What the page asks for: `{"source", "name", "target": "wgsl"|"glsl", "entry":
 /// "fragment"|"compute"|"library"}` (GLSL is ES 3.00 for WebGL2: fragment or library only).
@@ -96,16 +92,13 @@ fn checked(name: &str, source: &str) -> (Checked, Vec<Diagnostic>) {
     let checked = at(&Values::new());
     let mut diagnostics = checked.diagnostics.clone();
     if let Some(scene) = &checked.scene {
-        let found = lipschitz::verify_annotations(scene, Effort::Fast);
         let at_values = |v: &Values| at(v).scene;
-        let more = lipschitz::verify_over_ranges(
+        diagnostics.extend(lipschitz::verify_everywhere(
             &at_values,
             scene,
             Effort::Fast,
-            (&Values::new(), &found),
-        );
-        diagnostics.extend(found);
-        diagnostics.extend(more);
+            &Values::new(),
+        ));
     }
     (checked, diagnostics)
 }
@@ -131,7 +124,7 @@ fn emitted(
         .file_stem()
         .map_or("scene".into(), |s| s.to_string_lossy().into_owned());
     let volume_files: Vec<String> = (0..scene.volumes().len())
-        .map(|i| format!("{stem}.volume{i}.r32f"))
+        .map(|i| sdfc_compiler::bake::file::raw_name(&stem, i))
         .collect();
     let origin = sdfc_compiler::manifest::Origin {
         volume_files: &volume_files,

@@ -11,6 +11,11 @@ const MAGIC: &[u8; 8] = b"SDFCVOL2";
 /// The header's length: magic, three u32 counts, seven f64 (lo, hi and h).
 const HEADER: usize = 8 + 12 + 56;
 
+/// The name of `emit`'s file for the scene's volume `index`, beside a shader named `stem`.
+pub fn raw_name(stem: &str, index: usize) -> String {
+    format!("{stem}.volume{index}.r32f")
+}
+
 /// The values as raw little-endian `f32`s, x fastest: `emit`'s volume file.
 pub fn raw(volume: &Volume) -> Vec<u8> {
     volume.values.iter().flat_map(|v| v.to_le_bytes()).collect()

@@ -9,7 +9,7 @@ mod reach;
 mod verify;
 
 pub use overflow::may_overflow;
-pub use ranges::{Values, too_small_at, verify_over_ranges};
+pub use ranges::{Values, too_small_at, verify_everywhere, verify_over_ranges};
 pub use verify::{Effort, verify_annotations};
 
 use crate::interval::Interval;

@@ -175,6 +175,21 @@ fn settings(scene: &Scene, asked: &Values, effort: Effort) -> Vec<(Values, Why)>
     out
 }
 
+/// The annotation warnings a check gives: at the scene's own values ([`verify_annotations`]),
+/// then at other values over the parameters' ranges ([`verify_over_ranges`], `asked` the values
+/// asked for, `compile_at` checking the source at given values).
+pub fn verify_everywhere(
+    compile_at: &dyn Fn(&Values) -> Option<Scene>,
+    scene: &Scene,
+    effort: Effort,
+    asked: &Values,
+) -> Vec<Diagnostic> {
+    let mut found = super::verify_annotations(scene, effort);
+    let more = verify_over_ranges(compile_at, scene, effort, (asked, &found));
+    found.extend(more);
+    found
+}
+
 /// The annotation warnings found at other parameter values than the defaults' (`seen`: the
 /// defaults' own, not repeated), each with a note saying at which values and why those;
 /// `compile_at` checks the scene's source at given values (`None` where it does not check).

@@ -138,7 +138,6 @@ pub fn load_scene_with(
     let at_values =
         (scene.is_some() && *values != base).then(|| compile((path, &name), &source, values));
     if let Some(scene) = &scene {
-        let found = lipschitz::verify_annotations(scene, Effort::Fast);
         // (`--bake-res` holds at every setting.)
         let at = |v: &std::collections::HashMap<String, Vec<f64>>| {
             let mut v = v.clone();
@@ -148,10 +147,12 @@ pub fn load_scene_with(
                 _ => compile((path, &name), &source, &v).scene,
             }
         };
-        let asked = (&args.values, &found[..]);
-        let more = lipschitz::verify_over_ranges(&at, scene, Effort::Fast, asked);
-        diagnostics.extend(found);
-        diagnostics.extend(more);
+        diagnostics.extend(lipschitz::verify_everywhere(
+            &at,
+            scene,
+            Effort::Fast,
+            &args.values,
+        ));
     }
     if let Some(e) = scene.as_ref().and_then(|s| unit_error(s, args))
         && !diagnostics.iter().any(|d| d.is_error())

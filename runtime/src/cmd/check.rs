@@ -48,16 +48,13 @@ fn check(path: &Path, effort: Effort, bake_res: Option<u32>) -> i32 {
         sources,
     } = compile((path, &name), &source, &base);
     if let Some(scene) = &scene {
-        let found = lipschitz::verify_annotations(scene, effort);
         let at = |v: &std::collections::HashMap<String, Vec<f64>>| {
             let mut v = v.clone();
             v.extend(base.clone());
             compile((path, &name), &source, &v).scene
         };
         let none = std::collections::HashMap::new();
-        let more = lipschitz::verify_over_ranges(&at, scene, effort, (&none, &found));
-        diagnostics.extend(found);
-        diagnostics.extend(more);
+        diagnostics.extend(lipschitz::verify_everywhere(&at, scene, effort, &none));
     }
     say_raw!("{}", messages::report(&diagnostics, &sources));
     let Some(scene) = scene else { return 1 };

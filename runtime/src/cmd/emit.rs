@@ -123,7 +123,7 @@ fn volume_paths(
         .iter()
         .enumerate()
         .map(|(i, v)| {
-            let path = beside.with_file_name(format!("{stem}.volume{i}.r32f"));
+            let path = beside.with_file_name(sdfc_compiler::bake::file::raw_name(&stem, i));
             (path, sdfc_compiler::bake::file::raw(v))
         })
         .collect())
@@ -193,7 +193,7 @@ fn compile(
         let origin = sdfc_compiler::manifest::Origin {
             volume_files,
             scene: name,
-            target: target_name(target),
+            target: target.name(),
             entry,
             prefix,
             written: Some((&out, &reflection)),
@@ -314,21 +314,11 @@ fn check_extension(path: &Path, target: Target) -> Result<(), Error> {
     Err(format!(
         "error: `{}`: `--target {}` writes {}; its files end in {}, not `.{ext}`",
         path.display(),
-        target_name(target),
+        target.name(),
         describe_target(target),
         list.join(", ")
     )
     .into())
-}
-
-fn target_name(target: Target) -> &'static str {
-    match target {
-        Target::Wgsl => "wgsl",
-        Target::Spirv => "spirv",
-        Target::Glsl => "glsl",
-        Target::Msl => "msl",
-        Target::Hlsl => "hlsl",
-    }
 }
 
 fn describe_target(target: Target) -> &'static str {
