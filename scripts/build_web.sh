@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Builds sdfc's compiler for the browser (web/: WebAssembly, no wasm-bindgen) into
-# target/web/sdfc.wasm and says its size, raw and gzipped; target/web/ is then the whole
-# playground (the page, the WebGPU host's code, the examples):
+# target/web/sdfc.wasm and says its size, raw and gzipped, and bundles the page's editor
+# (CodeMirror 6, with npm and esbuild); target/web/ is then the whole playground (the page, the
+# editor, the WebGPU and WebGL2 hosts' code, the examples):
 #   python3 -m http.server -d target/web 8000     # and open http://localhost:8000 Needs the wasm32-unknown-unknown
 # target (`rustup target add wasm32-unknown-unknown`). Its own target folder, so that it does
 # not wait on (or invalidate) the native build's.
@@ -12,6 +13,12 @@ cd "$(dirname "$0")/.."
 export RUSTFLAGS="-C link-arg=-zstack-size=33554432"
 cargo build --quiet --release -p sdfc-web --target wasm32-unknown-unknown --target-dir target/wasm
 mkdir -p target/web
+# The editor (CodeMirror 6), bundled by esbuild; both pinned by web/package-lock.json.
+if [ ! -x web/node_modules/.bin/esbuild ] || [ web/package-lock.json -nt web/node_modules/.package-lock.json ]; then
+  (cd web && npm ci --no-audit --no-fund --loglevel=error)
+fi
+web/node_modules/.bin/esbuild web/editor.js --bundle --format=esm --minify --log-level=warning \
+  --outfile=target/web/editor.js
 cp target/wasm/wasm32-unknown-unknown/release/sdfc_web.wasm target/web/sdfc.wasm
 cp web/index.html web/playground.js examples/hosts/webgpu/host.js target/web/
 cp web/sdfc.mjs target/web/sdfc.js

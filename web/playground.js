@@ -1,9 +1,13 @@
 // sdfc's playground: the scene's text compiled in this page by the WebAssembly compiler
-// (sdfc.mjs) on every edit, drawn with WebGPU by the host page's code (host.js: the library
-// entry and its manifest) — or, where WebGPU is missing, with WebGL2 by the WebGL2 host's
-// code (host_webgl2.js: the GLSL ES fragment entry) — orbited with the mouse; the compiler's diagnostics listed under the
-// text; parameters as sliders; the scene shareable in the address. docs/playground.md.
+// (sdfc.mjs) on every edit in a CodeMirror editor (editor.js), drawn with WebGPU by the host
+// page's code (host.js: the library entry and its manifest) — or, where WebGPU is missing, with
+// WebGL2 by the WebGL2 host's code (host_webgl2.js: the GLSL ES fragment entry) — orbited with
+// the mouse at a coarser resolution while it moves; the compiler's diagnostics underlined and
+// listed; parameters as sliders and colour pickers; the tracer and its settings in a panel; the
+// scene shareable in the address; its shaders, manifest and picture as downloads.
+// docs/playground.md.
 import { load } from "./sdfc.js";
+import { createEditor } from "./editor.js";
 import { createHostFrom, hostPixels, orbit } from "./host.js";
 import * as gl2 from "./host_webgl2.js";
 
@@ -21,12 +25,16 @@ plane(y, -0.2)
 `;
 
 const $ = (id) => document.getElementById(id);
-const source = $("source");
 const canvas = $("picture");
 const status = $("status");
+/** The canvas's full size; while the camera moves it draws at a fraction of it. */
+const FULL = [canvas.width, canvas.height];
 
 // What the page is doing, for its test (examples/hosts/test/playground.mjs).
-const state = (window.sdfcPlayground = { glErrors: [], compiles: 0, ok: false, diagnostics: [], frames: 0, host: null, response: null, compiledText: null });
+const state = (window.sdfcPlayground = {
+  glErrors: [], compiles: 0, ok: false, diagnostics: [], frames: 0, host: null, response: null,
+  compiledText: null, scale: 1, coarseFrames: 0,
+});
 
 /** The scene's text from the address (`#s=…`, deflated and base64url), if it carries one. */
 async function fromAddress() {
@@ -75,7 +83,8 @@ async function makeRenderer() {
         const encoder = host.draw(context.getCurrentTexture().createView(), canvas.width, canvas.height, eye, values);
         device.queue.submit([encoder.finish()]);
       },
-      pixels: async (r, w, h, values) => hostPixels(await createHostFrom(device, r.code, r.manifest, "rgba8unorm", here), w, h, values),
+      pixels: async (r, w, h, values, eye) =>
+        hostPixels(await createHostFrom(device, r.code, r.manifest, "rgba8unorm", here), w, h, values, eye ?? r.manifest.camera.eye),
     };
   }
   const gl = canvas.getContext("webgl2");
@@ -94,7 +103,7 @@ async function makeRenderer() {
       const error = gl.getError();
       if (error) state.glErrors.push([state.frames, error]);
     },
-    pixels: async (r, w, h, values) => gl2.hostPixels(gl, gl2.createHost(gl, r.code, r.manifest), w, h, values),
+    pixels: async (r, w, h, values, eye) => gl2.hostPixels(gl, gl2.createHost(gl, r.code, r.manifest), w, h, values, { eye: eye ?? r.manifest.camera.eye }),
   };
 }
 
@@ -105,17 +114,31 @@ async function main() {
   const values = {};
   let offset = null;
   let target = [0, 0, 0];
+  /** The tracer the panel asks for (`{name, settings}`), or null for the scene's own. */
+  let tracer = null;
+  /** Whether the next animation frame must draw, and when the camera last moved. */
+  let dirty = true;
+  let moved = -Infinity;
+  let fullFrameMs = 0;
+
+  /** The compiler's answer for the editor's text: `target`/`entry` as asked, the panel's tracer. */
+  const ask = (text, target, entry) =>
+    sdfc.compile({ source: text, name: "scene.sdf", target, entry, ...(tracer ? { tracer } : {}) });
 
   async function compile() {
-    const text = source.value;
+    const text = editor.text();
     const t0 = performance.now();
-    const r = sdfc.compile({ source: text, name: "scene.sdf", target: renderer.target, entry: renderer.entry });
+    const r = ask(text, renderer.target, renderer.entry);
     const ms = performance.now() - t0;
-    state.compiles += 1;
     state.diagnostics = r.diagnostics ?? [];
+    editor.diagnose(state.diagnostics, "scene.sdf");
     $("diagnostics").textContent = [r.error, ...state.diagnostics.map(line)].filter(Boolean).join("\n");
     state.ok = Boolean(r.ok);
+    state.compileMs = ms;
+    if (r.tracer) panel(r);
+    // (`compiles` and `compiledText` change last, once the answer is in use: the test waits on them.)
     if (!r.ok || !renderer.make) {
+      state.compiles += 1;
       state.compiledText = text;
       return;
     }
@@ -128,18 +151,33 @@ async function main() {
       offset = r.manifest.camera.eye.map((x, i) => x - target[i]);
     }
     sliders(r.manifest);
-    $("download").href = URL.createObjectURL(new Blob([r.code], { type: "text/plain" }));
     status.textContent = `${renderer.kind}: compiled in ${ms.toFixed(1)} ms`;
-    state.compiledText = text;
     state.framesAtCompile = state.frames;
+    state.compiles += 1;
+    state.compiledText = text;
+    dirty = true;
   }
 
+  /** A slider per number or vector component, a colour picker per colour (sRGB, as written). */
   function sliders(manifest) {
     const box = $("sliders");
     box.textContent = "";
     for (const f of manifest.params.fields) {
       if (f.name === "time" && f.builtin) continue;
       values[f.name] = values[f.name]?.length === f.default.length ? values[f.name] : [...f.default];
+      // A parameter is the uniform's: changing it draws again, no compile.
+      if (f.kind === "color") {
+        const label = Object.assign(document.createElement("label"), { textContent: f.name });
+        const hex = values[f.name].map((c) => Math.round(Math.min(1, Math.max(0, c)) * 255).toString(16).padStart(2, "0"));
+        const input = Object.assign(document.createElement("input"), { type: "color", value: `#${hex.join("")}` });
+        input.oninput = () => {
+          values[f.name] = [1, 3, 5].map((k) => parseInt(input.value.slice(k, k + 2), 16) / 255);
+          dirty = true;
+        };
+        label.append(input);
+        box.append(label);
+        continue;
+      }
       f.default.forEach((d, i) => {
         const lo = f.min ? f.min[i] : d - 1;
         const hi = f.max ? f.max[i] : d + 1;
@@ -148,68 +186,153 @@ async function main() {
         const input = Object.assign(document.createElement("input"), {
           type: "range", min: lo, max: hi, step: (hi - lo) / 1000, value: values[f.name][i],
         });
-        // A parameter is the uniform's: moving it draws again, no compile.
-        input.oninput = () => (values[f.name][i] = Number(input.value));
+        input.oninput = () => {
+          values[f.name][i] = Number(input.value);
+          dirty = true;
+        };
         label.append(input);
         box.append(label);
       });
     }
   }
 
+  /** The tracer panel: the tracer used and its settings; a change compiles again. */
+  function panel(r) {
+    const box = $("tracer");
+    box.textContent = "";
+    const pick = document.createElement("select");
+    pick.id = "tracer-name";
+    for (const t of r.tracers) pick.append(Object.assign(document.createElement("option"), { value: t.name, textContent: t.name }));
+    pick.value = r.tracer.name;
+    pick.onchange = () => {
+      const params = r.tracers.find((t) => t.name === pick.value).params;
+      const settings = Object.fromEntries(Object.entries(tracer?.settings ?? {}).filter(([k]) => params.includes(k)));
+      tracer = { name: pick.value, settings };
+      recompile(0);
+    };
+    box.append(Object.assign(document.createElement("label"), { textContent: "tracer " }), pick);
+    for (const [name, value] of r.tracer.settings) {
+      const label = Object.assign(document.createElement("label"), { textContent: name.replace("_", " ") + " " });
+      const input = Object.assign(document.createElement("input"), { value, size: 6, name });
+      input.onchange = () => {
+        tracer = { name: pick.value, settings: { ...(tracer?.settings ?? {}), [name]: input.value.trim() } };
+        recompile(0);
+      };
+      label.append(input);
+      box.append(label);
+    }
+    const reset = Object.assign(document.createElement("button"), { textContent: "scene's", title: "the scene's own tracer settings" });
+    reset.onclick = () => {
+      tracer = null;
+      recompile(0);
+    };
+    box.append(reset);
+  }
+
   // Compile on every edit, after a pause (and never two at once).
   let timer = null;
   let running = Promise.resolve();
-  source.oninput = () => {
+  const recompile = (pause) => {
     clearTimeout(timer);
-    timer = setTimeout(() => (running = running.then(compile).catch((e) => (status.textContent = String(e.message ?? e)))), 120);
+    timer = setTimeout(() => (running = running.then(compile).catch((e) => (status.textContent = String(e.message ?? e)))), pause);
   };
+  const editor = createEditor($("source"), (await fromAddress()) ?? FIRST, () => recompile(120));
+  state.editor = editor;
   $("examples").append(...EXAMPLES.map((n) => Object.assign(document.createElement("option"), { value: n, textContent: n })));
   $("examples").onchange = async (e) => {
     if (!e.target.value) return;
-    source.value = await (await fetch(`examples/${e.target.value}.sdf`)).text();
-    source.oninput();
+    editor.setText(await (await fetch(`examples/${e.target.value}.sdf`)).text());
   };
   $("share").onclick = async () => {
-    history.replaceState(null, "", await toAddress(source.value));
+    history.replaceState(null, "", await toAddress(editor.text()));
+  };
+  // Downloads: the shaders for other engines (fragment entries), the WGSL's manifest, the picture.
+  const save = (blob, name) => {
+    const a = Object.assign(document.createElement("a"), { href: URL.createObjectURL(blob), download: name });
+    a.click();
+    setTimeout(() => URL.revokeObjectURL(a.href), 10000);
+  };
+  for (const [id, target, name, part] of [
+    ["get-wgsl", "wgsl", "scene.wgsl", "code"], ["get-glsl", "glsl", "scene.frag", "code"], ["get-manifest", "wgsl", "scene.json", "manifest"],
+  ]) {
+    $(id).onclick = () => {
+      const r = ask(editor.text(), target, "fragment");
+      if (!r.ok) return (status.textContent = `${name}: the scene does not compile`);
+      const text = part === "code" ? r.code : JSON.stringify(r.manifest, null, 2);
+      save(new Blob([text], { type: "text/plain" }), name);
+    };
+  }
+  $("get-png").onclick = async () => {
+    if (!state.response || !offset) return;
+    // Drawn offscreen at the canvas's full size from the camera as it is now (a WebGPU
+    // canvas's own picture cannot be read back reliably once presented).
+    const [w, h] = FULL;
+    const eye = offset.map((x, i) => x + target[i]);
+    const rgba = await renderer.pixels(state.response, w, h, values, eye);
+    const picture = Object.assign(document.createElement("canvas"), { width: w, height: h });
+    picture.getContext("2d").putImageData(new ImageData(new Uint8ClampedArray(rgba), w, h), 0, 0);
+    picture.toBlob((blob) => save(blob, "scene.png"), "image/png");
   };
   // The orbit camera of `sdfc view`: drag to turn, wheel to zoom, double-click to reset.
   let dragging = null;
+  const move = () => {
+    moved = performance.now();
+    dirty = true;
+  };
   canvas.onpointerdown = (e) => (dragging = [e.clientX, e.clientY]);
   window.onpointerup = () => (dragging = null);
   window.onpointermove = (e) => {
     if (!dragging || !offset) return;
     offset = orbit(offset, e.clientX - dragging[0], e.clientY - dragging[1]);
     dragging = [e.clientX, e.clientY];
+    move();
   };
   canvas.onwheel = (e) => {
     e.preventDefault();
     if (offset) offset = offset.map((x) => x * Math.exp(e.deltaY * 0.001));
+    move();
   };
   canvas.ondblclick = () => {
     const c = state.host?.manifest.camera;
     if (c) offset = c.eye.map((x, i) => x - c.target[i]);
+    dirty = true;
   };
   // For the test: the last compiled scene's picture from its own camera at time 0, as
   // `sdfc render` draws it, with the sliders' values.
   state.pixels = async (w, h) => Array.from(await renderer.pixels(state.response, w, h, { ...values, time: [0] }));
 
-  source.value = (await fromAddress()) ?? FIRST;
-  await compile();
+  /**
+   * Draws a frame with the canvas at `scale` of its full size: progressive refinement, a
+   * coarse picture while the camera moves (a half, a quarter where a full frame took over
+   * 100 ms), the full one once it stops.
+   */
   const started = performance.now();
+  function draw(scale) {
+    const [w, h] = FULL.map((n) => Math.max(1, Math.round(n * scale)));
+    if (canvas.width !== w || canvas.height !== h) [canvas.width, canvas.height] = [w, h];
+    const time = state.host.manifest.params.fields.find((f) => f.name === "time");
+    if (time) values.time = [(performance.now() - started) / 1000];
+    const eye = offset.map((x, i) => x + target[i]);
+    renderer.draw(state.host, eye, values);
+    state.frames += 1;
+    state.eye = eye;
+    state.scale = scale;
+    if (scale < 1) state.coarseFrames += 1;
+  }
+  await compile();
   let last = performance.now();
   const frame = () => {
-    const host = state.host;
-    if (host && offset) {
-      const time = host.manifest.params.fields.find((f) => f.name === "time");
-      if (time) values.time = [(performance.now() - started) / 1000];
-      const eye = offset.map((x, i) => x + target[i]);
-      renderer.draw(host, eye, values);
-      state.frames += 1;
-      state.eye = eye;
-      const now = performance.now();
+    const now = performance.now();
+    const moving = now - moved < 250;
+    const animated = state.host?.manifest.params.fields.some((f) => f.name === "time");
+    const scale = moving ? (fullFrameMs > 100 ? 0.25 : 0.5) : 1;
+    if (state.host && offset && (dirty || animated || scale !== state.scale)) {
+      dirty = false;
+      draw(scale);
+      if (scale === 1) fullFrameMs = now - last;
       if (state.frames % 30 === 0) status.textContent = `${status.textContent.split(" · ")[0]} · ${(now - last).toFixed(0)} ms a frame`;
-      last = now;
     }
+    last = now;
     requestAnimationFrame(frame);
   };
   requestAnimationFrame(frame);

@@ -44,9 +44,10 @@ fn playground(chrome: &str, driver: &std::path::Path, mode: &str, renderer: &str
     std::fs::write(&scene, SCENE).unwrap();
     std::fs::write(&typo, &typo_text).unwrap();
     let (w, h) = (160u32, 90u32);
+    let server = Serve::start();
     let run = Command::new("node")
         .arg(driver.join("playground.mjs"))
-        .arg(root().join("target/web"))
+        .arg(&server.address)
         .args([&scene, &typo, &dir])
         .args([w.to_string(), h.to_string(), mode.to_string()])
         .env("CHROME", chrome)
@@ -67,21 +68,28 @@ fn playground(chrome: &str, driver: &std::path::Path, mode: &str, renderer: &str
 
     // The typed scene as `sdfc render` draws it, and after the slider moved to its maximum.
     let gpu = gpu();
-    let picture = |name: &str, values: &HashMap<String, Vec<f64>>| {
+    let picture = |name: &str, values: &HashMap<String, Vec<f64>>, steps: Option<u32>| {
         let page = std::fs::read(dir.join(format!("{name}.rgba"))).unwrap();
-        let here = compile(SCENE).with_values(values);
+        let mut here = compile(SCENE).with_values(values);
+        if let Some(n) = steps {
+            here.trace.steps = n;
+        }
         let frame = render(&gpu, &here, &View::new(&here.camera, w, h));
         (within_levels(&frame.color, &page, 2), page)
     };
-    let ((typed, worst), page) = picture("typed", &HashMap::new());
+    let ((typed, worst), page) = picture("typed", &HashMap::new(), None);
     let lift = HashMap::from([("lift".to_string(), vec![1.4])]);
-    let ((slid, slid_worst), moved) = picture("slid", &lift);
-    let changed = page
-        .chunks_exact(4)
-        .zip(moved.chunks_exact(4))
-        .filter(|(a, b)| a.iter().zip(b.iter()).any(|(x, y)| x.abs_diff(*y) > 2))
-        .count() as f64
-        / f64::from(w * h);
+    let ((slid, slid_worst), moved) = picture("slid", &lift, None);
+    let ((tuned, tuned_worst), coarse) = picture("tuned", &lift, Some(12));
+    let differ = |a: &[u8], b: &[u8]| {
+        a.chunks_exact(4)
+            .zip(b.chunks_exact(4))
+            .filter(|(a, b)| a.iter().zip(b.iter()).any(|(x, y)| x.abs_diff(*y) > 2))
+            .count() as f64
+            / f64::from(w * h)
+    };
+    let changed = differ(&page, &moved);
+    let stepped = differ(&moved, &coarse);
     assert!(
         typed >= 0.995,
         "typed: only {:.2}% within 2 levels",
@@ -99,6 +107,49 @@ fn playground(chrome: &str, driver: &std::path::Path, mode: &str, renderer: &str
         100.0 * changed
     );
     assert_eq!(got["shared"], true, "the share link: {got}");
+    assert_eq!(got["indented"], true, "the editor's indentation: {got}");
+    // Progressive refinement: coarse frames while orbiting, the full size once still.
+    assert!(
+        got["whileMoving"]["coarseFrames"].as_u64() > Some(0),
+        "{got}"
+    );
+    assert_eq!(got["refined"], serde_json::json!([640, 360]), "{got}");
+    // The tracer panel: its 12 steps are `sdfc render`'s with 12 steps; 0 is refused.
+    assert!(
+        tuned >= 0.995,
+        "with 12 steps: only {:.2}% within 2 levels",
+        100.0 * tuned
+    );
+    assert!(stepped > 0.01, "12 steps changed {stepped} of the picture");
+    let settings = &got["tracer"]["settings"];
+    assert!(
+        settings
+            .as_array()
+            .unwrap()
+            .contains(&serde_json::json!(["steps", "12"])),
+        "{got}"
+    );
+    assert!(
+        got["refused"]
+            .as_str()
+            .unwrap()
+            .contains("`--steps` must be"),
+        "{got}"
+    );
+    downloads(&dir, &scene, &got);
+    // The PNG: the canvas at full size, from the scene's camera, the slider at its maximum.
+    let png = image::open(dir.join("scene.png"))
+        .expect("the PNG decodes")
+        .to_rgba8();
+    assert_eq!(png.dimensions(), (640, 360));
+    let here = compile(SCENE).with_values(&lift);
+    let frame = render(&gpu, &here, &View::new(&here.camera, 640, 360));
+    let (saved, saved_worst) = within_levels(&frame.color, png.as_raw(), 2);
+    assert!(
+        saved >= 0.995,
+        "the PNG: only {:.2}% within 2 levels of sdfc render",
+        100.0 * saved
+    );
 
     // The typo: the diagnostic `sdfc check --message-format json` gives, listed.
     let cli = sdfc(&["check", typo.to_str().unwrap(), "--message-format", "json"]);
@@ -119,12 +170,33 @@ fn playground(chrome: &str, driver: &std::path::Path, mode: &str, renderer: &str
             .contains(first["message"].as_str().unwrap()),
         "{got}"
     );
+    // Underlined in the editor where the CLI's caret is, its message on hover.
+    let span = &first["span"];
+    let (start, end) = (
+        span["start"].as_u64().unwrap() as usize,
+        span["end"].as_u64().unwrap() as usize,
+    );
+    let under = if end > start {
+        &typo_text[start..end]
+    } else {
+        &typo_text[start..=start]
+    };
+    assert_eq!(got["underlined"], under, "{got}");
+    assert!(
+        got["tooltip"]
+            .as_str()
+            .is_some_and(|t| t.contains(first["message"].as_str().unwrap())),
+        "the hover: {got}"
+    );
     report(&format!(
         "playground in Chrome ({renderer}): a scene typed key by key ({} compiles, {} ms) drawn within 2 \
          levels of sdfc render on {:.2}% of pixels (worst {worst}); its slider redrew without a \
          compile ({:.1}% of pixels changed, {:.2}% within 2 levels of sdfc render at that value, \
          worst {slid_worst}); the share link ({} characters) reopened the same text; a typo \
-         listed `{}` at {}:{} as sdfc check does; measured: keystroke to its first frame {} ms \
+         listed and underlined `{}` at {}:{} as sdfc check does; the tracer panel's 12 steps \
+         drawn as sdfc render --steps 12 on {:.2}% (worst {tuned_worst}); coarse frames while \
+         orbiting, full once still; the PNG downloaded within 2 levels of sdfc render on {:.2}% (worst \
+         {saved_worst}), WGSL and GLSL as sdfc emit writes them, the manifest; measured: keystroke to its first frame {} ms \
          (3 edits), {:.1} frames a second while orbiting at 640×360; GL errors on the live canvas \
          (frame, code): {}",
         got["typed"]["compiles"],
@@ -136,8 +208,79 @@ fn playground(chrome: &str, driver: &std::path::Path, mode: &str, renderer: &str
         first["message"].as_str().unwrap(),
         first["span"]["line"],
         first["span"]["column"],
+        100.0 * tuned,
+        100.0 * saved,
         got["latencies"],
         got["orbitFps"].as_f64().unwrap_or(f64::NAN),
         got["glErrors"]
     ));
+}
+
+/// `sdfc serve target/web --port 0`, the page's server for the test, stopped when dropped.
+struct Serve {
+    child: std::process::Child,
+    address: String,
+}
+
+impl Serve {
+    fn start() -> Serve {
+        use std::io::BufRead;
+        let web = root().join("target/web");
+        let mut child = Command::new(env!("CARGO_BIN_EXE_sdfc"))
+            .args(["serve", web.to_str().unwrap(), "--port", "0"])
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .expect("sdfc serve");
+        let mut line = String::new();
+        let stderr = child.stderr.take().unwrap();
+        std::io::BufReader::new(stderr)
+            .read_line(&mut line)
+            .unwrap();
+        // "serving DIR at http://127.0.0.1:PORT/ (Ctrl-C stops)"
+        let address = line
+            .split_whitespace()
+            .find(|w| w.starts_with("http://"))
+            .unwrap_or_else(|| panic!("sdfc serve said: {line}"))
+            .to_string();
+        Serve { child, address }
+    }
+}
+
+impl Drop for Serve {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+/// The page's downloads of the scene: all four came; the shaders are those `sdfc emit` writes
+/// for its fragment entry, the manifest is one.
+fn downloads(dir: &std::path::Path, scene: &std::path::Path, got: &serde_json::Value) {
+    let names = ["scene.png", "scene.wgsl", "scene.frag", "scene.json"];
+    assert_eq!(got["downloaded"], serde_json::json!(names), "{got}");
+    for (target, file, extra) in [
+        ("wgsl", "scene.wgsl", None),
+        ("glsl", "scene.frag", Some("300es")),
+    ] {
+        let mut args = vec![
+            "emit",
+            scene.to_str().unwrap(),
+            "--target",
+            target,
+            "--entry",
+            "fragment",
+        ];
+        if let Some(v) = extra {
+            args.extend(["--glsl-version", v]);
+        }
+        let cli = sdfc(&[&args[..], &["-o", "-"]].concat());
+        let page = std::fs::read_to_string(dir.join(file)).unwrap();
+        assert!(
+            page == String::from_utf8_lossy(&cli.stdout),
+            "{file} differs from sdfc emit"
+        );
+    }
+    let manifest: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("scene.json")).unwrap()).unwrap();
+    assert_eq!(manifest["format"], "sdfc-manifest 1");
 }

@@ -12,13 +12,17 @@ use sdfc_compiler::diag::{self, Diagnostic};
 use sdfc_compiler::emit::{self, GlslVersion, Output, Target};
 use sdfc_compiler::lipschitz::{self, Effort, Values};
 use sdfc_compiler::lower::{Entry, tracer::Options};
-use sdfc_compiler::scene::Scene;
+use sdfc_compiler::scene::{Scene, Trace};
 use sdfc_compiler::syntax::NoFiles;
 use serde_json::{Value, json};
 
 /// What the page asks for: `{"source", "name", "target": "wgsl"|"glsl", "entry":
-/// "fragment"|"compute"|"library"}` (GLSL is ES 3.00 for WebGL2: fragment or library only).
-/// Missing fields take those defaults: `scene.sdf`, WGSL, the fragment entry.
+/// "fragment"|"compute"|"library", "tracer": {"name", "settings": {"steps": "64", …}}}` (GLSL
+/// is ES 3.00 for WebGL2: fragment or library only; the tracer overrides the scene's as
+/// `sdfc emit --tracer NAME --steps 64` does, values as those flags take them). Missing fields
+/// take those defaults: `scene.sdf`, WGSL, the fragment entry, the scene's tracer. The answer
+/// also says the tracer used (`"tracer": {"name", "settings": [[name, value], …]}`) and every
+/// tracer's parameters (`"tracers"`), for the page's panel.
 pub fn compile(request: &str) -> String {
     let request: Value = serde_json::from_str(request).unwrap_or(Value::Null);
     let text = |key: &str, default: &'static str| -> String {
@@ -45,12 +49,22 @@ pub fn compile(request: &str) -> String {
             .collect::<Vec<_>>(),
         "summary": diag::json::summary(&diag::shown(&diagnostics).1)["summary"],
     });
-    let Some(scene) = checked
+    response["tracers"] = tracers();
+    let Some(mut scene) = checked
         .scene
         .filter(|_| !diagnostics.iter().any(Diagnostic::is_error))
     else {
         return response.to_string();
     };
+    match overridden(scene.trace, request.get("tracer")) {
+        Ok(trace) => scene.trace = trace,
+        Err(why) => {
+            response["error"] = json!(why);
+            return response.to_string();
+        }
+    }
+    let (method, settings) = check::tracer::settings(&scene.trace);
+    response["tracer"] = json!({ "name": method, "settings": settings });
     match emitted(&scene, &name, target, entry) {
         Ok((code, manifest)) => {
             response["ok"] = json!(true);
@@ -60,6 +74,35 @@ pub fn compile(request: &str) -> String {
         Err(e) => response["error"] = json!(format!("internal compiler error: {e}")),
     }
     response.to_string()
+}
+
+/// The scene's tracer settings with the page's overrides (`{"name", "settings": {…}}`), or
+/// the error `sdfc emit` gives for the same flags.
+fn overridden(trace: Trace, asked: Option<&Value>) -> Result<Trace, String> {
+    let Some(asked) = asked else {
+        return Ok(trace);
+    };
+    let name = asked.get("name").and_then(Value::as_str);
+    let values: Vec<(&str, &str)> = asked
+        .get("settings")
+        .and_then(Value::as_object)
+        .map(|m| {
+            m.iter()
+                .filter_map(|(k, v)| Some((k.as_str(), v.as_str()?)))
+                .collect()
+        })
+        .unwrap_or_default();
+    check::tracer::with_overrides(trace, name, &values).map_err(|e| format!("error: {e}"))
+}
+
+/// Every tracer and its parameters' names: `[{"name", "params": […]}, …]`.
+fn tracers() -> Value {
+    check::tracer::TRACE_METHODS
+        .iter()
+        .map(|(name, _, params)| {
+            json!({ "name": name, "params": params.iter().map(|p| p.name).collect::<Vec<_>>() })
+        })
+        .collect()
 }
 
 /// The target and entry asked for, or why they cannot be had.

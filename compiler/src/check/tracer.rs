@@ -115,6 +115,40 @@ pub fn build(method: Method, get: impl Fn(&str) -> Option<Val>) -> Trace {
     }
 }
 
+/// The value of parameter `name` in `trace` (for any method's parameter name).
+fn value(trace: &Trace, name: &str) -> Option<Val> {
+    Some(match name {
+        "steps" => Val::Num(trace.steps as f64),
+        "epsilon" => match trace.epsilon {
+            Epsilon::Pixel => Val::Word(0),
+            Epsilon::Absolute(e) => Val::Num(e),
+        },
+        "max_distance" => Val::Num(trace.max_distance),
+        "discontinuity" => Val::Num(trace.discontinuity as f64),
+        "antialias" => Val::Word(trace.antialias as usize),
+        "fallback" => Val::Word(trace.keep_relaxation as usize),
+        "omega" => Val::Num(trace.omega),
+        "beta" => Val::Num(trace.beta),
+        "linear" => Val::Num(trace.linear),
+        "refine" => Val::Num(trace.refine as f64),
+        _ => return None,
+    })
+}
+
+/// The method's name and each of its parameters with its value in `trace`, written as a
+/// scene's `trace` block or an override takes it (`("epsilon", "pixel")`, `("steps", "128")`).
+pub fn settings(trace: &Trace) -> (&'static str, Vec<(&'static str, String)>) {
+    let (name, params) = method_entry(trace.method);
+    let text = |p: &Param| match (value(trace, p.name), p.ty) {
+        (Some(Val::Word(i)), Ty::PositiveOr(words) | Ty::Word(words)) => {
+            words.get(i).map_or(String::new(), |w| w.to_string())
+        }
+        (Some(v), _) => v.num().to_string(),
+        (None, _) => String::new(),
+    };
+    (name, params.iter().map(|p| (p.name, text(p))).collect())
+}
+
 /// The default settings (basic tracing).
 pub fn default_trace() -> Trace {
     build(Method::Basic, |_| None)
@@ -171,25 +205,10 @@ pub fn with_overrides(
         };
         given.push((p.name, v));
     }
-    let kept = |name: &str| -> Option<Val> {
-        match name {
-            "steps" => Some(Val::Num(scene.steps as f64)),
-            "epsilon" => Some(match scene.epsilon {
-                Epsilon::Pixel => Val::Word(0),
-                Epsilon::Absolute(e) => Val::Num(e),
-            }),
-            "max_distance" => Some(Val::Num(scene.max_distance)),
-            "discontinuity" => Some(Val::Num(scene.discontinuity as f64)),
-            "antialias" => Some(Val::Word(scene.antialias as usize)),
-            "fallback" if method == scene.method => Some(Val::Word(scene.keep_relaxation as usize)),
-            _ if method == scene.method => Some(Val::Num(match name {
-                "omega" => scene.omega,
-                "beta" => scene.beta,
-                "linear" => scene.linear,
-                _ => scene.refine as f64,
-            })),
-            _ => None,
-        }
+    // A method's own parameters are kept only when the method is kept.
+    let kept = |name: &str| match name {
+        "omega" | "beta" | "linear" | "refine" | "fallback" if method != scene.method => None,
+        _ => value(&scene, name),
     };
     Ok(build(method, |n| {
         given

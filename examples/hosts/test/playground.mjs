@@ -1,20 +1,26 @@
 // The playground (target/web, built by scripts/build_web.sh) in headless Chromium: types a
-// scene into it character by character, then a typo, moves a slider, shares the scene and
-// reopens it; prints one JSON object of what happened and writes the pictures (RGBA8, y down):
+// scene into its editor character by character (the editor indents), then a typo, moves a
+// slider, sets the tracer's steps, shares the scene and reopens it; prints one JSON object of
+// what happened and writes the pictures (RGBA8, y down):
 //
-//   node playground.mjs WEB_DIR SCENE_FILE TYPO_FILE OUT_DIR WIDTH HEIGHT [no-webgpu]
+//   node playground.mjs WEB SCENE_FILE TYPO_FILE OUT_DIR WIDTH HEIGHT [no-webgpu]
 //
+// WEB: the page's address (`sdfc serve` serving target/web), or the folder to serve here.
 // With `no-webgpu` the pages have no `navigator.gpu` (a browser without WebGPU): the playground
 // falls back to WebGL2.
 // OUT_DIR/typed.rgba: the typed scene from its own camera; OUT_DIR/slid.rgba: after its first
-// slider moved to its maximum. CHROME names the browser.
+// slider moved to its maximum; OUT_DIR/tuned.rgba: then with the tracer panel's steps set to 12.
+// CHROME names the browser.
 import fs from "node:fs";
 import path from "node:path";
 import { launch, serve } from "./browser.mjs";
 
-const [webDir, sceneFile, typoFile, outDir, width, height, mode] = process.argv.slice(2);
+const [web, sceneFile, typoFile, outDir, width, height, mode] = process.argv.slice(2);
 const [w, h] = [Number(width), Number(height)];
-const { server, port } = await serve(webDir, null, { "/examples/": path.join(webDir, "examples") });
+const { server, port } = web.startsWith("http")
+  ? { server: null, port: null }
+  : await serve(web, null, { "/examples/": path.join(web, "examples") });
+const home = port ? `http://127.0.0.1:${port}/index.html` : web;
 const browser = await launch();
 let code = 0;
 const logs = [];
@@ -25,12 +31,20 @@ const compiled = (page, text) =>
     { timeout: 60000 },
     text,
   );
-/** Replaces the editor's text by typing `text` key by key. */
-async function type(page, text) {
-  await page.$eval("#source", (el) => (el.value = ""));
-  await page.focus("#source");
-  await page.keyboard.type(text);
-  await compiled(page, text);
+/** The editor's text. */
+const text = (page) => page.evaluate(() => window.sdfcPlayground.editor.text());
+/**
+ * Replaces the editor's text by typing `scene` key by key, each line without its indentation
+ * (the editor's own, as a user's Enter and `}` get it); waits until the page compiled what the
+ * editor then holds, and returns that.
+ */
+async function type(page, scene) {
+  await page.evaluate(() => window.sdfcPlayground.editor.setText(""));
+  await page.focus(".cm-content");
+  await page.keyboard.type(scene.replace(/^[ \t]+/gm, ""));
+  const typed = await text(page);
+  await compiled(page, typed);
+  return typed;
 }
 /** A page, without WebGPU when asked. */
 async function newPage() {
@@ -44,13 +58,13 @@ try {
   const page = await newPage();
   page.on("console", (m) => logs.push(m.text()));
   page.on("pageerror", (e) => logs.push(String(e)));
-  await page.goto(`http://127.0.0.1:${port}/index.html`);
+  await page.goto(home);
   await page.waitForFunction(() => window.sdfcPlayground?.compiles > 0, { timeout: 60000 });
   const first = await page.evaluate(() => ({ ok: window.sdfcPlayground.ok, frames: window.sdfcPlayground.frames, renderer: window.sdfcPlayground.renderer }));
 
   const scene = fs.readFileSync(sceneFile, "utf8");
   const t0 = Date.now();
-  await type(page, scene);
+  const typedText = await type(page, scene);
   const typedMs = Date.now() - t0;
   const typed = await page.evaluate(() => ({ ok: window.sdfcPlayground.ok, compiles: window.sdfcPlayground.compiles, diagnostics: window.sdfcPlayground.diagnostics }));
   fs.writeFileSync(`${outDir}/typed.rgba`, Buffer.from(await page.evaluate((w, h) => window.sdfcPlayground.pixels(w, h), w, h)));
@@ -60,30 +74,33 @@ try {
   // orbiting (the canvas at 640×360, two seconds of dragging).
   const latencies = [];
   for (let k = 0; k < 3; k++) {
-    const text = await page.$eval("#source", (el) => el.value);
+    const before = await text(page);
     const t = Date.now();
     await page.keyboard.type(" ");
     await page.waitForFunction(
       (t) => window.sdfcPlayground.compiledText === t && window.sdfcPlayground.framesAtCompile !== undefined && window.sdfcPlayground.frames > window.sdfcPlayground.framesAtCompile,
       { timeout: 20000 },
-      text + " ",
+      before + " ",
     );
     latencies.push(Date.now() - t);
   }
-  await page.$eval("#source", (el) => (el.value = el.value.trimEnd() + "\n"));
-  await page.$eval("#source", (el) => el.dispatchEvent(new Event("input")));
+  await page.evaluate((t) => window.sdfcPlayground.editor.setText(t), scene);
   await compiled(page, scene);
   const box = await (await page.$("#picture")).boundingBox();
   await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
   await page.mouse.down();
   const [f0, start] = [await page.evaluate(() => window.sdfcPlayground.frames), Date.now()];
-  for (let k = 0; k < 40; k++) {
-    await page.mouse.move(box.x + box.width / 2 + 4 * k, box.y + box.height / 2 + (k % 7));
-    await new Promise((ok) => setTimeout(ok, 50));
+  for (let k = 0; k < 100; k++) {
+    await page.mouse.move(box.x + box.width / 2 + 2 * k, box.y + box.height / 2 + (k % 7));
+    await new Promise((ok) => setTimeout(ok, 15));
   }
   const [f1, t1] = [await page.evaluate(() => window.sdfcPlayground.frames), Date.now()];
+  const whileMoving = await page.evaluate(() => ({ scale: window.sdfcPlayground.scale, coarseFrames: window.sdfcPlayground.coarseFrames }));
   await page.mouse.up();
   const orbitFps = (1000 * (f1 - f0)) / (t1 - start);
+  // Progressive refinement: once the camera stops, the full picture.
+  await page.waitForFunction(() => window.sdfcPlayground.scale === 1, { timeout: 20000 });
+  const refined = await page.evaluate(() => [document.getElementById("picture").width, document.getElementById("picture").height]);
   // Back to the scene's own camera for the pictures.
   await page.click("#picture", { clickCount: 2 });
 
@@ -98,6 +115,35 @@ try {
   fs.writeFileSync(`${outDir}/slid.rgba`, Buffer.from(await page.evaluate((w, h) => window.sdfcPlayground.pixels(w, h), w, h)));
   const compilesAfter = await page.evaluate(() => window.sdfcPlayground.compiles);
 
+  // The tracer panel: 12 steps instead of the scene's, compiled again.
+  await page.$eval("#tracer input[name=steps]", (el) => {
+    el.value = "12";
+    el.dispatchEvent(new Event("change"));
+  });
+  await page.waitForFunction((n) => window.sdfcPlayground.compiles > n && window.sdfcPlayground.frames > window.sdfcPlayground.framesAtCompile, { timeout: 60000 }, compilesAfter);
+  fs.writeFileSync(`${outDir}/tuned.rgba`, Buffer.from(await page.evaluate((w, h) => window.sdfcPlayground.pixels(w, h), w, h)));
+  const tracer = await page.evaluate(() => window.sdfcPlayground.response.tracer);
+  // A value the tracer refuses: the compiler's message, and the picture kept.
+  await page.$eval("#tracer input[name=steps]", (el) => {
+    el.value = "0";
+    el.dispatchEvent(new Event("change"));
+  });
+  await page.waitForFunction((n) => window.sdfcPlayground.compiles > n + 1, { timeout: 60000 }, compilesAfter);
+  const refused = await page.$eval("#diagnostics", (el) => el.textContent);
+  await page.click("#tracer button");
+  await page.waitForFunction((n) => window.sdfcPlayground.compiles > n + 2 && window.sdfcPlayground.ok, { timeout: 60000 }, compilesAfter);
+
+  // The downloads: the PNG is the canvas's picture.
+  const client = await browser.target().createCDPSession();
+  await client.send("Browser.setDownloadBehavior", { behavior: "allow", downloadPath: outDir, eventsEnabled: true });
+  const downloaded = [];
+  for (const [id, name] of [["get-png", "scene.png"], ["get-wgsl", "scene.wgsl"], ["get-glsl", "scene.frag"], ["get-manifest", "scene.json"]]) {
+    await page.click(`#${id}`);
+    const file = path.join(outDir, name);
+    for (let k = 0; k < 100 && !(fs.existsSync(file) && fs.statSync(file).size > 0); k++) await new Promise((ok) => setTimeout(ok, 100));
+    downloaded.push(fs.existsSync(file) ? name : `${name} (missing)`);
+  }
+
   // Share: the address carries the scene; a new page opened on it has the same text.
   await page.click("#share");
   await page.waitForFunction(() => location.hash.startsWith("#s="), { timeout: 10000 });
@@ -106,11 +152,20 @@ try {
   other.on("pageerror", (e) => logs.push(String(e)));
   await other.goto(address);
   await other.waitForFunction(() => window.sdfcPlayground?.compiles > 0, { timeout: 60000 });
-  const reopened = await other.$eval("#source", (el) => el.value);
+  const reopened = await text(other);
 
   // A typo: the diagnostics the page lists.
   const typo = fs.readFileSync(typoFile, "utf8");
   await type(page, typo);
+  // Its underline in the editor, and the message shown when the mouse is over it.
+  const mark = await page.waitForSelector(".cm-lintRange-error", { timeout: 10000 });
+  const underlined = await mark.evaluate((el) => el.textContent);
+  const at = await mark.boundingBox();
+  await page.mouse.move(at.x + at.width / 2, at.y + at.height / 2);
+  const tooltip = await page
+    .waitForSelector(".cm-tooltip-lint", { timeout: 10000 })
+    .then((t) => t.evaluate((el) => el.textContent))
+    .catch(() => null);
   const broken = await page.evaluate(() => ({
     ok: window.sdfcPlayground.ok,
     diagnostics: window.sdfcPlayground.diagnostics,
@@ -118,8 +173,9 @@ try {
     frames: window.sdfcPlayground.frames,
   }));
   console.log(JSON.stringify({
-    first, typed, typedMs, latencies, orbitFps, sliders, compilesBefore, compilesAfter,
-    shared: reopened === scene, addressLength: address.length, broken,
+    first, typed, typedMs, indented: typedText === scene, latencies, orbitFps, whileMoving, refined,
+    sliders, compilesBefore, compilesAfter, tracer, refused, downloaded,
+    shared: reopened === scene, addressLength: address.length, broken, underlined, tooltip,
     errors: logs.filter((l) => /error/i.test(l)),
     glErrors: await page.evaluate(() => window.sdfcPlayground.glErrors.slice(0, 5)),
   }));
@@ -128,6 +184,6 @@ try {
   code = 1;
 } finally {
   await browser.close();
-  server.close();
+  server?.close();
 }
 process.exit(code);

@@ -162,7 +162,8 @@ function hostCameraBytes(view, width, height) {
  * Renders `width`×`height` from the scene's camera into an offscreen framebuffer and returns
  * its RGBA8 pixels, row-major with y down (as `sdfc render` writes them): `target` "rgba8" (the
  * entry encodes sRGB) or "srgb8" (an SRGB8_ALPHA8 renderbuffer: the entry writes linear light
- * and GL encodes), `yUp` the origin flag (true is GL's; false draws the picture upside down).
+ * and GL encodes), `yUp` the origin flag (true is GL's; false draws the picture upside down),
+ * `eye` where the camera is (by default the scene's).
  */
 export async function renderPixels(base, width, height, values = {}, options = {}) {
   const { target = "rgba8", yUp = true, library = false } = options;
@@ -179,7 +180,7 @@ export async function renderPixels(base, width, height, values = {}, options = {
 
 /** [renderPixels] with a host already made on `gl`, from the scene's camera. */
 export function hostPixels(gl, host, width, height, values = {}, options = {}) {
-  const { target = "rgba8", yUp = true } = options;
+  const { target = "rgba8", yUp = true, eye = host.manifest.camera.eye } = options;
   // Errors from earlier work on this context are not this picture's (the caller may look
   // at them first).
   while (gl.getError() !== gl.NO_ERROR);
@@ -190,7 +191,7 @@ export function hostPixels(gl, host, width, height, values = {}, options = {}) {
   gl.renderbufferStorage(gl.RENDERBUFFER, target === "srgb8" ? gl.SRGB8_ALPHA8 : gl.RGBA8, width, height);
   gl.framebufferRenderbuffer(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.RENDERBUFFER, rb);
   if (gl.checkFramebufferStatus(gl.FRAMEBUFFER) !== gl.FRAMEBUFFER_COMPLETE) throw new Error("incomplete framebuffer");
-  host.draw(width, height, host.manifest.camera.eye, values, { yUp, srgb: target === "rgba8" });
+  host.draw(width, height, eye, values, { yUp, srgb: target === "rgba8" });
   const raw = new Uint8Array(4 * width * height);
   gl.readPixels(0, 0, width, height, gl.RGBA, gl.UNSIGNED_BYTE, raw);
   const error = gl.getError();

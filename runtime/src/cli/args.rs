@@ -58,6 +58,9 @@ pub enum Command {
     /// Mesh a scene's surface into triangles for printers, engines and modelling tools:
     /// closed, 2-manifold, sharp corners kept (STL, OBJ, PLY with colours, glTF).
     Mesh(MeshArgs),
+    /// Serve the playground (the compiler in the page, WebGPU or WebGL2) on this machine:
+    /// build it first with `bash scripts/build_web.sh`, then open the address printed.
+    Serve(ServeArgs),
     /// Print shell completions for `sdfc` (bash, zsh, fish, elvish, powershell).
     Completions(CompletionsArgs),
     /// Print the man page of `sdfc` (roff; `man -l sdfc.1` shows it).
@@ -386,4 +389,18 @@ pub struct MeshArgs {
     pub stats: bool,
     #[command(flatten)]
     pub bake: BakeArgs,
+}
+
+/// `sdfc serve`'s arguments.
+#[derive(Args)]
+pub struct ServeArgs {
+    /// The folder to serve: by default the playground as `scripts/build_web.sh` assembles it
+    /// (`target/web`, relative to the current folder).
+    pub dir: Option<PathBuf>,
+    /// The port; 0 takes a free one (the address printed says which).
+    #[arg(long, default_value_t = 8000, value_name = "PORT")]
+    pub port: u16,
+    /// The address to listen on: this machine only by default; `0.0.0.0` for every network.
+    #[arg(long, default_value = "127.0.0.1", value_name = "ADDRESS")]
+    pub host: std::net::IpAddr,
 }

@@ -1,5 +1,5 @@
 //! The subcommands, one module each (`check`, `emit`, `render`, `view`, `bench`, `mesh`,
-//! `shell` for completions and the man page); what two of them share is in `common`, or below
+//! `serve`, `shell` for completions and the man page); what two of them share is in `common`, or below
 //! in `cli` and `view`. No command imports another.
 
 mod bench;
@@ -8,6 +8,7 @@ mod common;
 mod emit;
 mod mesh;
 mod render;
+mod serve;
 mod shell;
 mod view;
 
@@ -34,5 +35,6 @@ pub fn run() -> i32 {
         Command::View(args) => view::run(args),
         Command::Bench(args) => bench::run(&args),
         Command::Mesh(args) => mesh::run(&args),
+        Command::Serve(args) => serve::run(&args),
     }
 }
