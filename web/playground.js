@@ -78,13 +78,13 @@ async function makeRenderer() {
     const here = new URL("scene.json", location.href);
     return {
       kind: "webgpu", target: "wgsl", entry: "library", format,
-      make: (r, f) => createHostFrom(device, r.code, r.manifest, f, here),
+      make: (r, f) => createHostFrom(device, r.code, r.manifest, f, here, r.volumes),
       draw(host, eye, values) {
         const encoder = host.draw(context.getCurrentTexture().createView(), canvas.width, canvas.height, eye, values);
         device.queue.submit([encoder.finish()]);
       },
       pixels: async (r, w, h, values, eye) =>
-        hostPixels(await createHostFrom(device, r.code, r.manifest, "rgba8unorm", here), w, h, values, eye ?? r.manifest.camera.eye),
+        hostPixels(await createHostFrom(device, r.code, r.manifest, "rgba8unorm", here, r.volumes), w, h, values, eye ?? r.manifest.camera.eye),
     };
   }
   const gl = canvas.getContext("webgl2");
@@ -95,7 +95,7 @@ async function makeRenderer() {
   status.textContent = "no WebGPU here: drawing with WebGL2";
   return {
     kind: "webgl2", target: "glsl", entry: "fragment",
-    make: async (r) => gl2.createHost(gl, r.code, r.manifest),
+    make: async (r) => gl2.createHost(gl, r.code, r.manifest, false, r.volumes),
     // The canvas: GL's origin, and not sRGB, so the entry encodes.
     draw(host, eye, values) {
       host.draw(canvas.width, canvas.height, eye, values, { yUp: true, srgb: true });
@@ -103,7 +103,7 @@ async function makeRenderer() {
       const error = gl.getError();
       if (error) state.glErrors.push([state.frames, error]);
     },
-    pixels: async (r, w, h, values, eye) => gl2.hostPixels(gl, gl2.createHost(gl, r.code, r.manifest), w, h, values, { eye: eye ?? r.manifest.camera.eye }),
+    pixels: async (r, w, h, values, eye) => gl2.hostPixels(gl, gl2.createHost(gl, r.code, r.manifest, false, r.volumes), w, h, values, { eye: eye ?? r.manifest.camera.eye }),
   };
 }
 
@@ -137,6 +137,8 @@ async function main() {
     state.compileMs = ms;
     if (r.tracer) panel(r);
     // (`compiles` and `compiledText` change last, once the answer is in use: the test waits on them.)
+    // The baked volumes' bytes, made by the compile (the files `sdfc emit` would write).
+    if (r.ok) r.volumes = (r.manifest.volumes ?? []).map((_, i) => sdfc.volume(i));
     if (!r.ok || !renderer.make) {
       state.compiles += 1;
       state.compiledText = text;

@@ -1,6 +1,7 @@
 // sdfc's compiler as WebAssembly, for pages and for Node: `const sdfc = await load(bytes)`,
 // then `sdfc.compile({ source, name, target, entry })` returns `{ ok, code, manifest,
-// diagnostics, summary }` (see web/src/lib.rs). The module's four exports are used directly:
+// diagnostics, summary }` (see web/src/lib.rs), `sdfc.volume(i)` the bytes of its baked
+// volume i. The module's five exports are used directly:
 // a request is written into memory from `sdfc_alloc`, `sdfc_compile` returns the response's
 // length and text, both are given back with `sdfc_free`.
 
@@ -24,6 +25,16 @@ export async function load(bytes) {
     },
     compile(request) {
       return JSON.parse(api.compileText(request));
+    },
+    // Baked volume `index` of the last scene that compiled (the manifest's `volumes[index]`):
+    // its r32float texels as the file `sdfc emit` writes, or null.
+    volume(index) {
+      const out = wasm.sdfc_volume(index);
+      if (!out) return null;
+      const len = new DataView(wasm.memory.buffer).getUint32(out, true);
+      const bytes = new Uint8Array(wasm.memory.buffer, out + 4, len).slice();
+      wasm.sdfc_free(out, 4 + len);
+      return bytes;
     },
   };
   return api;

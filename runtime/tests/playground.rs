@@ -188,6 +188,23 @@ fn playground(chrome: &str, driver: &std::path::Path, mode: &str, renderer: &str
             .is_some_and(|t| t.contains(first["message"].as_str().unwrap())),
         "the hover: {got}"
     );
+    // The `baked` example from the menu: its maps' bytes from the compiler in the page.
+    let baked_source = std::fs::read_to_string(root().join("examples/baked.sdf")).unwrap();
+    let baked_scene = compile(&baked_source);
+    let sizes: Vec<u64> = baked_scene
+        .volumes()
+        .iter()
+        .map(|v| sdfc_compiler::bake::file::raw(v).len() as u64)
+        .collect();
+    assert_eq!(got["baked"]["volumes"], serde_json::json!(sizes), "{got}");
+    let page_baked = std::fs::read(dir.join("baked.rgba")).unwrap();
+    let frame = render(&gpu, &baked_scene, &View::new(&baked_scene.camera, w, h));
+    let (baked, baked_worst) = within_levels(&frame.color, &page_baked, 2);
+    assert!(
+        baked >= 0.995,
+        "the baked example: only {:.2}% within 2 levels",
+        100.0 * baked
+    );
     report(&format!(
         "playground in Chrome ({renderer}): a scene typed key by key ({} compiles, {} ms) drawn within 2 \
          levels of sdfc render on {:.2}% of pixels (worst {worst}); its slider redrew without a \
@@ -196,7 +213,9 @@ fn playground(chrome: &str, driver: &std::path::Path, mode: &str, renderer: &str
          listed and underlined `{}` at {}:{} as sdfc check does; the tracer panel's 12 steps \
          drawn as sdfc render --steps 12 on {:.2}% (worst {tuned_worst}); coarse frames while \
          orbiting, full once still; the PNG downloaded within 2 levels of sdfc render on {:.2}% (worst \
-         {saved_worst}), WGSL and GLSL as sdfc emit writes them, the manifest; measured: keystroke to its first frame {} ms \
+         {saved_worst}), WGSL and GLSL as sdfc emit writes them, the manifest; the baked example \
+         from the menu ({} volumes from the page's compiler, compiled in {:.0} ms) within 2 levels \
+         on {:.2}% (worst {baked_worst}); measured: keystroke to its first frame {} ms \
          (3 edits), {:.1} frames a second while orbiting at 640×360; GL errors on the live canvas \
          (frame, code): {}",
         got["typed"]["compiles"],
@@ -210,6 +229,9 @@ fn playground(chrome: &str, driver: &std::path::Path, mode: &str, renderer: &str
         first["span"]["column"],
         100.0 * tuned,
         100.0 * saved,
+        sizes.len(),
+        got["baked"]["ms"].as_f64().unwrap_or(f64::NAN),
+        100.0 * baked,
         got["latencies"],
         got["orbitFps"].as_f64().unwrap_or(f64::NAN),
         got["glErrors"]

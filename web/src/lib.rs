@@ -7,6 +7,7 @@
 //!
 //! Imports resolve against the built-in standard library only (`std/…`): the page has no files.
 
+use sdfc_compiler::bake::Volume;
 use sdfc_compiler::check::{self, Checked};
 use sdfc_compiler::diag::{self, Diagnostic};
 use sdfc_compiler::emit::{self, GlslVersion, Output, Target};
@@ -15,6 +16,7 @@ use sdfc_compiler::lower::{Entry, tracer::Options};
 use sdfc_compiler::scene::{Scene, Trace};
 use sdfc_compiler::syntax::NoFiles;
 use serde_json::{Value, json};
+use std::sync::Arc;
 
 /// What the page asks for: `{"source", "name", "target": "wgsl"|"glsl", "entry":
 /// "fragment"|"compute"|"library", "tracer": {"name", "settings": {"steps": "64", …}}}` (GLSL
@@ -67,6 +69,7 @@ pub fn compile(request: &str) -> String {
     response["tracer"] = json!({ "name": method, "settings": settings });
     match emitted(&scene, &name, target, entry) {
         Ok((code, manifest)) => {
+            LAST_VOLUMES.with(|v| *v.borrow_mut() = scene.volumes());
             response["ok"] = json!(true);
             response["code"] = json!(code);
             response["manifest"] = manifest;
@@ -74,6 +77,21 @@ pub fn compile(request: &str) -> String {
         Err(e) => response["error"] = json!(format!("internal compiler error: {e}")),
     }
     response.to_string()
+}
+
+thread_local! {
+    /// The baked volumes of the last scene that compiled, for [`volume`].
+    static LAST_VOLUMES: std::cell::RefCell<Vec<Arc<Volume>>> = const { std::cell::RefCell::new(Vec::new()) };
+}
+
+/// Baked volume `index` of the last scene [`compile`] compiled, as the file `sdfc emit` writes
+/// beside the shader (the manifest's `volumes[index].file`): what the page uploads.
+pub fn volume(index: usize) -> Option<Vec<u8>> {
+    LAST_VOLUMES.with(|v| {
+        v.borrow()
+            .get(index)
+            .map(|v| sdfc_compiler::bake::file::raw(v))
+    })
 }
 
 /// The scene's tracer settings with the page's overrides (`{"name", "settings": {…}}`), or
@@ -218,11 +236,27 @@ pub unsafe extern "C" fn sdfc_compile(at: *const u8, len: usize) -> *mut u8 {
     // SAFETY: the caller wrote `len` bytes at `at`.
     let request = unsafe { std::slice::from_raw_parts(at, len) };
     let response = compile(&String::from_utf8_lossy(request));
-    let mut out = Vec::with_capacity(4 + response.len());
-    out.extend_from_slice(&(response.len() as u32).to_le_bytes());
-    out.extend_from_slice(response.as_bytes());
-    let cap = out.capacity();
-    debug_assert_eq!(cap, 4 + response.len());
+    handed_over(response.as_bytes())
+}
+
+/// The raw bytes (`r32float` texels, x fastest: the file `sdfc emit` writes) of baked volume
+/// `index` of the last scene that compiled, as [`sdfc_compile`] hands over its response (4
+/// bytes of length, then the bytes; free with [`sdfc_free`]); null where there is none.
+#[unsafe(no_mangle)]
+pub extern "C" fn sdfc_volume(index: usize) -> *mut u8 {
+    match volume(index) {
+        Some(bytes) => handed_over(&bytes),
+        None => std::ptr::null_mut(),
+    }
+}
+
+/// `bytes` in new memory after their length (4 bytes, little-endian), for the page to read and
+/// give back with [`sdfc_free`] (capacity 4 + the length).
+fn handed_over(bytes: &[u8]) -> *mut u8 {
+    let mut out = Vec::with_capacity(4 + bytes.len());
+    out.extend_from_slice(&(bytes.len() as u32).to_le_bytes());
+    out.extend_from_slice(bytes);
+    debug_assert_eq!(out.capacity(), 4 + bytes.len());
     let at = out.as_mut_ptr();
     std::mem::forget(out);
     at

@@ -9,7 +9,8 @@
 // With `no-webgpu` the pages have no `navigator.gpu` (a browser without WebGPU): the playground
 // falls back to WebGL2.
 // OUT_DIR/typed.rgba: the typed scene from its own camera; OUT_DIR/slid.rgba: after its first
-// slider moved to its maximum; OUT_DIR/tuned.rgba: then with the tracer panel's steps set to 12.
+// slider moved to its maximum; OUT_DIR/tuned.rgba: then with the tracer panel's steps set to 12;
+// OUT_DIR/baked.rgba: the `baked` example from the menu.
 // CHROME names the browser.
 import fs from "node:fs";
 import path from "node:path";
@@ -172,7 +173,16 @@ try {
     shown: document.getElementById("diagnostics").textContent,
     frames: window.sdfcPlayground.frames,
   }));
+  // An example from the menu whose scene bakes distance maps: the volumes' bytes come from
+  // the compiler in the page.
+  const before = await page.evaluate(() => window.sdfcPlayground.compiles);
+  await page.select("#examples", "baked");
+  await page.waitForFunction((n) => window.sdfcPlayground.compiles > n && window.sdfcPlayground.ok && window.sdfcPlayground.frames > window.sdfcPlayground.framesAtCompile, { timeout: 60000 }, before);
+  const baked = await page.evaluate(() => ({ volumes: window.sdfcPlayground.response.volumes.map((v) => v.length), ms: window.sdfcPlayground.compileMs }));
+  fs.writeFileSync(`${outDir}/baked.rgba`, Buffer.from(await page.evaluate((w, h) => window.sdfcPlayground.pixels(w, h), w, h)));
+
   console.log(JSON.stringify({
+    baked,
     first, typed, typedMs, indented: typedText === scene, latencies, orbitFps, whileMoving, refined,
     sliders, compilesBefore, compilesAfter, tracer, refused, downloaded,
     shared: reopened === scene, addressLength: address.length, broken, underlined, tooltip,

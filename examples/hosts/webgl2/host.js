@@ -119,9 +119,10 @@ export function link(gl, fragment) {
  * set) and its manifest: the program and a buffer per uniform block, each block bound by the
  * name and binding the manifest gives.
  */
-export function createHost(gl, code, manifest, library = false) {
+export function createHost(gl, code, manifest, library = false, volumes = null) {
   if (manifest.format !== "sdfc-manifest 1") throw new Error(`unknown manifest format ${manifest.format}`);
   const program = link(gl, library ? libraryShader(code, manifest) : code);
+  const textures = volumeTextures(gl, program, manifest, volumes);
   const blocks = [];
   const uniforms = manifest.bindings.filter((b) => b.space === "uniform");
   if (library) uniforms.push({ glsl_block: "HostCamera", binding: 0, size: 80, host: true });
@@ -138,6 +139,11 @@ export function createHost(gl, code, manifest, library = false) {
   function draw(width, height, eye, values, flags) {
     const view = camera(manifest, eye, width, height);
     gl.useProgram(program);
+    textures.forEach((t, unit) => {
+      gl.activeTexture(gl.TEXTURE0 + unit);
+      gl.bindTexture(gl.TEXTURE_3D, t.texture);
+      gl.uniform1i(t.location, unit);
+    });
     for (const b of blocks) {
       let bytes;
       if (b.host) bytes = hostCameraBytes(view, width, height);
@@ -151,6 +157,45 @@ export function createHost(gl, code, manifest, library = false) {
     gl.drawArrays(gl.TRIANGLES, 0, 3);
   }
   return { manifest, draw };
+}
+
+/**
+ * The scene's baked distance maps (the manifest's `volumes`, docs/bake.md) as R32F 3D textures
+ * from their bytes (`volumes[i]`: r32float texels, x fastest, as `sdfc emit` writes the files),
+ * each with the sampler uniform the manifest's binding names (the shader reads texels with
+ * `texelFetch`: no filtering). A scene with volumes and no bytes is an error, not a picture
+ * without its maps.
+ */
+function volumeTextures(gl, program, manifest, volumes) {
+  const list = manifest.volumes ?? [];
+  if (list.length > 0 && volumes?.length !== list.length) {
+    throw new Error(`the scene samples ${list.length} baked volume(s): the host needs their bytes`);
+  }
+  return list.map((v, i) => {
+    if (v.format !== "r32float") throw new Error(`volume ${v.global}: unknown format ${v.format}`);
+    const [w, h, d] = v.size;
+    const bytes = volumes[i] instanceof ArrayBuffer ? volumes[i] : volumes[i].slice().buffer;
+    if (bytes.byteLength !== 4 * w * h * d) {
+      throw new Error(`${v.file}: ${bytes.byteLength} bytes, but ${w}×${h}×${d} r32float texels take ${4 * w * h * d}`);
+    }
+    const texture = gl.createTexture();
+    gl.bindTexture(gl.TEXTURE_3D, texture);
+    for (const p of [gl.TEXTURE_MIN_FILTER, gl.TEXTURE_MAG_FILTER]) gl.texParameteri(gl.TEXTURE_3D, p, gl.NEAREST);
+    for (const p of [gl.TEXTURE_WRAP_S, gl.TEXTURE_WRAP_T, gl.TEXTURE_WRAP_R]) gl.texParameteri(gl.TEXTURE_3D, p, gl.CLAMP_TO_EDGE);
+    gl.texImage3D(gl.TEXTURE_3D, 0, gl.R32F, w, h, d, 0, gl.RED, gl.FLOAT, new Float32Array(bytes));
+    const binding = manifest.bindings.find((b) => b.name === v.global);
+    return { texture, location: gl.getUniformLocation(program, binding?.glsl_block ?? "") };
+  });
+}
+
+/** The bytes of the manifest's baked volumes, from their files beside `${base}.json`. */
+export function fetchVolumes(manifest, base) {
+  const at = new URL(`${base}.json`, location.href);
+  return Promise.all(
+    (manifest.volumes ?? []).map((v) =>
+      fetch(new URL(v.file, at)).then((r) => (r.ok ? r.arrayBuffer() : Promise.reject(new Error(`${v.file}: ${r.status}`)))),
+    ),
+  );
 }
 
 /** The library host's own camera block (`HostCamera`: eye, right, up, forward, size). */
@@ -175,7 +220,8 @@ export async function renderPixels(base, width, height, values = {}, options = {
   const canvas = document.createElement("canvas");
   const gl = canvas.getContext("webgl2");
   if (!gl) throw new Error("this browser has no WebGL2");
-  return hostPixels(gl, createHost(gl, code, manifest, library), width, height, values, { target, yUp });
+  const volumes = await fetchVolumes(manifest, base);
+  return hostPixels(gl, createHost(gl, code, manifest, library, volumes), width, height, values, { target, yUp });
 }
 
 /** [renderPixels] with a host already made on `gl`, from the scene's camera. */
@@ -214,7 +260,7 @@ async function main() {
   try {
     const [code, manifest] = await Promise.all([fetch(`${base}.frag`).then((r) => r.text()), fetch(`${base}.json`).then((r) => r.json())]);
     const gl = canvas.getContext("webgl2");
-    const host = createHost(gl, code, manifest);
+    const host = createHost(gl, code, manifest, false, await fetchVolumes(manifest, base));
     const values = {};
     for (const f of manifest.params.fields) {
       if (f.name === "time" && f.builtin) continue;

@@ -77,16 +77,19 @@ function paramsBytes(manifest, values) {
 
 /**
  * The scene's baked distance maps (the manifest's `volumes`, docs/bake.md), each an r32float 3D
- * texture filled from its raw file beside the manifest: the bind group entries for them.
+ * texture filled from its raw bytes (`given[i]`, else the file beside the manifest): the bind
+ * group entries for them.
  */
-async function volumeEntries(device, manifest, manifestUrl) {
+async function volumeEntries(device, manifest, manifestUrl, given = null) {
   return Promise.all(
-    (manifest.volumes ?? []).map(async (v) => {
+    (manifest.volumes ?? []).map(async (v, i) => {
       if (v.format !== "r32float") throw new Error(`volume ${v.global}: unknown format ${v.format}`);
-      const url = new URL(v.file, manifestUrl);
-      const r = await fetch(url);
-      if (!r.ok) throw new Error(`${v.file}: ${r.status}`);
-      const bytes = await r.arrayBuffer();
+      let bytes = given?.[i];
+      if (!bytes) {
+        const r = await fetch(new URL(v.file, manifestUrl));
+        if (!r.ok) throw new Error(`${v.file}: ${r.status}`);
+        bytes = await r.arrayBuffer();
+      }
       const [w, h, d] = v.size;
       if (bytes.byteLength !== 4 * w * h * d) {
         throw new Error(`${v.file}: ${bytes.byteLength} bytes, but ${w}×${h}×${d} r32float texels take ${4 * w * h * d}`);
@@ -119,9 +122,10 @@ export async function createHost(base, format) {
 
 /**
  * [createHost] from a library's WGSL and manifest already in hand (the playground compiles them
- * in the page) on `device`; baked maps are fetched beside `manifestUrl`.
+ * in the page) on `device`; baked maps' bytes are `volumes` (one per manifest volume) or fetched
+ * beside `manifestUrl`.
  */
-export async function createHostFrom(device, library, manifest, format, manifestUrl) {
+export async function createHostFrom(device, library, manifest, format, manifestUrl, volumes = null) {
   if (manifest.format !== "sdfc-manifest 1") throw new Error(`unknown manifest format ${manifest.format}`);
   const color = manifest.functions.find((f) => f.name === (manifest.prefix ? `${manifest.prefix}_color` : "color"));
   if (!color) throw new Error("the manifest lists no `color`: emit with --entry library");
@@ -142,7 +146,7 @@ export async function createHostFrom(device, library, manifest, format, manifest
   });
   // The scene's parameters, where the manifest gives their binding (docs/interface.md), and
   // its baked maps: the library's group 0.
-  const entries = await volumeEntries(device, manifest, manifestUrl);
+  const entries = await volumeEntries(device, manifest, manifestUrl, volumes);
   let paramsBuffer = null;
   if (manifest.params.binding) {
     paramsBuffer = device.createBuffer({
