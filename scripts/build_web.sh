@@ -20,7 +20,7 @@ fi
 web/node_modules/.bin/esbuild web/editor.js --bundle --format=esm --minify --log-level=warning \
   --outfile=target/web/editor.js
 cp target/wasm/wasm32-unknown-unknown/release/sdfc_web.wasm target/web/sdfc.wasm
-cp web/index.html web/playground.js examples/hosts/webgpu/host.js target/web/
+cp web/index.html web/playground.js web/verify.js examples/hosts/webgpu/host.js target/web/
 cp web/sdfc.mjs target/web/sdfc.js
 cp examples/hosts/webgl2/host.js target/web/host_webgl2.js
 mkdir -p target/web/examples

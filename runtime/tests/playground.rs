@@ -22,6 +22,12 @@ smooth_union(0.3) {
 plane(y, -0.2)
 ";
 
+/// A `@lipschitz` claim below the sphere's slope: `sdfc check` warns (the page's worker too).
+const CLAIM: &str = "camera { eye (0, 1, -4)  target (0, 0, 0) }
+sphere(1) @lipschitz(0.5)
+plane(y, -1)
+";
+
 #[test]
 fn the_playground_compiles_as_you_type_and_draws_what_sdfc_renders() {
     let Some((chrome, driver)) = crate::browser::browser() else {
@@ -40,7 +46,12 @@ fn the_playground_compiles_as_you_type_and_draws_what_sdfc_renders() {
 fn playground(chrome: &str, driver: &std::path::Path, mode: &str, renderer: &str) {
     let dir = scratch(&format!("playground-{mode}"));
     let typo_text = SCENE.replace("sphere(0.8) at", "sphere(0.8 at");
-    let (scene, typo) = (dir.join("scene.sdf"), dir.join("typo.sdf"));
+    let (scene, typo, claim) = (
+        dir.join("scene.sdf"),
+        dir.join("typo.sdf"),
+        dir.join("claim.sdf"),
+    );
+    std::fs::write(&claim, CLAIM).unwrap();
     std::fs::write(&scene, SCENE).unwrap();
     std::fs::write(&typo, &typo_text).unwrap();
     let (w, h) = (160u32, 90u32);
@@ -48,7 +59,7 @@ fn playground(chrome: &str, driver: &std::path::Path, mode: &str, renderer: &str
     let run = Command::new("node")
         .arg(driver.join("playground.mjs"))
         .arg(&server.address)
-        .args([&scene, &typo, &dir])
+        .args([&scene, &typo, &claim, &dir])
         .args([w.to_string(), h.to_string(), mode.to_string()])
         .env("CHROME", chrome)
         .output()
@@ -188,6 +199,25 @@ fn playground(chrome: &str, driver: &std::path::Path, mode: &str, renderer: &str
             .is_some_and(|t| t.contains(first["message"].as_str().unwrap())),
         "the hover: {got}"
     );
+    // The claim's warning: the worker's check gives what `sdfc check` gives, underlined.
+    let cli = sdfc(&["check", claim.to_str().unwrap(), "--message-format", "json"]);
+    let warnings: Vec<serde_json::Value> = String::from_utf8_lossy(&cli.stderr)
+        .lines()
+        .filter_map(|l| serde_json::from_str::<serde_json::Value>(l).ok())
+        .filter(|d| d.get("severity").is_some())
+        .collect();
+    assert_eq!(warnings.len(), 1, "sdfc check of the claim: {warnings:?}");
+    let claimed = &got["claimed"];
+    let page_warnings = claimed["diagnostics"].as_array().unwrap();
+    assert_eq!(page_warnings.len(), 1, "{got}");
+    for key in ["message", "label", "span", "severity", "notes"] {
+        assert_eq!(
+            page_warnings[0][key], warnings[0][key],
+            "the claim's {key}: {got}"
+        );
+    }
+    assert!(claimed["marks"].as_u64() >= Some(1), "no underline: {got}");
+
     // The `baked` example from the menu: its maps' bytes from the compiler in the page.
     let baked_source = std::fs::read_to_string(root().join("examples/baked.sdf")).unwrap();
     let baked_scene = compile(&baked_source);
@@ -215,7 +245,9 @@ fn playground(chrome: &str, driver: &std::path::Path, mode: &str, renderer: &str
          orbiting, full once still; the PNG downloaded within 2 levels of sdfc render on {:.2}% (worst \
          {saved_worst}), WGSL and GLSL as sdfc emit writes them, the manifest; the baked example \
          from the menu ({} volumes from the page's compiler, compiled in {:.0} ms) within 2 levels \
-         on {:.2}% (worst {baked_worst}); measured: keystroke to its first frame {} ms \
+         on {:.2}% (worst {baked_worst}); a too small `@lipschitz` warned by the worker as by sdfc \
+         check ({:.0} ms off the page's thread); measured: compile in the page per example (ms, 3 \
+         runs) {};  keystroke to its first frame {} ms \
          (3 edits), {:.1} frames a second while orbiting at 640×360; GL errors on the live canvas \
          (frame, code): {}",
         got["typed"]["compiles"],
@@ -232,6 +264,8 @@ fn playground(chrome: &str, driver: &std::path::Path, mode: &str, renderer: &str
         sizes.len(),
         got["baked"]["ms"].as_f64().unwrap_or(f64::NAN),
         100.0 * baked,
+        claimed["ms"].as_f64().unwrap_or(f64::NAN),
+        got["examples"],
         got["latencies"],
         got["orbitFps"].as_f64().unwrap_or(f64::NAN),
         got["glErrors"]

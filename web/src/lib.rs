@@ -22,7 +22,8 @@ use std::sync::Arc;
 /// "fragment"|"compute"|"library", "tracer": {"name", "settings": {"steps": "64", …}}}` (GLSL
 /// is ES 3.00 for WebGL2: fragment or library only; the tracer overrides the scene's as
 /// `sdfc emit --tracer NAME --steps 64` does, values as those flags take them). Missing fields
-/// take those defaults: `scene.sdf`, WGSL, the fragment entry, the scene's tracer. The answer
+/// take those defaults: `scene.sdf`, WGSL, the fragment entry, the scene's tracer;
+/// `"annotations": "later"` skips sampling the `@lipschitz` claims (see [`checked`]). The answer
 /// also says the tracer used (`"tracer": {"name", "settings": [[name, value], …]}`) and every
 /// tracer's parameters (`"tracers"`), for the page's panel.
 pub fn compile(request: &str) -> String {
@@ -42,7 +43,11 @@ pub fn compile(request: &str) -> String {
         Ok(te) => te,
         Err(why) => return json!({ "ok": false, "error": why }).to_string(),
     };
-    let (checked, diagnostics) = checked(&name, &source);
+    // `"annotations": "later"`: the `@lipschitz` claims are not sampled now (their check only
+    // ever warns, and the shader does not depend on it); the answer says `"pending": true`
+    // where a check with `"now"` (the default) would sample some.
+    let later = text("annotations", "now") == "later";
+    let (checked, diagnostics, pending) = checked(&name, &source, later);
     let mut response = json!({
         "ok": false,
         "diagnostics": diagnostics
@@ -50,6 +55,7 @@ pub fn compile(request: &str) -> String {
             .map(|d| diag::json::one(d, &checked.sources))
             .collect::<Vec<_>>(),
         "summary": diag::json::summary(&diag::shown(&diagnostics).1)["summary"],
+        "pending": pending,
     });
     response["tracers"] = tracers();
     let Some(mut scene) = checked
@@ -147,11 +153,16 @@ fn choose((target, entry): &(String, String)) -> Result<(Target, Entry), String>
 }
 
 /// The scene checked as `sdfc check` checks it at its defaults: the checker's diagnostics,
-/// then the Lipschitz annotations verified at the defaults and over the parameters' ranges.
-fn checked(name: &str, source: &str) -> (Checked, Vec<Diagnostic>) {
+/// then the Lipschitz annotations verified at the defaults and over the parameters' ranges —
+/// unless `later`, when the answer's last part says whether that check has work left.
+fn checked(name: &str, source: &str, later: bool) -> (Checked, Vec<Diagnostic>, bool) {
     let at = |v: &Values| check::compile_file(name, source, v, &NoFiles);
     let checked = at(&Values::new());
     let mut diagnostics = checked.diagnostics.clone();
+    if later {
+        let pending = checked.scene.as_ref().is_some_and(lipschitz::has_claims);
+        return (checked, diagnostics, pending);
+    }
     if let Some(scene) = &checked.scene {
         let at_values = |v: &Values| at(v).scene;
         diagnostics.extend(lipschitz::verify_everywhere(
@@ -161,7 +172,7 @@ fn checked(name: &str, source: &str) -> (Checked, Vec<Diagnostic>) {
             &Values::new(),
         ));
     }
-    (checked, diagnostics)
+    (checked, diagnostics, false)
 }
 
 /// The shader and its manifest, as `sdfc emit FILE --target … --entry … --manifest` writes them

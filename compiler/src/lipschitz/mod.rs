@@ -261,6 +261,12 @@ fn annotated(scene: &crate::scene::Scene) -> Vec<crate::scene::NodeId> {
         .collect()
 }
 
+/// Whether the scene has `@lipschitz` annotations below their inferred bounds: those the
+/// annotation check ([`verify_everywhere`]) samples; without any, it has nothing to do.
+pub fn has_claims(scene: &crate::scene::Scene) -> bool {
+    !annotated(scene).is_empty()
+}
+
 /// A small deterministic generator (xorshift), so the check says the same every run.
 struct Rng(u64);
 

@@ -3,7 +3,7 @@
 // slider, sets the tracer's steps, shares the scene and reopens it; prints one JSON object of
 // what happened and writes the pictures (RGBA8, y down):
 //
-//   node playground.mjs WEB SCENE_FILE TYPO_FILE OUT_DIR WIDTH HEIGHT [no-webgpu]
+//   node playground.mjs WEB SCENE_FILE TYPO_FILE CLAIM_FILE OUT_DIR WIDTH HEIGHT [no-webgpu]
 //
 // WEB: the page's address (`sdfc serve` serving target/web), or the folder to serve here.
 // With `no-webgpu` the pages have no `navigator.gpu` (a browser without WebGPU): the playground
@@ -16,7 +16,7 @@ import fs from "node:fs";
 import path from "node:path";
 import { launch, serve } from "./browser.mjs";
 
-const [web, sceneFile, typoFile, outDir, width, height, mode] = process.argv.slice(2);
+const [web, sceneFile, typoFile, claimFile, outDir, width, height, mode] = process.argv.slice(2);
 const [w, h] = [Number(width), Number(height)];
 const { server, port } = web.startsWith("http")
   ? { server: null, port: null }
@@ -181,7 +181,34 @@ try {
   const baked = await page.evaluate(() => ({ volumes: window.sdfcPlayground.response.volumes.map((v) => v.length), ms: window.sdfcPlayground.compileMs }));
   fs.writeFileSync(`${outDir}/baked.rgba`, Buffer.from(await page.evaluate((w, h) => window.sdfcPlayground.pixels(w, h), w, h)));
 
+  // A claim too small for its shape: the picture comes from the page's compile, the warning
+  // from the worker's check after it, as `sdfc check` gives it.
+  const claim = fs.readFileSync(claimFile, "utf8");
+  await page.evaluate((t) => window.sdfcPlayground.editor.setText(t), claim);
+  await compiled(page, claim);
+  await page.waitForFunction((t) => window.sdfcPlayground.verified === t, { timeout: 60000 }, claim);
+  const claimed = await page.evaluate(() => ({ diagnostics: window.sdfcPlayground.diagnostics, ms: window.sdfcPlayground.verifyMs, marks: document.querySelectorAll(".cm-lintRange-warning").length }));
+
+  // Compile time in the page for every example (the picture's compile, as each keystroke
+  // makes it; the claims' check is the worker's): measured, not asserted.
+  const examples = await page.evaluate(async () => {
+    const out = {};
+    for (const o of document.querySelectorAll("#examples option")) {
+      if (!o.value) continue;
+      const text = await (await fetch(`examples/${o.value}.sdf`)).text();
+      const times = [];
+      for (let k = 0; k < 3; k++) {
+        const t0 = performance.now();
+        window.sdfcPlayground.sdfc.compile({ source: text, name: "scene.sdf", target: "wgsl", entry: "library", annotations: "later" });
+        times.push(performance.now() - t0);
+      }
+      out[o.value] = times.map((t) => Math.round(t * 10) / 10);
+    }
+    return out;
+  });
+
   console.log(JSON.stringify({
+    claimed, examples,
     baked,
     first, typed, typedMs, indented: typedText === scene, latencies, orbitFps, whileMoving, refined,
     sliders, compilesBefore, compilesAfter, tracer, refused, downloaded,
