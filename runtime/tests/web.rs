@@ -178,11 +178,12 @@ fn hostile_scenes_in_the_wasm_compiler_get_the_clis_answers() {
     let Some(wasm) = wasm() else {
         return;
     };
-    let files: Vec<PathBuf> = std::fs::read_dir(root().join("runtime/tests/hostile"))
+    let mut files: Vec<PathBuf> = std::fs::read_dir(root().join("runtime/tests/hostile"))
         .unwrap()
         .map(|e| e.unwrap().path())
         .filter(|p| p.extension().is_some_and(|e| e == "sdf"))
         .collect();
+    files.extend(deepest(&scratch("web-deepest")));
     let mut slowest = (0.0, String::new());
     for got in in_node(&wasm, "wgsl", "fragment", &files) {
         let file = got["file"].as_str().unwrap();
@@ -193,6 +194,14 @@ fn hostile_scenes_in_the_wasm_compiler_get_the_clis_answers() {
         }
         if file.ends_with("invalid_utf8.sdf") {
             continue;
+        }
+        if file.contains("deepest_") {
+            let refused = file.contains("too_deep");
+            assert_eq!(
+                r["ok"], !refused,
+                "{file}: {}",
+                r["diagnostics"][0]["message"]
+            );
         }
         let run = sdfc(&["check", file, "--message-format", "json"]);
         let first: Option<serde_json::Value> = String::from_utf8_lossy(&run.stderr)
@@ -205,10 +214,60 @@ fn hostile_scenes_in_the_wasm_compiler_get_the_clis_answers() {
         }
     }
     report(&format!(
-        "wasm compiler in Node: {} hostile scenes answered as `sdfc check` answers them, none \
-         trapped; slowest first compile {:.0} ms ({})",
+        "wasm compiler in Node: {} hostile scenes (nesting to the limits among them) answered as \
+         `sdfc check` answers them, none trapped (a 32 MiB stack); slowest first compile {:.0} ms \
+         ({})",
         files.len(),
         slowest.0,
         slowest.1
     ));
+}
+
+/// Scenes nested as deep as the compiler takes them, and one level deeper, written into `dir`:
+/// brackets, calls, unions and negations to `syntax::MAX_NESTING` (the parser's bound), and
+/// functions calling functions to `check::MAX_DEPTH` (the checker's): the module's 32 MiB stack
+/// must hold every pass over them, through the WGSL writer. (That the deepest are accepted
+/// and one more is refused is asserted, so the limits cannot drift from these scenes.)
+fn deepest(dir: &Path) -> Vec<PathBuf> {
+    let n = sdfc_compiler::syntax::MAX_NESTING - 2;
+    let calls = |depth: usize| {
+        let mut text = String::from("fn f0(r) = sphere(r)\n");
+        for k in 1..depth {
+            text += &format!("fn f{k}(r) = f{}(r) at (0.001, 0, 0)\n", k - 1);
+        }
+        text + &format!("f{}(1)\n", depth - 1)
+    };
+    let scenes = [
+        (
+            "parens",
+            format!("sphere({}1{})", "(".repeat(n), ")".repeat(n)),
+        ),
+        (
+            "sqrt",
+            format!("sphere({}1{})", "sqrt(".repeat(n), ")".repeat(n)),
+        ),
+        (
+            "unions",
+            format!("{}sphere(1){}", "union { ".repeat(n), " }".repeat(n)),
+        ),
+        (
+            "negations",
+            format!("sphere(1 + {}1{})", "-(".repeat(n / 2), ")".repeat(n / 2)),
+        ),
+        (
+            "too_deep",
+            format!("sphere({}1{})", "(".repeat(n + 3), ")".repeat(n + 3)),
+        ),
+        // A call and its body take two of the checker's levels.
+        ("calls", calls(sdfc_compiler::check::MAX_DEPTH / 2 - 1)),
+        ("calls_too_deep", calls(sdfc_compiler::check::MAX_DEPTH / 2)),
+    ];
+    scenes
+        .iter()
+        .map(|(name, text)| {
+            let path = dir.join(format!("deepest_{name}.sdf"));
+            std::fs::write(&path, text).unwrap();
+            path
+        })
+        .collect()
 }
