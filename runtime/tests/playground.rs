@@ -28,6 +28,14 @@ sphere(1) @lipschitz(0.5)
 plane(y, -1)
 ";
 
+/// A colour parameter, for the page's colour picker.
+const TINT: &str = "param tint = #d04038
+camera { eye (0, 1, -4)  target (0, 0, 0) }
+material paint { color tint }
+sphere(1) : paint
+plane(y, -1)
+";
+
 #[test]
 fn the_playground_compiles_as_you_type_and_draws_what_sdfc_renders() {
     let Some((chrome, driver)) = crate::browser::browser() else {
@@ -52,6 +60,8 @@ fn playground(chrome: &str, driver: &std::path::Path, mode: &str, renderer: &str
         dir.join("claim.sdf"),
     );
     std::fs::write(&claim, CLAIM).unwrap();
+    let tint = dir.join("tint.sdf");
+    std::fs::write(&tint, TINT).unwrap();
     std::fs::write(&scene, SCENE).unwrap();
     std::fs::write(&typo, &typo_text).unwrap();
     let (w, h) = (160u32, 90u32);
@@ -59,7 +69,7 @@ fn playground(chrome: &str, driver: &std::path::Path, mode: &str, renderer: &str
     let run = Command::new("node")
         .arg(driver.join("playground.mjs"))
         .arg(&server.address)
-        .args([&scene, &typo, &claim, &dir])
+        .args([&scene, &typo, &claim, &tint, &dir])
         .args([w.to_string(), h.to_string(), mode.to_string()])
         .env("CHROME", chrome)
         .output()
@@ -218,6 +228,28 @@ fn playground(chrome: &str, driver: &std::path::Path, mode: &str, renderer: &str
     }
     assert!(claimed["marks"].as_u64() >= Some(1), "no underline: {got}");
 
+    // The colour picker set to #20c040: `sdfc render` with that colour, and no compile.
+    assert_eq!(
+        got["tint"],
+        serde_json::json!({"pickers": 1, "compiled": 0}),
+        "{got}"
+    );
+    let green = HashMap::from([(
+        "tint".to_string(),
+        vec![32.0 / 255.0, 192.0 / 255.0, 64.0 / 255.0],
+    )]);
+    let page_tinted = std::fs::read(dir.join("tinted.rgba")).unwrap();
+    let tinted_scene = compile(TINT).with_values(&green);
+    let frame = render(&gpu, &tinted_scene, &View::new(&tinted_scene.camera, w, h));
+    let (tinted, tinted_worst) = within_levels(&frame.color, &page_tinted, 2);
+    let untinted = compile(TINT);
+    let default = render(&gpu, &untinted, &View::new(&untinted.camera, w, h));
+    assert!(
+        tinted >= 0.995 && within_levels(&default.color, &page_tinted, 2).0 < 0.95,
+        "the colour picker: {:.2}% within 2 levels of sdfc render (worst {tinted_worst})",
+        100.0 * tinted
+    );
+
     // The `baked` example from the menu: its maps' bytes from the compiler in the page.
     let baked_source = std::fs::read_to_string(root().join("examples/baked.sdf")).unwrap();
     let baked_scene = compile(&baked_source);
@@ -245,7 +277,8 @@ fn playground(chrome: &str, driver: &std::path::Path, mode: &str, renderer: &str
          orbiting, full once still; the PNG downloaded within 2 levels of sdfc render on {:.2}% (worst \
          {saved_worst}), WGSL and GLSL as sdfc emit writes them, the manifest; the baked example \
          from the menu ({} volumes from the page's compiler, compiled in {:.0} ms) within 2 levels \
-         on {:.2}% (worst {baked_worst}); a too small `@lipschitz` warned by the worker as by sdfc \
+         on {:.2}% (worst {baked_worst}); the colour picker drawn as sdfc render with that colour on {:.2}% (worst {tinted_worst}); \
+         a too small `@lipschitz` warned by the worker as by sdfc \
          check ({:.0} ms off the page's thread); measured: compile in the page per example (ms, 3 \
          runs) {};  keystroke to its first frame {} ms \
          (3 edits), {:.1} frames a second while orbiting at 640×360; GL errors on the live canvas \
@@ -264,6 +297,7 @@ fn playground(chrome: &str, driver: &std::path::Path, mode: &str, renderer: &str
         sizes.len(),
         got["baked"]["ms"].as_f64().unwrap_or(f64::NAN),
         100.0 * baked,
+        100.0 * tinted,
         claimed["ms"].as_f64().unwrap_or(f64::NAN),
         got["examples"],
         got["latencies"],

@@ -3,20 +3,21 @@
 // slider, sets the tracer's steps, shares the scene and reopens it; prints one JSON object of
 // what happened and writes the pictures (RGBA8, y down):
 //
-//   node playground.mjs WEB SCENE_FILE TYPO_FILE CLAIM_FILE OUT_DIR WIDTH HEIGHT [no-webgpu]
+//   node playground.mjs WEB SCENE_FILE TYPO_FILE CLAIM_FILE TINT_FILE OUT_DIR WIDTH HEIGHT [no-webgpu]
 //
 // WEB: the page's address (`sdfc serve` serving target/web), or the folder to serve here.
 // With `no-webgpu` the pages have no `navigator.gpu` (a browser without WebGPU): the playground
 // falls back to WebGL2.
 // OUT_DIR/typed.rgba: the typed scene from its own camera; OUT_DIR/slid.rgba: after its first
 // slider moved to its maximum; OUT_DIR/tuned.rgba: then with the tracer panel's steps set to 12;
-// OUT_DIR/baked.rgba: the `baked` example from the menu.
+// OUT_DIR/tinted.rgba: TINT_FILE with its colour picker set to #20c040; OUT_DIR/baked.rgba: the
+// `baked` example from the menu.
 // CHROME names the browser.
 import fs from "node:fs";
 import path from "node:path";
 import { launch, serve } from "./browser.mjs";
 
-const [web, sceneFile, typoFile, claimFile, outDir, width, height, mode] = process.argv.slice(2);
+const [web, sceneFile, typoFile, claimFile, tintFile, outDir, width, height, mode] = process.argv.slice(2);
 const [w, h] = [Number(width), Number(height)];
 const { server, port } = web.startsWith("http")
   ? { server: null, port: null }
@@ -189,6 +190,19 @@ try {
   await page.waitForFunction((t) => window.sdfcPlayground.verified === t, { timeout: 60000 }, claim);
   const claimed = await page.evaluate(() => ({ diagnostics: window.sdfcPlayground.diagnostics, ms: window.sdfcPlayground.verifyMs, marks: document.querySelectorAll(".cm-lintRange-warning").length }));
 
+  // A colour parameter's picker: green instead of the default, no compile.
+  const tinted = fs.readFileSync(tintFile, "utf8");
+  await page.evaluate((t) => window.sdfcPlayground.editor.setText(t), tinted);
+  await compiled(page, tinted);
+  const tintCompiles = await page.evaluate(() => window.sdfcPlayground.compiles);
+  const pickers = await page.$$eval("#sliders input[type=color]", (all) => {
+    all[0].value = "#20c040";
+    all[0].dispatchEvent(new Event("input"));
+    return all.length;
+  });
+  fs.writeFileSync(`${outDir}/tinted.rgba`, Buffer.from(await page.evaluate((w, h) => window.sdfcPlayground.pixels(w, h), w, h)));
+  const tint = { pickers, compiled: (await page.evaluate(() => window.sdfcPlayground.compiles)) - tintCompiles };
+
   // Compile time in the page for every example (the picture's compile, as each keystroke
   // makes it; the claims' check is the worker's): measured, not asserted.
   const examples = await page.evaluate(async () => {
@@ -208,7 +222,7 @@ try {
   });
 
   console.log(JSON.stringify({
-    claimed, examples,
+    claimed, examples, tint,
     baked,
     first, typed, typedMs, indented: typedText === scene, latencies, orbitFps, whileMoving, refined,
     sliders, compilesBefore, compilesAfter, tracer, refused, downloaded,
