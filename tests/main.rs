@@ -20,4 +20,5 @@ mod lipschitz_params;
 mod lipschitz_sampler;
 mod literals;
 mod mesh;
+mod tape;
 mod tidy;

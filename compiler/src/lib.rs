@@ -26,4 +26,5 @@ pub mod scene;
 pub mod shadertoy;
 pub mod source;
 pub mod syntax;
+pub mod tape;
 pub mod view;

@@ -11,7 +11,7 @@ use super::geometry::FALLOFF_SLOPE;
 use super::gpu::ops as ir;
 use super::rules::{KEEPS, ONE, SAME, SHORTENS, norm, num};
 use super::symmetry::{CHILD, EVERY, SWAP_CHILD, SWAP_EVERY};
-use super::traits::{Helper, PLAIN, Plane, Traits};
+use super::traits::{Fold, Helper, PLAIN, Plane, Traits};
 use super::{Arity, Bound, ChildEval, Ctx, MatRule, NO_SWAP, Operator, Ty, opt, req};
 use glam::DVec3;
 
@@ -75,6 +75,11 @@ pub static OPERATORS: &[Operator] = &[
         traits: Traits {
             groups: true,
             plane: Plane::Keeps,
+            fold: Some(Fold {
+                largest: false,
+                smooth: false,
+                negates_later: false,
+            }),
             ..PLAIN
         },
         materials: MatRule::Nearest,
@@ -99,6 +104,11 @@ pub static OPERATORS: &[Operator] = &[
         fixed_args: false,
         traits: Traits {
             plane: Plane::Keeps,
+            fold: Some(Fold {
+                largest: true,
+                smooth: false,
+                negates_later: false,
+            }),
             ..PLAIN
         },
         materials: MatRule::Farthest,
@@ -119,6 +129,11 @@ pub static OPERATORS: &[Operator] = &[
         fixed_args: false,
         traits: Traits {
             plane: Plane::Keeps,
+            fold: Some(Fold {
+                largest: true,
+                smooth: false,
+                negates_later: true,
+            }),
             ..PLAIN
         },
         materials: MatRule::Cut,
@@ -164,6 +179,11 @@ pub static OPERATORS: &[Operator] = &[
                 name: "op_smooth_union",
                 body: ir::smooth_min_body,
             }),
+            fold: Some(Fold {
+                largest: false,
+                smooth: true,
+                negates_later: false,
+            }),
             ..PLAIN
         },
         materials: MatRule::SmoothNearest,
@@ -183,7 +203,14 @@ pub static OPERATORS: &[Operator] = &[
     Operator {
         name: "smooth_intersect",
         fixed_args: false,
-        traits: SMOOTH_MAX,
+        traits: Traits {
+            fold: Some(Fold {
+                largest: true,
+                smooth: true,
+                negates_later: false,
+            }),
+            ..SMOOTH_MAX
+        },
         materials: MatRule::SmoothFarthest,
         unit_gradient: SHORTENS,
         keeps_exact: SHORTENS,
@@ -200,7 +227,14 @@ pub static OPERATORS: &[Operator] = &[
     Operator {
         name: "smooth_subtract",
         fixed_args: false,
-        traits: SMOOTH_MAX,
+        traits: Traits {
+            fold: Some(Fold {
+                largest: true,
+                smooth: true,
+                negates_later: true,
+            }),
+            ..SMOOTH_MAX
+        },
         materials: MatRule::SmoothCut,
         unit_gradient: SHORTENS,
         keeps_exact: SHORTENS,

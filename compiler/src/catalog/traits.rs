@@ -26,6 +26,20 @@ pub struct Traits {
     /// Its shape is baked into a distance map when checked (`bake`): the shape may have no
     /// Lipschitz bound, must not read parameters, and is not evaluated by the field.
     pub bakes: bool,
+    /// For a union, intersection or subtraction, hard or smooth: how it folds its children,
+    /// which the scene as data (`crate::tape`) runs and prunes.
+    pub fold: Option<Fold>,
+}
+
+/// How an operator folds its (normalised) children in order.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Fold {
+    /// The largest value wins (an intersection, a subtraction), else the smallest.
+    pub largest: bool,
+    /// Smoothly, over the radius of its first argument.
+    pub smooth: bool,
+    /// The children after the first are negated (a subtraction).
+    pub negates_later: bool,
 }
 
 /// The traits of an operator that is none of these things.
@@ -37,6 +51,7 @@ pub const PLAIN: Traits = Traits {
     unbounded: None,
     helper: None,
     bakes: false,
+    fold: None,
 };
 
 /// A motion of space an operator is.

@@ -1,0 +1,146 @@
+//! Lipschitz pruning (Barbier, Sanchez et al. 2025, §4): the part tree that decides the field
+//! inside a cell of space. Every proven child of a fold is bounded over the cell by its value at
+//! the cell's centre ± the cell's half-diagonal in the fold's own units (its value is
+//! 1-Lipschitz there), and the children are walked in the fold's order with bounds of the
+//! running result:
+//!
+//! - a child that stays `k` beyond the running result (above it for a minimum, below for a
+//!   maximum) is dropped: the smooth blend's kernel is zero at a gap of `k` (a sharp one's at
+//!   any gap), so the result is the running one, bit for bit;
+//! - a child that stays `k` beyond on the other side replaces everything before it: the result
+//!   is the child's own value;
+//! - otherwise it is kept, and the running result's bounds follow it: for IQ's quadratic
+//!   smooth minimum of radius k, min(a, b) − k/4 ≤ smin(a, b) ≤ min(a, b), and a whole chain of
+//!   them stays above the smallest operand − k (see [`keep`]).
+//!
+//! Inside the cell the pruned tree's value and material equal the whole tree's (the property
+//! `tests/tape.rs` checks on random trees and cells); outside it they need not.
+
+use super::eval::value;
+use super::{Part, PartKind, Way};
+use crate::scene::Scene;
+use glam::DVec3;
+
+/// Relative margin on every bound, for the rounding of the values they are made of.
+const MARGIN: f64 = 1e-9;
+
+/// `part` pruned to the cell around `center` of half-diagonal `radius` (world units).
+pub fn prune(scene: &Scene, part: &Part, center: DVec3, radius: f64) -> Part {
+    let PartKind::Fold { way, k, children } = &part.kind else {
+        return part.clone();
+    };
+    // The children's values over the cell: their parent's point moves by zoom × radius.
+    let reach = part.zoom * radius * (1.0 + MARGIN) + MARGIN;
+    let bounds: Vec<(f64, f64)> = children
+        .iter()
+        .map(|(c, negate)| {
+            if !c.proven {
+                return (f64::NEG_INFINITY, f64::INFINITY);
+            }
+            let v = value(scene, c, center);
+            let v = if *negate { -v } else { v };
+            let slack = reach + MARGIN * v.abs();
+            (v - slack, v + slack)
+        })
+        .collect();
+    let kept = keep(*way, *k, &bounds);
+    let children = kept
+        .into_iter()
+        .map(|i| {
+            let (c, negate) = &children[i];
+            (prune(scene, c, center, radius), *negate)
+        })
+        .collect();
+    Part {
+        kind: PartKind::Fold {
+            way: *way,
+            k: *k,
+            children,
+        },
+        ..part.clone()
+    }
+}
+
+/// Which of a fold's children, with values within `bounds` (already negated where the fold
+/// negates), can change its result: their indices in order.
+///
+/// For a minimum with k > 0, the running result r after keeping operands a₁…aₙ satisfies
+/// r > min(aᵢ) − k: each smooth step subtracts h²k/4 with h = (k − |r − a|)/k, and with
+/// δ = (min − r)/k a step gives at most δ + (1 − δ)²/4 < 1 whenever δ < 1. A maximum mirrors it.
+pub fn keep(way: Way, k: f64, bounds: &[(f64, f64)]) -> Vec<usize> {
+    // Work on minima: a maximum's bounds are negated (max(a, b) = −min(−a, −b), smoothly too).
+    let flip = |(lo, hi): (f64, f64)| match way {
+        Way::Min => (lo, hi),
+        Way::Max => (-hi, -lo),
+    };
+    let mut kept: Vec<usize> = Vec::new();
+    let (mut lo, mut hi) = (f64::INFINITY, f64::INFINITY);
+    let mut lowest = f64::INFINITY;
+    for (i, &b) in bounds.iter().enumerate() {
+        let (blo, bhi) = flip(b);
+        if kept.is_empty() {
+            kept.push(i);
+            (lo, hi, lowest) = (blo, bhi, blo);
+        } else if blo > hi + k {
+            // Always k above the running result: it never blends in, never is the smallest.
+        } else if bhi + k < lo {
+            // Always k below: the result is this child's value from here.
+            kept.clear();
+            kept.push(i);
+            (lo, hi, lowest) = (blo, bhi, blo);
+        } else {
+            kept.push(i);
+            hi = hi.min(bhi);
+            lowest = lowest.min(blo);
+            let dip = if k > 0.0 { k / 4.0 } else { 0.0 };
+            lo = (lo.min(blo) - dip).max(lowest - k);
+        }
+    }
+    kept
+}
+
+/// A grid of cells over a box, each with its pruned tree.
+pub struct Cells {
+    /// The box's lowest corner.
+    pub lo: DVec3,
+    /// The cells' edge length.
+    pub size: f64,
+    /// Cells along x, y and z.
+    pub n: [usize; 3],
+    /// Each cell's tree, x fastest, then y, then z.
+    pub parts: Vec<Part>,
+}
+
+impl Cells {
+    /// The scene's tree pruned for each cube of edge `size` of the grid from `lo` with `n`
+    /// cells along each axis.
+    pub fn new(scene: &Scene, part: &Part, lo: DVec3, size: f64, n: [usize; 3]) -> Cells {
+        let radius = size * 3f64.sqrt() / 2.0;
+        let count = n[0] * n[1] * n[2];
+        let parts = crate::parallel::par_map(&(0..count).collect::<Vec<_>>(), |&i| {
+            let cell = DVec3::new(
+                (i % n[0]) as f64,
+                ((i / n[0]) % n[1]) as f64,
+                (i / (n[0] * n[1])) as f64,
+            );
+            prune(scene, part, lo + (cell + 0.5) * size, radius)
+        });
+        Cells { lo, size, n, parts }
+    }
+
+    /// The cell holding `p`, if the grid covers it.
+    pub fn at(&self, p: DVec3) -> Option<&Part> {
+        let c = ((p - self.lo) / self.size).floor();
+        let inside = (0..3).all(|a| c[a] >= 0.0 && (c[a] as usize) < self.n[a]);
+        inside.then(|| {
+            let [x, y, z] = [c.x as usize, c.y as usize, c.z as usize];
+            &self.parts[x + self.n[0] * (y + self.n[1] * z)]
+        })
+    }
+
+    /// The mean number of leaves a cell's tree evaluates.
+    pub fn mean_leaves(&self) -> f64 {
+        let total: usize = self.parts.iter().map(Part::leaves).sum();
+        total as f64 / self.parts.len().max(1) as f64
+    }
+}
