@@ -27,8 +27,9 @@ plane(y, -0.2)
 const $ = (id) => document.getElementById(id);
 const canvas = $("picture");
 const status = $("status");
-/** The canvas's full size; while the camera moves it draws at a fraction of it. */
+/** The canvas's full size; while the camera moves it draws at a fraction of it (not with `?full`). */
 const FULL = [canvas.width, canvas.height];
+const REFINE = !new URLSearchParams(location.search).has("full");
 
 // What the page is doing, for its test (examples/hosts/test/playground.mjs).
 const state = (window.sdfcPlayground = {
@@ -345,7 +346,7 @@ async function main() {
     const now = performance.now();
     const moving = now - moved < 250;
     const animated = state.host?.manifest.params.fields.some((f) => f.name === "time");
-    const scale = moving ? (fullFrameMs > 100 ? 0.25 : 0.5) : 1;
+    const scale = moving && REFINE ? (fullFrameMs > 100 ? 0.25 : 0.5) : 1;
     if (state.host && offset && (dirty || animated || scale !== state.scale)) {
       dirty = false;
       draw(scale);

@@ -135,6 +135,7 @@ fn playground(chrome: &str, driver: &std::path::Path, mode: &str, renderer: &str
         "{got}"
     );
     assert_eq!(got["refined"], serde_json::json!([640, 360]), "{got}");
+    assert_eq!(got["fullOrbitScale"], 1, "?full drew coarse frames: {got}");
     // The tracer panel: its 12 steps are `sdfc render`'s with 12 steps; 0 is refused.
     assert!(
         tuned >= 0.995,
@@ -281,7 +282,8 @@ fn playground(chrome: &str, driver: &std::path::Path, mode: &str, renderer: &str
          a too small `@lipschitz` warned by the worker as by sdfc \
          check ({:.0} ms off the page's thread); measured: compile in the page per example (ms, 3 \
          runs) {};  keystroke to its first frame {} ms \
-         (3 edits), {:.1} frames a second while orbiting at 640×360; GL errors on the live canvas \
+         (3 edits), orbiting: {:.1} frames a second (coarse frames at 320×180), {:.1} with every \
+         frame at 640×360 (?full); GL errors on the live canvas \
          (frame, code): {}",
         got["typed"]["compiles"],
         got["typedMs"],
@@ -302,6 +304,7 @@ fn playground(chrome: &str, driver: &std::path::Path, mode: &str, renderer: &str
         got["examples"],
         got["latencies"],
         got["orbitFps"].as_f64().unwrap_or(f64::NAN),
+        got["fullOrbitFps"].as_f64().unwrap_or(f64::NAN),
         got["glErrors"]
     ));
 }

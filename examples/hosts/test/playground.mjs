@@ -48,6 +48,25 @@ async function type(page, scene) {
   await compiled(page, typed);
   return typed;
 }
+/**
+ * Frames a second while dragging the camera for about two seconds, and the canvas's scale and
+ * coarse frames counted then.
+ */
+async function orbitRate(page) {
+  const box = await (await page.$("#picture")).boundingBox();
+  await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
+  await page.mouse.down();
+  const [f0, start] = [await page.evaluate(() => window.sdfcPlayground.frames), Date.now()];
+  for (let k = 0; k < 100; k++) {
+    await page.mouse.move(box.x + box.width / 2 + 2 * k, box.y + box.height / 2 + (k % 7));
+    await new Promise((ok) => setTimeout(ok, 15));
+  }
+  const [f1, t1] = [await page.evaluate(() => window.sdfcPlayground.frames), Date.now()];
+  const whileMoving = await page.evaluate(() => ({ scale: window.sdfcPlayground.scale, coarseFrames: window.sdfcPlayground.coarseFrames }));
+  await page.mouse.up();
+  return { fps: (1000 * (f1 - f0)) / (t1 - start), whileMoving };
+}
+
 /** A page, without WebGPU when asked. */
 async function newPage() {
   const page = await browser.newPage();
@@ -88,18 +107,7 @@ try {
   }
   await page.evaluate((t) => window.sdfcPlayground.editor.setText(t), scene);
   await compiled(page, scene);
-  const box = await (await page.$("#picture")).boundingBox();
-  await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
-  await page.mouse.down();
-  const [f0, start] = [await page.evaluate(() => window.sdfcPlayground.frames), Date.now()];
-  for (let k = 0; k < 100; k++) {
-    await page.mouse.move(box.x + box.width / 2 + 2 * k, box.y + box.height / 2 + (k % 7));
-    await new Promise((ok) => setTimeout(ok, 15));
-  }
-  const [f1, t1] = [await page.evaluate(() => window.sdfcPlayground.frames), Date.now()];
-  const whileMoving = await page.evaluate(() => ({ scale: window.sdfcPlayground.scale, coarseFrames: window.sdfcPlayground.coarseFrames }));
-  await page.mouse.up();
-  const orbitFps = (1000 * (f1 - f0)) / (t1 - start);
+  const { fps: orbitFps, whileMoving } = await orbitRate(page);
   // Progressive refinement: once the camera stops, the full picture.
   await page.waitForFunction(() => window.sdfcPlayground.scale === 1, { timeout: 20000 });
   const refined = await page.evaluate(() => [document.getElementById("picture").width, document.getElementById("picture").height]);
@@ -145,6 +153,16 @@ try {
     for (let k = 0; k < 100 && !(fs.existsSync(file) && fs.statSync(file).size > 0); k++) await new Promise((ok) => setTimeout(ok, 100));
     downloaded.push(fs.existsSync(file) ? name : `${name} (missing)`);
   }
+
+  // The same orbit at full size throughout (`?full`: no coarse frames), in a page opened on
+  // the same scene.
+  const full = await newPage();
+  await full.goto(home.replace(/\/(index\.html)?$/, "/index.html") + "?full");
+  await full.waitForFunction(() => window.sdfcPlayground?.frames > 0, { timeout: 60000 });
+  await full.evaluate((t) => window.sdfcPlayground.editor.setText(t), scene);
+  await compiled(full, scene);
+  const fullOrbit = await orbitRate(full);
+  await full.close();
 
   // Share: the address carries the scene; a new page opened on it has the same text.
   await page.click("#share");
@@ -225,6 +243,7 @@ try {
     claimed, examples, tint,
     baked,
     first, typed, typedMs, indented: typedText === scene, latencies, orbitFps, whileMoving, refined,
+    fullOrbitFps: fullOrbit.fps, fullOrbitScale: fullOrbit.whileMoving.scale,
     sliders, compilesBefore, compilesAfter, tracer, refused, downloaded,
     shared: reopened === scene, addressLength: address.length, broken, underlined, tooltip,
     errors: logs.filter((l) => /error/i.test(l)),
