@@ -262,6 +262,11 @@ pub struct Primitive {
     pub params: &'static [Param],
     /// Whether the field is an exact Euclidean distance (else a bound).
     pub exact: bool,
+    /// Whether its λ is its distance estimator's, not a proven bound (the Mandelbulb's,
+    /// docs/lipschitz.md): tracing by it is as good as the estimate, but nothing whose
+    /// correctness rests on the bound (a bake's near-surface sampling, a cell's pruning) trusts
+    /// it.
+    pub estimate: bool,
     /// Whether its function takes the arguments every use in a scene shares as constants
     /// rather than as parameters: its lowering makes faster code from known values (the
     /// Mandelbulb's whole powers multiplied out).

@@ -62,6 +62,7 @@ pub const CIRCLE: Primitive = Primitive {
     bake: false,
     planar: true,
     exact: true,
+    estimate: false,
     unit_gradient: |_| true,
     lipschitz: |_| 1.0,
     bound: |c| planar(DVec2::splat(-c.num(0)), DVec2::splat(c.num(0))),
@@ -82,6 +83,7 @@ pub const RECTANGLE: Primitive = Primitive {
     bake: false,
     planar: true,
     exact: true,
+    estimate: false,
     unit_gradient: |_| true,
     lipschitz: |_| 1.0,
     bound: |c| {
@@ -105,6 +107,7 @@ pub const POLYGON: Primitive = Primitive {
     bake: false,
     planar: true,
     exact: true,
+    estimate: false,
     unit_gradient: |_| true,
     lipschitz: |_| 1.0,
     bound: |c| planar(DVec2::splat(-c.num(1)), DVec2::splat(c.num(1))),
@@ -122,6 +125,7 @@ pub const TRIANGLE: Primitive = Primitive {
     bake: false,
     planar: true,
     exact: true,
+    estimate: false,
     unit_gradient: |_| true,
     lipschitz: |_| 1.0,
     bound: |c| {

@@ -148,6 +148,7 @@ pub const HEX_PRISM: Primitive = Primitive {
     bake: false,
     planar: false,
     exact: true,
+    estimate: false,
     unit_gradient: |_| true,
     lipschitz: |_| 1.0,
     bound: |c| {
@@ -176,6 +177,7 @@ pub const ROUND_CONE: Primitive = Primitive {
     bake: false,
     planar: false,
     exact: true,
+    estimate: false,
     unit_gradient: |_| true,
     lipschitz: |_| 1.0,
     bound: |c| {
@@ -208,6 +210,7 @@ pub const LINK: Primitive = Primitive {
     bake: false,
     planar: false,
     exact: true,
+    estimate: false,
     unit_gradient: |_| true,
     lipschitz: |_| 1.0,
     bound: |c| {
@@ -232,6 +235,7 @@ pub const TRI_PRISM: Primitive = Primitive {
     bake: false,
     planar: false,
     exact: true,
+    estimate: false,
     unit_gradient: |_| true,
     lipschitz: |_| 1.0,
     bound: |c| {
@@ -261,6 +265,7 @@ pub const PYRAMID: Primitive = Primitive {
     bake: false,
     planar: false,
     exact: true,
+    estimate: false,
     unit_gradient: |_| true,
     lipschitz: |_| 1.0,
     bound: |c| {
@@ -288,6 +293,7 @@ pub const ROUNDED_CYLINDER: Primitive = Primitive {
     bake: false,
     planar: false,
     exact: true,
+    estimate: false,
     unit_gradient: |_| true,
     lipschitz: |_| 1.0,
     bound: |c| boxed(DVec3::ZERO, DVec3::new(c.num(0), c.num(1) / 2.0, c.num(0))),

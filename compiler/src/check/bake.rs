@@ -88,10 +88,14 @@ impl Checker<'_> {
         self.count_map(key, span)?;
         let nodes = self.nodes_for_baking(&subtree);
         let field = |p: DVec3| crate::reference::eval::raw(&nodes, child, p);
-        // A shape whose every node has a bound is evaluated only near its surface (one node
-        // without, combined as if it had λ 1, leaves the whole with none: a union's λ of 1
-        // assumes its children's).
-        let bounded = subtree.iter().all(|&n| self.nodes[n].lambda.is_finite());
+        // A shape whose every node has a proven bound is evaluated only near its surface (one
+        // node without, combined as if it had λ 1, leaves the whole with none: a union's λ of
+        // 1 assumes its children's; an estimate's λ is not a bound).
+        let bounded = subtree.iter().all(|&n| {
+            let node = &self.nodes[n];
+            let estimate = matches!(&node.kind, NodeKind::Primitive { prim, .. } if prim.estimate);
+            node.lambda.is_finite() && !estimate
+        });
         let lambda = match bounded {
             true => self.nodes[child].lambda,
             false => f64::INFINITY,

@@ -154,14 +154,14 @@ fn part(scene: &Scene, id: NodeId, at: At) -> Result<Part, Unsupported> {
         NodeKind::Implicit { .. } => Err(unsupported),
         // (A primitive whose code is made from its arguments' values cannot take them as data.)
         NodeKind::Primitive { prim, .. } if prim.bake => Err(unsupported),
-        NodeKind::Primitive { .. } => Ok(Part {
+        NodeKind::Primitive { prim, .. } => Ok(Part {
             kind: PartKind::Leaf,
             node: id,
             frame: at.frame,
             zoom: at.zoom,
             factor: at.factor,
             material: at.material,
-            proven: at.proven,
+            proven: at.proven && !prim.estimate,
         }),
         NodeKind::Operator { op, ctx, children } => {
             let moved = |l: DMat3, o: DVec3| At {
