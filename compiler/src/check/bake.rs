@@ -88,15 +88,7 @@ impl Checker<'_> {
         self.count_map(key, span)?;
         let nodes = self.nodes_for_baking(&subtree);
         let field = |p: DVec3| crate::reference::eval::raw(&nodes, child, p);
-        // A shape whose every node has a proven bound is evaluated only near its surface (one
-        // node without, combined as if it had λ 1, leaves the whole with none: a union's λ of
-        // 1 assumes its children's; an estimate's λ is not a bound).
-        let bounded = subtree.iter().all(|&n| {
-            let node = &self.nodes[n];
-            let estimate = matches!(&node.kind, NodeKind::Primitive { prim, .. } if prim.estimate);
-            node.lambda.is_finite() && !estimate
-        });
-        let lambda = match bounded {
+        let lambda = match self.proven_bound(&subtree) {
             true => self.nodes[child].lambda,
             false => f64::INFINITY,
         };
@@ -118,6 +110,17 @@ impl Checker<'_> {
         // (A stored volume on another grid is not this one, whatever its key.)
         let (volume, _) = bake::cache::get_or_bake(key, |v| v.grid == grid, make);
         Some(volume)
+    }
+
+    /// Whether a shape of these nodes has a proven bound, so that it is evaluated only near
+    /// its surface: one node without, combined as if it had λ 1, leaves the whole with none (a
+    /// union's λ of 1 assumes its children's), and an estimate's λ is not a bound.
+    fn proven_bound(&self, subtree: &[NodeId]) -> bool {
+        subtree.iter().all(|&n| {
+            let node = &self.nodes[n];
+            let estimate = matches!(&node.kind, NodeKind::Primitive { prim, .. } if prim.estimate);
+            node.lambda.is_finite() && !estimate
+        })
     }
 
     /// The `res` to bake at: `--bake-res` when given (and valid), else the operator's.
