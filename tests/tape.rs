@@ -299,3 +299,62 @@ fn kept_operands_fold_to_the_whole_fold() {
         }
     }
 }
+
+/// The program (the words the shader will read) run by `program::run` gives the tree's value
+/// (within 1e-12: its frames are summed by rows) and material, for random trees whole and
+/// pruned to random cells; its stack stays within `MAX_STACK`; leaves counted alike.
+#[test]
+fn programs_run_as_their_trees_evaluate() {
+    use sdfc_compiler::tape::program;
+    let seed = fuzz_seed(0x7a9e);
+    let mut r = Rng::new(seed);
+    let (mut words, mut programs, mut deepest) = (0usize, 0usize, 0usize);
+    for case in 0..fuzz_cases(100) {
+        let source = random_scene(&mut r);
+        let s = scene("tape.sdf", &source);
+        let tree = tape::build(&s).expect("a tree");
+        let (lo, hi) = region(&s);
+        let mut kinds = Vec::new();
+        for cell in 0..4 {
+            let (center, size) = (
+                point(&mut r, lo, hi),
+                (hi - lo).max_element() * r.range(0.05, 0.5),
+            );
+            let t = if cell == 0 {
+                tree.clone()
+            } else {
+                cells::prune(&s, &tree, center, size * 0.87)
+            };
+            let prog = program::encode(&s, &t, &mut kinds).expect("a program");
+            assert_eq!(prog.leaves(), t.leaves());
+            (words, programs, deepest) = (
+                words + prog.words.len(),
+                programs + 1,
+                deepest.max(prog.depth),
+            );
+            for _ in 0..30 {
+                let half = DVec3::splat(size / 2.0);
+                let p = if cell == 0 {
+                    point(&mut r, lo, hi)
+                } else {
+                    point(&mut r, center - half, center + half)
+                };
+                let (want, want_m) = tape::eval::sample(&s, &t, p);
+                let (got, got_m) = program::run(&prog, p);
+                assert!(
+                    (got - want).abs() <= 1e-12 * (1.0 + want.abs()),
+                    "seed {seed} case {case} at {p}: program {got}, tree {want}\n{source}"
+                );
+                assert!(
+                    got_m == want_m || near_tie(&s, p),
+                    "seed {seed} case {case} at {p}: materials {got_m:?} {want_m:?}\n{source}"
+                );
+            }
+        }
+    }
+    report(&format!(
+        "tape programs: {programs} programs of random trees and cells (seed {seed}) run as their \
+         trees evaluate; {:.0} words (16 bytes) a program, stack at most {deepest}",
+        words as f64 / programs as f64
+    ));
+}

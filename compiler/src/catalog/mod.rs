@@ -85,6 +85,22 @@ pub fn arg_syms(mut syms: ArgSyms) -> ArgSyms {
 }
 
 impl Ctx {
+    /// A primitive's context from its arguments alone (no children, nothing read at run time):
+    /// what the scene as data carries for a leaf (`crate::tape::program`).
+    pub fn of_args(args: Vec<Val>) -> Ctx {
+        Ctx {
+            args,
+            child_lambda: Vec::new(),
+            child_bound: Vec::new(),
+            child_mirror: Vec::new(),
+            child_swap: Vec::new(),
+            child_exact: Vec::new(),
+            prune: None,
+            baked: None,
+            sym: Vec::new(),
+        }
+    }
+
     /// The bound of the children's surfaces grown by `by`, where the part that grows is
     /// {f/λ < by}: that lies within `by` of a child's surface only where the child's f/λ is its
     /// distance; otherwise it is not known (a loose field is small far from its surface).

@@ -9,6 +9,7 @@
 
 pub mod cells;
 pub mod eval;
+pub mod program;
 
 use crate::catalog::traits::{Fold, Motion};
 use crate::scene::{NodeId, NodeKind, Scene};
