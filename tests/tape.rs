@@ -358,3 +358,66 @@ fn programs_run_as_their_trees_evaluate() {
         words as f64 / programs as f64
     ));
 }
+
+/// The data form's modules pass naga's validator for every entry and target, and their code
+/// does not grow with the parts: 10 spheres and 1000 give the same WGSL but for the grid's
+/// numbers.
+#[test]
+fn data_form_modules_validate_and_stay_the_same_size() {
+    use sdfc_compiler::emit::{self, Output, Target};
+    use sdfc_compiler::lower::Entry;
+    use sdfc_compiler::lower::tracer::{Form, Options};
+    let mut r = Rng::new(11);
+    let balls = |r: &mut Rng, n: usize| {
+        let b: Vec<String> = (0..n)
+            .map(|_| {
+                let c = point(r, DVec3::splat(-1.0), DVec3::splat(1.0));
+                format!(
+                    "sphere({:.3}) at ({:.3}, {:.3}, {:.3})",
+                    r.range(0.02, 0.06),
+                    c.x,
+                    c.y,
+                    c.z
+                )
+            })
+            .collect();
+        format!(
+            "smooth_union(0.02) {{\n{}\n}}\nplane(y, -1.2)",
+            b.join("\n")
+        )
+    };
+    let mut sizes = Vec::new();
+    for source in [
+        balls(&mut r, 10),
+        balls(&mut r, 1000),
+        random_scene(&mut r),
+        random_scene(&mut r),
+    ] {
+        let s = scene("data.sdf", &source);
+        let options = Options {
+            form: Form::Data,
+            ..Options::from_scene(&s)
+        };
+        for entry in [Entry::Compute, Entry::Fragment, Entry::Library] {
+            let (module, info) =
+                emit::module(&s, entry, &options).unwrap_or_else(|e| panic!("{}\n{source}", e.0));
+            let wgsl = emit::write(&module, &info, Target::Wgsl, entry).expect("WGSL");
+            let Output::Text(text) = wgsl else {
+                panic!("text")
+            };
+            assert!(text.contains("tape_eval"), "no evaluator in {entry:?}");
+            if entry == Entry::Compute {
+                sizes.push(text.len());
+            }
+        }
+    }
+    // (The grid's corner and cell size are literals of their own digits.)
+    assert!(
+        sizes[0].abs_diff(sizes[1]) < 100,
+        "10 and 1000 spheres' WGSL: {sizes:?}"
+    );
+    report(&format!(
+        "tape: data form WGSL (compute entry) {} bytes for 10 spheres and for 1000",
+        sizes[1]
+    ));
+}

@@ -391,7 +391,7 @@ impl<'m> FnBuilder<'m> {
     }
 
     /// Builds a nested block with `body`.
-    fn block(&mut self, body: impl FnOnce(&mut Self)) -> Block {
+    pub(super) fn block(&mut self, body: impl FnOnce(&mut Self)) -> Block {
         self.pause();
         self.blocks.push(Block::new());
         self.resume();

@@ -4,6 +4,7 @@
 //! tracers, so the catalog's shader bodies and the lowering both build on it.
 
 pub mod builder;
+mod control;
 mod math;
 
 pub use builder::{Ex, FnBuilder, ModuleBuilder};

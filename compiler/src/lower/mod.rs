@@ -12,6 +12,7 @@ mod camera;
 mod careful;
 mod constant;
 mod count;
+mod data;
 mod entry;
 mod fns;
 mod globals;
@@ -71,24 +72,54 @@ pub fn lower(scene: &Scene, entry: Entry, options: &tracer::Options) -> naga::Mo
         any_tree,
     };
     let f32t = mb.f32();
-    let map = point_function(&mut mb, "map", f32t, |b, p| {
-        let d = walk.distance(b, scene.root, p);
-        crate::catalog::gpu::scale_by(b, d, 1.0 / scene.root_node().lambda)
+    // The data form's evaluator, where asked for and the scene has one.
+    let data = (options.form == tracer::Form::Data)
+        .then(|| crate::tape::data::layout(scene, crate::tape::data::CELLS).ok())
+        .flatten()
+        .map(|(_, layout)| data::add(&mut mb, &layout));
+    let map = point_function(&mut mb, "map", f32t, |b, p| match data {
+        Some(eval) => {
+            let r = b.call(eval, vec![p]);
+            b.at(r, 0)
+        }
+        None => {
+            let d = walk.distance(b, scene.root, p);
+            crate::catalog::gpu::scale_by(b, d, 1.0 / scene.root_node().lambda)
+        }
     });
     let u32t = mb.u32();
     // (The library always has `map_material`: its interface does not depend on the scene.)
     let material = (has_materials(scene, &reachable) || entry == Entry::Library).then(|| {
-        point_function(&mut mb, "map_material", u32t, |b, p| {
-            let m = walk.with_material(b, scene.root, p);
-            m.unwrap_or_else(|| b.u(0))
+        point_function(&mut mb, "map_material", u32t, |b, p| match data {
+            Some(eval) => {
+                let r = b.call(eval, vec![p]);
+                let bits = b.at(r, 1);
+                let bits = b.bitcast(bits, naga::ScalarKind::Uint);
+                let material = b.u(!crate::tape::program::LOOSE);
+                b.bin(naga::BinaryOperator::And, bits, material)
+            }
+            None => {
+                let m = walk.with_material(b, scene.root, p);
+                m.unwrap_or_else(|| b.u(0))
+            }
         })
     });
     // Where the scene's f/λ is not a distance to first order everywhere: `map_loose(p)`, 1 where
     // the nearest part is loose (`eval::loose`), for the tracer's hit confirmation.
     let loose = (!scene.root_node().unit_gradient).then(|| {
-        point_function(&mut mb, "map_loose", u32t, |b, p| {
-            let l = walk.with_loose(b, scene.root, p);
-            l.unwrap_or_else(|| b.u(0))
+        point_function(&mut mb, "map_loose", u32t, |b, p| match data {
+            // The data form's looseness: the tag's bit (`lower/data.rs`).
+            Some(eval) => {
+                let r = b.call(eval, vec![p]);
+                let bits = b.at(r, 1);
+                let bits = b.bitcast(bits, naga::ScalarKind::Uint);
+                let shift = b.u(31);
+                b.bin(naga::BinaryOperator::ShiftRight, bits, shift)
+            }
+            None => {
+                let l = walk.with_loose(b, scene.root, p);
+                l.unwrap_or_else(|| b.u(0))
+            }
         })
     });
     let [texture, blend] = add_surface_maps(&mut mb, &walk, scene);

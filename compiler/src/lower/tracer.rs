@@ -55,6 +55,21 @@ pub struct Options {
     /// The `Params` uniform's binding in group 0 (`emit --params-binding`, so that two
     /// scenes' libraries can share a shader).
     pub params_binding: u32,
+    /// How `map` holds the scene: as code, or as data a generic evaluator runs (issue 33).
+    pub form: Form,
+}
+
+/// How `map` holds the scene.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Form {
+    /// Every part's code inline in `map` (the default).
+    #[default]
+    Inline,
+    /// The scene as data: each grid cell's pruned program in storage buffers
+    /// (`crate::tape::data`), run by `tape_eval`; the code has one arm per primitive kind.
+    /// Where the scene has no data form, the lowering keeps the inline one (the command line
+    /// refuses first, saying why).
+    Data,
 }
 
 /// Which unions' bounding-volume trees (`catalog::prune::Tree`) the shader tests.
@@ -91,6 +106,7 @@ impl Options {
             fixed_offset: false,
             private_params: false,
             params_binding: crate::layout::PARAMS_BINDING,
+            form: Form::Inline,
         }
     }
 }

@@ -8,6 +8,7 @@
 //! pruning; [`eval`] runs a tree. This CPU form is the reference for the shader's (to come).
 
 pub mod cells;
+pub mod data;
 pub mod eval;
 pub mod program;
 
@@ -75,6 +76,10 @@ pub struct Part {
     /// Whether the part's value is proven 1-Lipschitz in its parent fold's point: every λ in
     /// it is the catalog's bound or above (no annotation below it). Only such parts are pruned.
     pub proven: bool,
+    /// Whether the node or a move, turn or scale above it below the parent fold is where f/λ
+    /// stops being a distance to first order (`Scene::breaks_unit_gradient`): a hit on it needs
+    /// confirming (`eval::loose`).
+    pub loose: bool,
 }
 
 /// What a part computes.
@@ -124,6 +129,7 @@ pub fn build(scene: &Scene) -> Result<Part, Unsupported> {
         factor: 1.0 / root.lambda,
         material: None,
         proven: true,
+        loose: false,
     };
     part(scene, scene.root, at)
 }
@@ -137,6 +143,7 @@ struct At {
     factor: f64,
     material: Option<u32>,
     proven: bool,
+    loose: bool,
 }
 
 /// The part for `id` where `at` says.
@@ -145,6 +152,7 @@ fn part(scene: &Scene, id: NodeId, at: At) -> Result<Part, Unsupported> {
     let at = At {
         material: node.material.or(at.material),
         proven: at.proven && node.lambda.is_finite() && node.lambda >= node.inferred_lambda,
+        loose: at.loose || scene.breaks_unit_gradient(id),
         ..at
     };
     let unsupported = Unsupported {
@@ -163,6 +171,7 @@ fn part(scene: &Scene, id: NodeId, at: At) -> Result<Part, Unsupported> {
             factor: at.factor,
             material: at.material,
             proven: at.proven && !prim.estimate,
+            loose: at.loose,
         }),
         NodeKind::Operator { op, ctx, children } => {
             let moved = |l: DMat3, o: DVec3| At {
@@ -208,6 +217,7 @@ fn fold(
             factor: 1.0 / ctx.child_lambda[i],
             material: None,
             proven: true,
+            loose: false,
             ..at
         };
         parts.push((part(scene, c, child)?, how.negates_later && i > 0));
@@ -224,5 +234,6 @@ fn fold(
         zoom: at.zoom,
         factor: at.factor,
         material: at.material,
+        loose: at.loose,
     })
 }

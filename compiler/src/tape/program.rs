@@ -5,14 +5,16 @@
 //!
 //! Instructions (the first word's x is the opcode as bits of a u32):
 //!
-//! - `LEAF + kind`: `[op, words, factor, material + 1 | 0]`, three words of the frame's rows
+//! - `LEAF + kind`: `[op, words, factor, tag]` (tag: material + 1 or 0, and [`LOOSE`]), three
+//!   words of the frame's rows
 //!   (`m` row i in xyz, `t` component i in w), then one word per argument (a number in x, a
 //!   vector in xyz). Pushes the primitive's field at the frame's point times the factor.
 //! - `COMBINE`: `[op, flags, k, 0]` (flags: 1 = largest, 2 = negate the top first): pops the
 //!   top (a child) and combines it into the one below (the fold's running result), picking the
 //!   material as the fold does.
 //! - `NEGATE`: `[op, 0, 0, 0]`: the top's value negated (a fold's first child, negated).
-//! - `END`: `[op, 0, factor, material + 1 | 0]`: the fold's result seen by its parent.
+//! - `END`: `[op, 0, factor, tag]`: the fold's result seen by its parent; its material where
+//!   it picked none, loose where it or what it picked is.
 
 use super::{Part, PartKind, Way};
 use crate::catalog::{Ctx, Primitive, Ty, Val};
@@ -81,8 +83,14 @@ pub fn encode(
     })
 }
 
-fn material(m: Option<u32>) -> f64 {
-    m.map_or(0.0, |m| bits(m + 1))
+/// The bit of a tag that says the part is loose (its hit needs confirming); the rest is the
+/// material + 1, or 0 for none.
+pub const LOOSE: u32 = 1 << 31;
+
+/// A part's tag word: its material + 1 (0: none) and its looseness bit.
+fn tag_of(part: &Part) -> f64 {
+    let m = part.material.map_or(0, |m| m + 1);
+    bits(m | if part.loose { LOOSE } else { 0 })
 }
 
 /// Appends `part`'s instructions; returns the stack depth they reach.
@@ -109,7 +117,7 @@ fn emit(
                 bits(LEAF + kind as u32),
                 bits(n as u32),
                 part.factor,
-                material(part.material),
+                tag_of(part),
             ]);
             let (m, t) = (part.frame.m, part.frame.t);
             for i in 0..3 {
@@ -139,14 +147,14 @@ fn emit(
                     words.push([bits(COMBINE), bits(flags), *k, 0.0]);
                 }
             }
-            words.push([bits(END), 0.0, part.factor, material(part.material)]);
+            words.push([bits(END), 0.0, part.factor, tag_of(part)]);
             Ok(depth)
         }
     }
 }
 
 /// Whether an argument of type `ty` is a vector in its word.
-fn vector(ty: Ty) -> bool {
+pub fn vector(ty: Ty) -> bool {
     matches!(
         ty,
         Ty::Vec3 | Ty::Size | Ty::Scale | Ty::Axis | Ty::Color | Ty::Counts
@@ -167,7 +175,8 @@ pub fn run(program: &Program, p: DVec3) -> (f64, Option<u32>) {
     let words = &program.words;
     let mut stack: Vec<Entry> = Vec::with_capacity(MAX_STACK);
     let mut pc = 0;
-    let tag = |x: f64| match unbits(x) {
+    // (The looseness bit is the shader's; this runner gives materials.)
+    let tag = |x: f64| match unbits(x) & !LOOSE {
         0 => None,
         m => Some(m - 1),
     };

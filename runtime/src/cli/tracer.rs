@@ -59,6 +59,13 @@ pub struct TracerArgs {
     /// Evaluate every part of every union each time: no bounding-box tests in `map`.
     #[arg(long)]
     pub no_bvh: bool,
+    /// How `map` holds the scene: `inline` code (the default), or `data`: the scene's parts
+    /// in storage buffers, each cell of a grid over it with only the parts that can matter
+    /// there (Lipschitz pruning), run by a generic evaluator whose code does not grow with
+    /// the parts (primitives under moves, turns and scales, folded by unions, intersections
+    /// and subtractions, hard or smooth).
+    #[arg(long, value_enum, default_value = "inline")]
+    pub form: FormArg,
     /// Start shadow, reflected and refracted rays a fixed 2·ε_floor off the surface instead of
     /// Keinert's ε_dynamic = 2·max(ε, |f(p)|): only to see and measure what ε_dynamic prevents
     /// (shadow acne, self-intersecting refraction).
@@ -106,8 +113,27 @@ impl TracerArgs {
         options.passes = self.passes > 1;
         options.bounding_volumes = bounding_volumes(self.bvh, self.no_bvh);
         options.fixed_offset = self.fixed_offset;
+        if self.form == FormArg::Data {
+            if let Err(why) = sdfc_compiler::tape::data::layout(scene, sdfc_compiler::tape::data::CELLS) {
+                return Err(Error::Usage(format!(
+                    "error: `--form data` cannot hold this scene: {}",
+                    sdfc_compiler::tape::data::say(scene, &why)
+                )));
+            }
+            options.form = sdfc_compiler::lower::tracer::Form::Data;
+        }
         Ok(options)
     }
+}
+
+/// `--form`: how `map` holds the scene.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum FormArg {
+    /// Every part's code in `map`.
+    #[default]
+    Inline,
+    /// The scene as data, pruned per cell.
+    Data,
 }
 
 /// `--passes N` of `render`, `emit` and `bench`: a number of passes there is a schedule for.
@@ -131,4 +157,17 @@ pub fn bounding_volumes(bvh: bool, no_bvh: bool) -> BoundingVolumes {
         (_, true) => BoundingVolumes::Off,
         _ => BoundingVolumes::Large,
     }
+}
+
+/// The data form's buffers for a scene compiled at its defaults (`scene`: its layout, the
+/// kinds and grid compiled into the shader) drawn at other values (`valued`: the programs).
+pub fn tape_data(
+    scene: &sdfc_compiler::scene::Scene,
+    valued: &sdfc_compiler::scene::Scene,
+) -> Result<sdfc_compiler::tape::data::Data, Error> {
+    use sdfc_compiler::tape::data;
+    let fail = |why: data::Why| Error::Usage(format!("error: `--form data`: {}", data::say(scene, &why)));
+    let (_, layout) = data::layout(scene, data::CELLS).map_err(fail)?;
+    let tree = sdfc_compiler::tape::build(valued).map_err(|u| fail(data::Why::Node(u)))?;
+    data::data(valued, &tree, &layout).map_err(fail)
 }

@@ -123,6 +123,13 @@ impl Gpu {
                 resource: buffer.as_entire_binding(),
             });
         }
+        let tape = self.tape_buffers(module);
+        for (binding, buffer) in &tape {
+            entries.push(wgpu::BindGroupEntry {
+                binding: *binding,
+                resource: buffer.as_entire_binding(),
+            });
+        }
         let volumes = self.volume_views(module)?;
         for (binding, view) in &volumes {
             entries.push(wgpu::BindGroupEntry {

@@ -14,6 +14,7 @@ mod open;
 mod prepare;
 mod readback;
 mod render;
+mod tape;
 mod volumes;
 
 pub use dispatch::Timing;
@@ -56,6 +57,8 @@ pub struct Gpu {
     /// The baked volumes the next prepared modules read, each uploaded once
     /// ([`Gpu::set_volumes`]).
     volumes: Arc<Mutex<Vec<volumes::OnDevice>>>,
+    /// The data form's words and ranges the next prepared modules read ([`Gpu::set_tape`]).
+    tape: Arc<Mutex<Option<[wgpu::Buffer; 2]>>>,
 }
 
 impl Gpu {

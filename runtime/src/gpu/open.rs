@@ -92,6 +92,7 @@ impl Gpu {
             trouble,
             params: Arc::default(),
             volumes: Arc::default(),
+            tape: Arc::default(),
             adapter: adapter.clone(),
         })
     }

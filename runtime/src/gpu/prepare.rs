@@ -101,6 +101,8 @@ struct Bindings<'a> {
     hand_over: &'a [wgpu::Buffer],
     /// The baked volumes' textures and their bindings.
     volumes: &'a [(u32, wgpu::TextureView)],
+    /// The data form's buffers and their bindings.
+    tape: &'a [(u32, wgpu::Buffer)],
 }
 
 impl Gpu {
@@ -131,6 +133,7 @@ impl Gpu {
         let pipeline = self.pipeline(module);
         let params = self.params_buffer(module)?;
         let volumes = self.volume_views(module)?;
+        let tape = self.tape_buffers(module);
         let outputs: Vec<Output> = layout
             .outputs()
             .iter()
@@ -156,6 +159,7 @@ impl Gpu {
             params: params.as_ref(),
             hand_over: &hand_over,
             volumes: &volumes,
+            tape: &tape,
         };
         let runs = (0..schedule.len())
             .map(|k| self.tiles(&bindings, schedule, passes.is_some(), k, tile))
@@ -274,6 +278,9 @@ impl Gpu {
             for (spec, b) in [(pass_in, k % 2), (pass_out, 1 - k % 2)] {
                 entries.push(entry(spec.binding, &bindings.hand_over[b]));
             }
+        }
+        for (binding, buffer) in bindings.tape {
+            entries.push(entry(*binding, buffer));
         }
         for (binding, view) in bindings.volumes {
             entries.push(wgpu::BindGroupEntry {

@@ -1,0 +1,50 @@
+//! Control flow and memory the generic evaluators need beyond `if` and `loop`: a `switch` on a
+//! u32, indexing by a run-time value, and reinterpreting bits.
+
+use super::builder::{Ex, FnBuilder};
+use naga::{Expression, ScalarKind, Statement, SwitchCase, SwitchValue};
+
+impl FnBuilder<'_> {
+    /// `switch selector { case v: { body } … default: { default } }` on a u32 selector.
+    pub fn switch_(
+        &mut self,
+        selector: Ex,
+        cases: Vec<(u32, Box<dyn FnOnce(&mut Self) + '_>)>,
+        default: impl FnOnce(&mut Self),
+    ) {
+        let mut arms = Vec::with_capacity(cases.len() + 1);
+        for (value, body) in cases {
+            let body = self.block(body);
+            arms.push(SwitchCase {
+                value: SwitchValue::U32(value),
+                body,
+                fall_through: false,
+            });
+        }
+        let body = self.block(default);
+        arms.push(SwitchCase {
+            value: SwitchValue::Default,
+            body,
+            fall_through: false,
+        });
+        self.stmt(Statement::Switch {
+            selector,
+            cases: arms,
+        });
+    }
+
+    /// `base[index]` with a run-time index: a pointer to the element of an array or a
+    /// runtime-sized buffer that `base` points to, or the element of a vector value.
+    pub fn index(&mut self, base: Ex, index: Ex) -> Ex {
+        self.expr(Expression::Access { base, index })
+    }
+
+    /// The same bits as another scalar kind (`bitcast<f32>(u)`), for scalars and vectors.
+    pub fn bitcast(&mut self, expr: Ex, kind: ScalarKind) -> Ex {
+        self.expr(Expression::As {
+            expr,
+            kind,
+            convert: None,
+        })
+    }
+}
