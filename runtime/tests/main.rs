@@ -12,6 +12,7 @@ mod browser;
 mod budget;
 mod cli;
 mod compile_cost;
+mod data_form;
 mod device;
 mod diagnostics;
 mod extremes;

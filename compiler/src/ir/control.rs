@@ -4,12 +4,15 @@
 use super::builder::{Ex, FnBuilder};
 use naga::{Expression, ScalarKind, Statement, SwitchCase, SwitchValue};
 
-impl FnBuilder<'_> {
+/// One arm of a [`FnBuilder::switch_`]: the case's value and what builds its body.
+pub type Arm<'f, 'a> = (u32, Box<dyn FnOnce(&mut FnBuilder<'a>) + 'f>);
+
+impl<'a> FnBuilder<'a> {
     /// `switch selector { case v: { body } … default: { default } }` on a u32 selector.
     pub fn switch_(
         &mut self,
         selector: Ex,
-        cases: Vec<(u32, Box<dyn FnOnce(&mut Self) + '_>)>,
+        cases: Vec<Arm<'_, 'a>>,
         default: impl FnOnce(&mut Self),
     ) {
         let mut arms = Vec::with_capacity(cases.len() + 1);

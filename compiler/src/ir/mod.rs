@@ -4,10 +4,11 @@
 //! tracers, so the catalog's shader bodies and the lowering both build on it.
 
 pub mod builder;
-mod control;
+pub mod control;
 mod math;
 
 pub use builder::{Ex, FnBuilder, ModuleBuilder};
+pub use control::Arm;
 
 /// A distance farther than any a scene can have, where IR needs a "nothing yet" (a union's
 /// running minimum before its first part). Not `f32::MAX`: naga's WGSL and GLSL writers print

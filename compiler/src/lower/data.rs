@@ -4,10 +4,10 @@
 //! material + 1 and the looseness bit (`program::LOOSE`); `map`, `map_material` and
 //! `map_loose` read it. The code does not grow with the number of parts.
 
-use crate::ir::{Ex, FnBuilder, ModuleBuilder};
+use crate::ir::{Arm, Ex, FnBuilder, ModuleBuilder};
 use crate::layout;
 use crate::tape::data::Layout;
-use crate::tape::program::{COMBINE, END, LEAF, LOOSE, MAX_STACK, NEGATE};
+use crate::tape::program::{COMBINE, END, LEAF, LOOSE, MAX_STACK, MOVED, NEGATE};
 use naga::{
     AddressSpace, ArraySize, Function, Handle, ScalarKind, StorageAccess, TypeInner, VectorSize,
 };
@@ -52,7 +52,7 @@ pub(super) fn add(mb: &mut ModuleBuilder, layout: &Layout) -> Handle<Function> {
     let p = b.arg(0);
     let words = b.expr(naga::Expression::GlobalVariable(words));
     let ranges = b.expr(naga::Expression::GlobalVariable(ranges));
-    let range = cell_range(&mut b, layout, ranges, p);
+    let (range, inside) = cell_range(&mut b, layout, ranges, p);
     let start = b.at(range, 0);
     let len = b.at(range, 1);
     let end = b.add(start, len);
@@ -60,6 +60,11 @@ pub(super) fn add(mb: &mut ModuleBuilder, layout: &Layout) -> Handle<Function> {
     let best = b.local("best", values_ty, None);
     let tag = b.local("tag", tags_ty, None);
     let zero = b.u(0);
+    // An empty program (outside a grid that holds every part) leaves "nothing here".
+    let (v0, t0) = (b.index(value, zero), b.index(tag, zero));
+    let far = b.f(crate::ir::FAR);
+    b.store(v0, far);
+    b.store(t0, zero);
     let sp = b.local("sp", u32t, Some(zero));
     let pc = b.local("pc", u32t, Some(start));
     let at = Stack {
@@ -68,51 +73,71 @@ pub(super) fn add(mb: &mut ModuleBuilder, layout: &Layout) -> Handle<Function> {
         tag,
         sp,
     };
-    b.loop_(|b| {
-        let here = b.load(pc);
-        let done = b.ge(here, end);
-        b.break_if(done);
-        let ptr = b.index(words, here);
-        let word = b.load(ptr);
-        let op = b.at(word, 0);
-        let one = b.u(1);
-        let mut cases: Vec<(u32, Box<dyn FnOnce(&mut FnBuilder) + '_>)> = vec![
-            (
-                COMBINE,
-                Box::new(move |b: &mut FnBuilder| combine(b, at, word)),
-            ),
-            (NEGATE, Box::new(move |b: &mut FnBuilder| negate(b, at))),
-            (
-                END,
-                Box::new(move |b: &mut FnBuilder| end_fold(b, at, word)),
-            ),
-        ];
-        for (i, &f) in kinds.iter().enumerate() {
-            let kind = layout.kinds[i];
-            cases.push((
-                LEAF + i as u32,
-                Box::new(move |b: &mut FnBuilder| leaf(b, at, (words, here, word), (f, kind), p)),
-            ));
-        }
-        b.switch_(op, cases, |_| {});
-        // A leaf moves on by its words, anything else by one.
-        let leaf_op = b.u(LEAF);
-        let is_leaf = b.ge(op, leaf_op);
-        let size = b.at(word, 1);
-        let step = b.select(is_leaf, size, one);
-        let moved = b.add(here, step);
-        b.store(pc, moved);
-    });
+    let kinds: Vec<(Handle<Function>, &'static crate::catalog::Primitive)> = kinds
+        .into_iter()
+        .zip(layout.kinds.iter().copied())
+        .collect();
+    b.loop_(|b| instruction(b, at, (words, pc, end), &kinds, p));
     let first = b.u(0);
     let v0 = b.index(value, first);
-    let v0 = b.load(v0);
+    let mut v0 = b.load(v0);
     let t0 = b.index(tag, first);
     let t0 = b.load(t0);
     let t0 = b.bitcast(t0, ScalarKind::Float);
+    if let (Some(margin), Some(inside)) = (layout.proxy, inside) {
+        let d = proxy(&mut b, layout, p, margin);
+        let nearer = b.min(v0, d);
+        v0 = b.select(inside, v0, nearer);
+    }
     let out = b.compose(v2, vec![v0, t0]);
     b.ret(Some(out));
     let f = b.finish();
     mb.add_helper("tape_eval", f)
+}
+
+/// One turn of the evaluator's loop: the instruction at `pc` (below `end`) of `words` run on
+/// the stack, `pc` moved past it; the loop left at `end`.
+fn instruction(
+    b: &mut FnBuilder,
+    at: Stack,
+    (words, pc, end): (Ex, Ex, Ex),
+    kinds: &[(Handle<Function>, &'static crate::catalog::Primitive)],
+    p: Ex,
+) {
+    let here = b.load(pc);
+    let done = b.ge(here, end);
+    b.break_if(done);
+    let ptr = b.index(words, here);
+    let word = b.load(ptr);
+    let op = b.at(word, 0);
+    let one = b.u(1);
+    let mut cases: Vec<Arm> = vec![
+        (
+            COMBINE,
+            Box::new(move |b: &mut FnBuilder| combine(b, at, word)),
+        ),
+        (NEGATE, Box::new(move |b: &mut FnBuilder| negate(b, at))),
+        (
+            END,
+            Box::new(move |b: &mut FnBuilder| end_fold(b, at, word)),
+        ),
+    ];
+    for (i, &(f, kind)) in kinds.iter().enumerate() {
+        cases.push((
+            LEAF + i as u32,
+            Box::new(move |b: &mut FnBuilder| leaf(b, at, (words, here, word), (f, kind), p)),
+        ));
+    }
+    b.switch_(op, cases, |_| {});
+    // A leaf moves on by its words, anything else by one.
+    let leaf_op = b.u(LEAF);
+    let is_leaf = b.ge(op, leaf_op);
+    let size = b.at(word, 1);
+    let count = b.u(!MOVED);
+    let size = b.bin(naga::BinaryOperator::And, size, count);
+    let step = b.select(is_leaf, size, one);
+    let moved = b.add(here, step);
+    b.store(pc, moved);
 }
 
 /// The evaluator's stack: pointers to its three arrays and its height.
@@ -124,13 +149,27 @@ struct Stack {
     sp: Ex,
 }
 
-/// The range (first word, words) of the cell holding `p`, the last range where the grid does not.
-fn cell_range(b: &mut FnBuilder, layout: &Layout, ranges: Ex, p: Ex) -> Ex {
+/// The distance from `p` to the grid's box plus `margin`: outside it, a distance bound for the
+/// parts the grid holds (they lie `margin` inside it: `tape::data::Layout::proxy`).
+fn proxy(b: &mut FnBuilder, layout: &Layout, p: Ex, margin: f64) -> Ex {
+    let [nx, ny, nz] = layout.n.map(|n| n as f64);
+    let half = glam::DVec3::new(nx, ny, nz) * layout.size / 2.0;
+    let center = b.vec3_lit(layout.lo + half);
+    let half = b.vec3_lit(half);
+    let rel = b.sub(p, center);
+    let d = crate::catalog::gpu::prims::box_half(b, rel, half);
+    let m = b.f(margin);
+    b.add(d, m)
+}
+
+/// The range (first word, words) of the cell holding `p`, the last range where the grid does
+/// not; and whether it does (none without a grid).
+fn cell_range(b: &mut FnBuilder, layout: &Layout, ranges: Ex, p: Ex) -> (Ex, Option<Ex>) {
     let [nx, ny, nz] = layout.n;
     let total = b.u((nx * ny * nz) as u32);
     if nx * ny * nz == 0 {
         let ptr = b.index(ranges, total);
-        return b.load(ptr);
+        return (b.load(ptr), None);
     }
     let lo = b.vec3_lit(layout.lo);
     let inv = b.f(1.0 / layout.size);
@@ -166,7 +205,7 @@ fn cell_range(b: &mut FnBuilder, layout: &Layout, ranges: Ex, p: Ex) -> Ex {
     let index = b.add(zyx, x);
     let index = b.select(inside, index, total);
     let ptr = b.index(ranges, index);
-    b.load(ptr)
+    (b.load(ptr), Some(inside))
 }
 
 /// The stack's entry `k` (three pointers).
@@ -296,14 +335,22 @@ fn leaf(
         b.bitcast(w, ScalarKind::Float)
     };
     let mut q = Vec::with_capacity(3);
+    let mut t = Vec::with_capacity(3);
     for row in 1..=3 {
         let r = word(b, row);
         let m = b.swizzle(r, &[0, 1, 2]);
-        let t = b.at(r, 3);
+        t.push(b.at(r, 3));
         let d = b.dot(m, p);
-        q.push(b.add(d, t));
+        q.push(b.add(d, t[row as usize - 1]));
     }
-    let q = b.compose_vec3([q[0], q[1], q[2]]);
+    let turned = b.compose_vec3([q[0], q[1], q[2]]);
+    let offset = b.compose_vec3([t[0], t[1], t[2]]);
+    let moved = b.add(p, offset);
+    let count = b.at(header, 1);
+    let flag = b.u(MOVED);
+    let only = b.bin(naga::BinaryOperator::And, count, flag);
+    let only = b.bin(naga::BinaryOperator::Equal, only, flag);
+    let q = b.select(only, moved, turned);
     let mut args = vec![q];
     for (i, param) in kind.params.iter().enumerate() {
         let w = word(b, 4 + i as u32);

@@ -25,6 +25,10 @@ pub struct Layout {
     pub size: f64,
     /// Cells along x, y and z (0 cells: no grid, every point runs the whole program).
     pub n: [usize; 3],
+    /// Where the parts left out of the program outside the grid lie at least this far inside
+    /// it: outside, the distance to the grid's box plus this is a distance bound for them, the
+    /// proxy the evaluator takes the smaller of with that program (none: nothing is left out).
+    pub proxy: Option<f64>,
 }
 
 /// The buffers: programs and ranges.
@@ -53,20 +57,74 @@ pub fn layout(scene: &Scene, cells: usize) -> Result<(Part, Layout), Why> {
     let tree = super::build(scene).map_err(Why::Node)?;
     let mut kinds = Vec::new();
     program::encode(scene, &tree, &mut kinds).map_err(Why::Program)?;
-    let (lo, size, n) = match finite_box(scene, &tree) {
-        Some((lo, hi)) => {
+    let (lo, size, n, proxy) = match finite_box(scene, &tree) {
+        Some((lo, hi, grow)) => {
             let size = (hi - lo).max_element() / cells.max(1) as f64;
             let n = ((hi - lo) / size).ceil().max(DVec3::ONE);
-            (lo, size, [n.x as usize, n.y as usize, n.z as usize])
+            let proxy = outside(scene, &tree).is_none_or(|o| o.leaves() < tree.leaves());
+            let n = [n.x as usize, n.y as usize, n.z as usize];
+            (lo, size, n, proxy.then_some(grow))
         }
-        None => (DVec3::ZERO, 1.0, [0; 3]),
+        None => (DVec3::ZERO, 1.0, [0; 3], None),
     };
-    Ok((tree, Layout { kinds, lo, size, n }))
+    let layout = Layout {
+        kinds,
+        lo,
+        size,
+        n,
+        proxy,
+    };
+    Ok((tree, layout))
 }
 
-/// The box of the tree's finite leaves, grown by a hundredth (none when none is finite): where
-/// cells pay; beyond it the whole program runs.
-fn finite_box(scene: &Scene, tree: &Part) -> Option<(DVec3, DVec3)> {
+/// What runs outside the grid besides the proxy: nothing where every surface is inside it
+/// (the scene's own box is finite), else a root union's children that have an unbounded part
+/// (a ground plane), else the whole tree.
+pub fn outside(scene: &Scene, tree: &Part) -> Option<Part> {
+    let root = scene.root_node().bound;
+    if root.lo.is_finite() && root.hi.is_finite() {
+        return None;
+    }
+    let super::PartKind::Fold {
+        way: super::Way::Min,
+        k,
+        children,
+    } = &tree.kind
+    else {
+        return Some(tree.clone());
+    };
+    let kept: Vec<(Part, bool)> = children
+        .iter()
+        .filter(|(c, _)| !all_finite(scene, c))
+        .cloned()
+        .collect();
+    // (A smooth union blends near the grid's parts: those stay, the whole tree runs.)
+    if *k > 0.0 || kept.is_empty() {
+        return Some(tree.clone());
+    }
+    Some(Part {
+        kind: super::PartKind::Fold {
+            way: super::Way::Min,
+            k: *k,
+            children: kept,
+        },
+        ..tree.clone()
+    })
+}
+
+/// Whether every leaf of `part` has a finite box (its surfaces are then inside the grid's).
+fn all_finite(scene: &Scene, part: &Part) -> bool {
+    let mut all = true;
+    leaves(part, &mut |p: &Part| {
+        let b = scene.nodes[p.node].bound;
+        all &= b.lo.is_finite() && b.hi.is_finite();
+    });
+    all
+}
+
+/// The box of the tree's finite leaves, grown on every side by a twentieth of its extent
+/// (none when no leaf is finite), and that growth: where cells pay.
+fn finite_box(scene: &Scene, tree: &Part) -> Option<(DVec3, DVec3, f64)> {
     let root = scene.root_node().bound;
     let (lo, hi) = if root.lo.is_finite() && root.hi.is_finite() {
         (root.lo, root.hi)
@@ -91,9 +149,9 @@ fn finite_box(scene: &Scene, tree: &Part) -> Option<(DVec3, DVec3)> {
         });
         (lo, hi)
     };
-    let grow = (hi - lo).max_element() / 100.0 + 1e-6;
+    let grow = (hi - lo).max_element() / 20.0 + 1e-6;
     (lo.is_finite() && hi.is_finite() && lo.cmple(hi).all())
-        .then(|| (lo - DVec3::splat(grow), hi + DVec3::splat(grow)))
+        .then(|| (lo - DVec3::splat(grow), hi + DVec3::splat(grow), grow))
 }
 
 fn leaves(part: &Part, f: &mut impl FnMut(&Part)) {
@@ -111,13 +169,37 @@ pub fn data(scene: &Scene, tree: &Part, layout: &Layout) -> Result<Data, Why> {
     let mut ranges = Vec::with_capacity(cells.parts.len() + 1);
     let mut kinds = layout.kinds.clone();
     let mut leaves = 0;
-    for part in cells.parts.iter().chain(std::iter::once(tree)) {
+    // Cells with the same program (neighbours that keep the same parts) share its words.
+    let mut seen: std::collections::HashMap<Vec<[u32; 4]>, [u32; 2]> =
+        std::collections::HashMap::new();
+    for part in &cells.parts {
         let p: Program = program::encode(scene, part, &mut kinds).map_err(Why::Program)?;
-        ranges.push([words.len() as u32, p.words.len() as u32]);
         leaves += p.leaves();
-        words.extend(p.to_gpu());
+        let gpu = p.to_gpu();
+        let range = *seen.entry(gpu).or_insert_with_key(|gpu| {
+            let range = [words.len() as u32, gpu.len() as u32];
+            words.extend_from_slice(gpu);
+            range
+        });
+        ranges.push(range);
     }
-    let cells_leaves = leaves - tree.leaves();
+    // Outside the grid: the parts it does not hold, with the proxy for the rest (an empty
+    // program where it holds them all).
+    let beyond = match (layout.proxy, outside(scene, tree)) {
+        (Some(_), None) => None,
+        (_, Some(o)) => Some(o),
+        (None, None) => Some(tree.clone()),
+    };
+    let start = words.len() as u32;
+    match beyond {
+        Some(part) => {
+            let p = program::encode(scene, &part, &mut kinds).map_err(Why::Program)?;
+            ranges.push([start, p.words.len() as u32]);
+            words.extend(p.to_gpu());
+        }
+        None => ranges.push([start, 0]),
+    }
+    let cells_leaves = leaves;
     Ok(Data {
         words,
         ranges,

@@ -29,6 +29,8 @@ pub const NEGATE: u32 = 2;
 pub const END: u32 = 3;
 /// Opcode of the first primitive kind; kind `i` of [`Program::kinds`] is `LEAF + i`.
 pub const LEAF: u32 = 16;
+/// The bit of a leaf's word count that says its frame only moves (`m` is the identity).
+pub const MOVED: u32 = 1 << 30;
 /// The deepest stack a program may need (the shader's arrays have this many entries).
 pub const MAX_STACK: usize = 16;
 
@@ -113,9 +115,16 @@ fn emit(
                 }
             };
             let n = 4 + prim.params.len();
+            // A frame that only moves is applied as p + t: as the inline form's p − offset, to
+            // the bit (`MOVED` in the word count's high bit).
+            let moved = if part.frame.m == glam::DMat3::IDENTITY {
+                MOVED
+            } else {
+                0
+            };
             words.push([
                 bits(LEAF + kind as u32),
-                bits(n as u32),
+                bits(n as u32 | moved),
                 part.factor,
                 tag_of(part),
             ]);
@@ -237,7 +246,7 @@ pub fn run(program: &Program, p: DVec3) -> (f64, Option<u32>) {
                 let args: Vec<Val> = prim
                     .params
                     .iter()
-                    .zip(&words[pc + 4..pc + unbits(w[1]) as usize])
+                    .zip(&words[pc + 4..pc + (unbits(w[1]) & !MOVED) as usize])
                     .map(|(param, a)| match vector(param.ty) {
                         true => Val::Vec3(DVec3::new(a[0], a[1], a[2])),
                         false => Val::Num(a[0]),
@@ -249,7 +258,7 @@ pub fn run(program: &Program, p: DVec3) -> (f64, Option<u32>) {
                     best: value,
                     material: tag(w[3]),
                 });
-                pc += unbits(w[1]) as usize;
+                pc += (unbits(w[1]) & !MOVED) as usize;
             }
         }
     }
@@ -274,7 +283,7 @@ impl Program {
             let op = unbits(self.words[pc][0]);
             if op >= LEAF {
                 n += 1;
-                pc += unbits(self.words[pc][1]) as usize;
+                pc += (unbits(self.words[pc][1]) & !MOVED) as usize;
             } else {
                 pc += 1;
             }

@@ -98,6 +98,22 @@ impl TracerArgs {
             .map_err(|e| Error::Usage(format!("error: {e}")))
     }
 
+    /// [`TracerArgs::settle`] for a command that cannot run the data form yet (`command`):
+    /// `--form data` is an error that says so.
+    pub fn settle_inline(
+        &self,
+        scene: &mut sdfc_compiler::scene::Scene,
+        command: &str,
+    ) -> Result<sdfc_compiler::lower::tracer::Options, Error> {
+        if self.form == FormArg::Data {
+            return Err(Error::Usage(format!(
+                "error: `--form data` is for `sdfc render` so far: `sdfc {command}` does not yet \
+                 hand a host or window the buffers it reads (issue 33)"
+            )));
+        }
+        self.settle(scene)
+    }
+
     /// Applies the overrides to a scene and returns the lowering options, or an error for the
     /// user.
     pub fn settle(
@@ -114,7 +130,10 @@ impl TracerArgs {
         options.bounding_volumes = bounding_volumes(self.bvh, self.no_bvh);
         options.fixed_offset = self.fixed_offset;
         if self.form == FormArg::Data {
-            if let Err(why) = sdfc_compiler::tape::data::layout(scene, sdfc_compiler::tape::data::CELLS) {
+            data_form_allowed(self.passes, scene)?;
+            if let Err(why) =
+                sdfc_compiler::tape::data::layout(scene, sdfc_compiler::tape::data::CELLS)
+            {
                 return Err(Error::Usage(format!(
                     "error: `--form data` cannot hold this scene: {}",
                     sdfc_compiler::tape::data::say(scene, &why)
@@ -124,6 +143,29 @@ impl TracerArgs {
         }
         Ok(options)
     }
+}
+
+/// Refuses what the data form cannot do yet: several passes, and shapes whose arguments
+/// follow parameters (the buffers hold the values they were made with).
+fn data_form_allowed(passes: u32, scene: &sdfc_compiler::scene::Scene) -> Result<(), Error> {
+    use sdfc_compiler::scene::NodeKind;
+    if passes > 1 {
+        return Err(Error::Usage(
+            "error: `--form data` takes one pass (`--passes 1`) so far".into(),
+        ));
+    }
+    let follows = scene.nodes.iter().any(|n| match &n.kind {
+        NodeKind::Primitive { ctx, .. } | NodeKind::Operator { ctx, .. } => !ctx.sym.is_empty(),
+        NodeKind::Implicit { .. } => false,
+    });
+    if follows {
+        return Err(Error::Usage(
+            "error: `--form data` does not yet follow parameters in shapes' arguments: its \
+             buffers would keep the values they were made with"
+                .into(),
+        ));
+    }
+    Ok(())
 }
 
 /// `--form`: how `map` holds the scene.
@@ -166,7 +208,8 @@ pub fn tape_data(
     valued: &sdfc_compiler::scene::Scene,
 ) -> Result<sdfc_compiler::tape::data::Data, Error> {
     use sdfc_compiler::tape::data;
-    let fail = |why: data::Why| Error::Usage(format!("error: `--form data`: {}", data::say(scene, &why)));
+    let fail =
+        |why: data::Why| Error::Usage(format!("error: `--form data`: {}", data::say(scene, &why)));
     let (_, layout) = data::layout(scene, data::CELLS).map_err(fail)?;
     let tree = sdfc_compiler::tape::build(valued).map_err(|u| fail(data::Why::Node(u)))?;
     data::data(valued, &tree, &layout).map_err(fail)

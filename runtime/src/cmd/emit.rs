@@ -52,7 +52,7 @@ fn once(args: &EmitArgs, plan: &Plan) -> i32 {
         return 1;
     };
     let name = sources.main_name();
-    let options = match args.tracer.settle(&mut scene) {
+    let options = match args.tracer.settle_inline(&mut scene, "emit") {
         Ok(mut o) => {
             o.private_params = plan.shadertoy;
             o.params_binding = args.params_binding;

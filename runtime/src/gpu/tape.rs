@@ -11,17 +11,22 @@ impl Gpu {
     /// Sets the data form's buffers the modules prepared from now on read (`None`: none).
     pub fn set_tape(&self, data: Option<&Data>) {
         let buffers = data.map(|d| {
-            let bytes = |words: &[u32]| -> Vec<u8> { words.iter().flat_map(|w| w.to_le_bytes()).collect() };
+            let bytes =
+                |words: &[u32]| -> Vec<u8> { words.iter().flat_map(|w| w.to_le_bytes()).collect() };
             let words: Vec<u32> = d.words.iter().flatten().copied().collect();
             let ranges: Vec<u32> = d.ranges.iter().flatten().copied().collect();
             let make = |label: &str, contents: Vec<u8>| {
-                self.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                    label: Some(label),
-                    contents: &contents,
-                    usage: wgpu::BufferUsages::STORAGE,
-                })
+                self.device
+                    .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                        label: Some(label),
+                        contents: &contents,
+                        usage: wgpu::BufferUsages::STORAGE,
+                    })
             };
-            [make("tape words", bytes(&words)), make("tape ranges", bytes(&ranges))]
+            [
+                make("tape words", bytes(&words)),
+                make("tape ranges", bytes(&ranges)),
+            ]
         });
         *lock(&self.tape) = buffers;
     }

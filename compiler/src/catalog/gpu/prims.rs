@@ -15,7 +15,7 @@ pub fn sphere(b: &mut FnBuilder, p: Ex, a: &[Ex]) -> Ex {
 }
 
 /// IQ's exact box of half extents `half`.
-fn box_half(b: &mut FnBuilder, p: Ex, half: Ex) -> Ex {
+pub(crate) fn box_half(b: &mut FnBuilder, p: Ex, half: Ex) -> Ex {
     let ap = b.abs(p);
     let q = b.sub(ap, half);
     let zero = b.splat3(0.0);
