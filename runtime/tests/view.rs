@@ -465,3 +465,42 @@ fn the_window_shows_a_baked_part() {
     );
     assert!(share >= 0.995, "only {:.2}%", share * 100.0);
 }
+
+/// `--form data` in the window: the scene as data (issue 33), its buffers made for the window,
+/// draws what `sdfc render --form data` draws.
+#[test]
+fn the_window_draws_the_data_form() {
+    if !xvfb() {
+        return;
+    }
+    let dir = scratch("view-data");
+    let extra = ["--form", "data", "--quit-after", "1"];
+    let Viewer {
+        mut child,
+        scene,
+        shots,
+        log,
+    } = start_view(&dir, BASE, &extra);
+    wait_for(&shots.join("000.png"), &mut child, &log);
+    assert!(child.wait().unwrap().success());
+    let want = dir.join("want.png");
+    let o = sdfc(&[
+        "render",
+        scene.to_str().unwrap(),
+        "--size",
+        "128x96",
+        "--form",
+        "data",
+        "-o",
+        want.to_str().unwrap(),
+        "-q",
+    ]);
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let share = agreement(&shots.join("000.png"), &want);
+    assert!(share >= 0.999, "only {:.2}% within 2 levels", 100.0 * share);
+}

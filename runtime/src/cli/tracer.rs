@@ -98,8 +98,9 @@ impl TracerArgs {
             .map_err(|e| Error::Usage(format!("error: {e}")))
     }
 
-    /// [`TracerArgs::settle`] for a command that cannot run the data form yet (`command`):
-    /// `--form data` is an error that says so.
+    /// [`TracerArgs::settle`] for a command that cannot run the data form yet (`command`:
+    /// `emit`, which would have to write the buffers for a host): `--form data` is an error
+    /// that says so.
     pub fn settle_inline(
         &self,
         scene: &mut sdfc_compiler::scene::Scene,
@@ -107,8 +108,8 @@ impl TracerArgs {
     ) -> Result<sdfc_compiler::lower::tracer::Options, Error> {
         if self.form == FormArg::Data {
             return Err(Error::Usage(format!(
-                "error: `--form data` is for `sdfc render` so far: `sdfc {command}` does not yet \
-                 hand a host or window the buffers it reads (issue 33)"
+                "error: `--form data` is for `sdfc render` and `sdfc view` so far: `sdfc {command}` \
+                 does not yet hand a host the buffers it reads (issue 33)"
             )));
         }
         self.settle(scene)

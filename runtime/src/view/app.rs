@@ -63,16 +63,13 @@ impl Started {
 /// Reads and checks the scene with the tracer overrides; diagnostics printed.
 pub fn load(args: &ViewArgs) -> Option<(Scene, Options)> {
     let (sources, mut scene) = load_scene(&args.file, args.bake.bake_res)?;
-    let options = args
-        .tracer
-        .settle_inline(&mut scene, "view")
-        .and_then(|mut options| {
-            // One pass: the viewer's coarse frames take the passes' place.
-            options.passes = false;
-            let allow = args.allow_slow_compile;
-            crate::cli::driver::driver_module(&scene, &sources, &mut options, allow)?;
-            Ok(options)
-        });
+    let options = args.tracer.settle(&mut scene).and_then(|mut options| {
+        // One pass: the viewer's coarse frames take the passes' place.
+        options.passes = false;
+        let allow = args.allow_slow_compile;
+        crate::cli::driver::driver_module(&scene, &sources, &mut options, allow)?;
+        Ok(options)
+    });
     match options {
         Ok(options) => Some((scene, options)),
         Err(crate::cli::Error::Reported) => None,

@@ -350,6 +350,12 @@ fn prepare(
         emit::module(scene, Entry::Compute, options).map_err(|e| Error::Compiler(e.0))?;
     gpu.set_params(&bytes(&scene.params));
     gpu.set_volumes(&scene.volumes());
+    let data = options.form == sdfc_compiler::lower::tracer::Form::Data;
+    gpu.set_tape(
+        data.then(|| crate::cli::tape_data(scene, scene))
+            .transpose()?
+            .as_ref(),
+    );
     let layout = Layout::Full { passes: false };
     let full = View::new(&scene.camera, size.0, size.1);
     let c = coarse_size(size);
