@@ -205,26 +205,30 @@ fn pruned_trees_equal_the_whole_inside_their_cells() {
     ));
 }
 
+/// `n` balls of radius 0.02 to 0.06 in the box from −1 to 1, a line each.
+fn balls(r: &mut Rng, n: usize) -> String {
+    let lines: Vec<String> = (0..n)
+        .map(|_| {
+            let c = point(r, DVec3::splat(-1.0), DVec3::splat(1.0));
+            let radius = r.range(0.02, 0.06);
+            format!(
+                "sphere({radius:.3}) at ({:.3}, {:.3}, {:.3})",
+                c.x, c.y, c.z
+            )
+        })
+        .collect();
+    lines.join("\n")
+}
+
 /// Unions of many spheres, hard and smooth: a 16³ grid over them keeps a few leaves per cell.
 #[test]
 fn a_cell_of_a_large_union_keeps_a_few_leaves() {
     let mut r = Rng::new(5);
     let n = 1000;
-    let balls: Vec<String> = (0..n)
-        .map(|_| {
-            let c = point(&mut r, DVec3::splat(-1.0), DVec3::splat(1.0));
-            format!(
-                "sphere({:.3}) at ({:.3}, {:.3}, {:.3})",
-                r.range(0.02, 0.06),
-                c.x,
-                c.y,
-                c.z
-            )
-        })
-        .collect();
+    let balls = balls(&mut r, n);
     let mut said = Vec::new();
     for op in ["union", "smooth_union(0.03)"] {
-        let s = scene("balls.sdf", &format!("{op} {{\n{}\n}}", balls.join("\n")));
+        let s = scene("balls.sdf", &format!("{op} {{\n{balls}\n}}"));
         let tree = tape::build(&s).expect("a union of spheres");
         let grid = cells::Cells::new(&s, &tree, DVec3::splat(-1.1), 2.2 / 16.0, [16; 3]);
         let mean = grid.mean_leaves();
@@ -369,22 +373,7 @@ fn data_form_modules_validate_and_stay_the_same_size() {
     use sdfc_compiler::lower::tracer::{Form, Options};
     let mut r = Rng::new(11);
     let balls = |r: &mut Rng, n: usize| {
-        let b: Vec<String> = (0..n)
-            .map(|_| {
-                let c = point(r, DVec3::splat(-1.0), DVec3::splat(1.0));
-                format!(
-                    "sphere({:.3}) at ({:.3}, {:.3}, {:.3})",
-                    r.range(0.02, 0.06),
-                    c.x,
-                    c.y,
-                    c.z
-                )
-            })
-            .collect();
-        format!(
-            "smooth_union(0.02) {{\n{}\n}}\nplane(y, -1.2)",
-            b.join("\n")
-        )
+        format!("smooth_union(0.02) {{\n{}\n}}\nplane(y, -1.2)", balls(r, n))
     };
     let mut sizes = Vec::new();
     for source in [
@@ -417,7 +406,7 @@ fn data_form_modules_validate_and_stay_the_same_size() {
         "10 and 1000 spheres' WGSL: {sizes:?}"
     );
     report(&format!(
-        "tape: data form WGSL (compute entry) {} bytes for 10 spheres and for 1000",
-        sizes[1]
+        "tape: data form WGSL (compute entry) {} bytes for 10 spheres, {} for 1000",
+        sizes[0], sizes[1]
     ));
 }

@@ -135,10 +135,15 @@ fn start_view(dir: &Path, source: &str, extra: &[&str]) -> Viewer {
 
 /// `sdfc render` of `scene` at `size` (4 samples, as the viewer at rest).
 fn rendered(dir: &Path, scene: &str, name: &str) -> PathBuf {
+    rendered_with(dir, scene, name, &[])
+}
+
+/// [`rendered`] with more flags for `sdfc render`.
+fn rendered_with(dir: &Path, scene: &str, name: &str, extra: &[&str]) -> PathBuf {
     let file = dir.join(format!("{name}.sdf"));
     std::fs::write(&file, scene).unwrap();
     let out = dir.join(format!("{name}.png"));
-    let o = sdfc(&[
+    let mut args = vec![
         "render",
         file.to_str().unwrap(),
         "--size",
@@ -146,7 +151,9 @@ fn rendered(dir: &Path, scene: &str, name: &str) -> PathBuf {
         "-o",
         out.to_str().unwrap(),
         "-q",
-    ]);
+    ];
+    args.extend(extra);
+    let o = sdfc(&args);
     assert_eq!(
         o.status.code(),
         Some(0),
@@ -323,25 +330,13 @@ fn keys_change_a_parameter() {
     let extra = ["--script", "key =", "--quit-after", "2"];
     let Viewer {
         mut child,
-        scene,
         shots,
         log,
+        ..
     } = start_view(&dir, &source, &extra);
     wait_for(&shots.join("001.png"), &mut child, &log);
     assert!(child.wait().unwrap().success());
-    let want = dir.join("want.png");
-    let o = sdfc(&[
-        "render",
-        scene.to_str().unwrap(),
-        "--size",
-        "128x96",
-        "--param",
-        "r=0.84",
-        "-o",
-        want.to_str().unwrap(),
-        "-q",
-    ]);
-    assert_eq!(o.status.code(), Some(0));
+    let want = rendered_with(&dir, &source, "want", &["--param", "r=0.84"]);
     let share = agreement(&shots.join("001.png"), &want);
     assert!(
         share >= 0.995,
@@ -477,30 +472,13 @@ fn the_window_draws_the_data_form() {
     let extra = ["--form", "data", "--quit-after", "1"];
     let Viewer {
         mut child,
-        scene,
         shots,
         log,
+        ..
     } = start_view(&dir, BASE, &extra);
     wait_for(&shots.join("000.png"), &mut child, &log);
     assert!(child.wait().unwrap().success());
-    let want = dir.join("want.png");
-    let o = sdfc(&[
-        "render",
-        scene.to_str().unwrap(),
-        "--size",
-        "128x96",
-        "--form",
-        "data",
-        "-o",
-        want.to_str().unwrap(),
-        "-q",
-    ]);
-    assert_eq!(
-        o.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&o.stderr)
-    );
+    let want = rendered_with(&dir, BASE, "want", &["--form", "data"]);
     let share = agreement(&shots.join("000.png"), &want);
     assert!(share >= 0.999, "only {:.2}% within 2 levels", 100.0 * share);
 }

@@ -95,6 +95,33 @@ pub(super) fn add(mb: &mut ModuleBuilder, layout: &Layout) -> Handle<Function> {
     mb.add_helper("tape_eval", f)
 }
 
+/// `map`'s value from `tape_eval` (`eval`) at `p`.
+pub(super) fn value(b: &mut FnBuilder, eval: Handle<Function>, p: Ex) -> Ex {
+    let r = b.call(eval, vec![p]);
+    b.at(r, 0)
+}
+
+/// `tape_eval`'s tag at `p`, as a u32.
+fn tag_bits(b: &mut FnBuilder, eval: Handle<Function>, p: Ex) -> Ex {
+    let r = b.call(eval, vec![p]);
+    let bits = b.at(r, 1);
+    b.bitcast(bits, ScalarKind::Uint)
+}
+
+/// `map_material`'s material (+ 1, 0 for none) from the tag.
+pub(super) fn material(b: &mut FnBuilder, eval: Handle<Function>, p: Ex) -> Ex {
+    let bits = tag_bits(b, eval, p);
+    let material = b.u(!LOOSE);
+    b.bin(naga::BinaryOperator::And, bits, material)
+}
+
+/// `map_loose`'s 1 or 0 from the tag's looseness bit (its highest).
+pub(super) fn loose(b: &mut FnBuilder, eval: Handle<Function>, p: Ex) -> Ex {
+    let bits = tag_bits(b, eval, p);
+    let shift = b.u(LOOSE.trailing_zeros());
+    b.bin(naga::BinaryOperator::ShiftRight, bits, shift)
+}
+
 /// One turn of the evaluator's loop: the instruction at `pc` (below `end`) of `words` run on
 /// the stack, `pc` moved past it; the loop left at `end`.
 fn instruction(
@@ -208,6 +235,13 @@ fn cell_range(b: &mut FnBuilder, layout: &Layout, ranges: Ex, p: Ex) -> (Ex, Opt
     (b.load(ptr), Some(inside))
 }
 
+/// The index of the entry `depth` below the stack's top (1: the top).
+fn below_top(b: &mut FnBuilder, s: Stack, depth: u32) -> Ex {
+    let sp = b.load(s.sp);
+    let d = b.u(depth);
+    b.sub(sp, d)
+}
+
 /// The stack's entry `k` (three pointers).
 fn entry(b: &mut FnBuilder, s: Stack, k: Ex) -> [Ex; 3] {
     [b.index(s.value, k), b.index(s.best, k), b.index(s.tag, k)]
@@ -225,11 +259,9 @@ fn push(b: &mut FnBuilder, s: Stack, value: Ex, tag: Ex) {
 
 /// `COMBINE`: the top (a child, negated if flagged) folded into the entry below.
 fn combine(b: &mut FnBuilder, s: Stack, word: Ex) {
-    let sp = b.load(s.sp);
-    let one = b.u(1);
-    let two = b.u(2);
-    let top = b.sub(sp, one);
-    let below = b.sub(sp, two);
+    let (one, two) = (b.u(1), b.u(2));
+    let top = below_top(b, s, 1);
+    let below = below_top(b, s, 2);
     let [cv, _, ct] = entry(b, s, top);
     let (cv, ct) = (b.load(cv), b.load(ct));
     let [av, ab, at] = entry(b, s, below);
@@ -244,20 +276,9 @@ fn combine(b: &mut FnBuilder, s: Stack, word: Ex) {
     let k = b.at(word, 2);
     let k = b.bitcast(k, ScalarKind::Float);
     // IQ's quadratic smooth minimum and maximum as `op_smooth_union` and `op_smooth_intersect`
-    // compute them (`catalog/gpu/ops.rs`), operation for operation; at k = 0 the blend term is
-    // 0 and they are min and max.
-    let diff = b.sub(a, v);
-    let diff = b.abs(diff);
-    let kd = b.sub(k, diff);
-    let zero = b.f(0.0);
-    let kd = b.max(kd, zero);
-    let tiny = b.f(1e-30);
-    let kk = b.max(k, tiny);
-    let h = b.div(kd, kk);
-    let hh = b.mul(h, h);
-    let hhk = b.mul(hh, k);
-    let quarter = b.f(0.25);
-    let term = b.mul(hhk, quarter);
+    // compute them, operation for operation; at k = 0 the blend term is 0 and they are min and
+    // max.
+    let term = crate::catalog::gpu::ops::blend(b, a, v, k);
     let (m, big) = (b.min(a, v), b.max(a, v));
     let lo = b.sub(m, term);
     let hi = b.add(big, term);
@@ -282,9 +303,7 @@ fn combine(b: &mut FnBuilder, s: Stack, word: Ex) {
 
 /// `NEGATE`: the top's value negated.
 fn negate(b: &mut FnBuilder, s: Stack) {
-    let sp = b.load(s.sp);
-    let one = b.u(1);
-    let top = b.sub(sp, one);
+    let top = below_top(b, s, 1);
     let [v, bst, _] = entry(b, s, top);
     let x = b.load(v);
     let x = b.neg(x);
@@ -294,9 +313,7 @@ fn negate(b: &mut FnBuilder, s: Stack) {
 
 /// `END`: the fold's result times its factor, its material where it picked none.
 fn end_fold(b: &mut FnBuilder, s: Stack, word: Ex) {
-    let sp = b.load(s.sp);
-    let one = b.u(1);
-    let top = b.sub(sp, one);
+    let top = below_top(b, s, 1);
     let [v, bst, t] = entry(b, s, top);
     let factor = b.at(word, 2);
     let factor = b.bitcast(factor, ScalarKind::Float);

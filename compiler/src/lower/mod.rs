@@ -78,10 +78,7 @@ pub fn lower(scene: &Scene, entry: Entry, options: &tracer::Options) -> naga::Mo
         .flatten()
         .map(|(_, layout)| data::add(&mut mb, &layout));
     let map = point_function(&mut mb, "map", f32t, |b, p| match data {
-        Some(eval) => {
-            let r = b.call(eval, vec![p]);
-            b.at(r, 0)
-        }
+        Some(eval) => data::value(b, eval, p),
         None => {
             let d = walk.distance(b, scene.root, p);
             crate::catalog::gpu::scale_by(b, d, 1.0 / scene.root_node().lambda)
@@ -91,13 +88,7 @@ pub fn lower(scene: &Scene, entry: Entry, options: &tracer::Options) -> naga::Mo
     // (The library always has `map_material`: its interface does not depend on the scene.)
     let material = (has_materials(scene, &reachable) || entry == Entry::Library).then(|| {
         point_function(&mut mb, "map_material", u32t, |b, p| match data {
-            Some(eval) => {
-                let r = b.call(eval, vec![p]);
-                let bits = b.at(r, 1);
-                let bits = b.bitcast(bits, naga::ScalarKind::Uint);
-                let material = b.u(!crate::tape::program::LOOSE);
-                b.bin(naga::BinaryOperator::And, bits, material)
-            }
+            Some(eval) => data::material(b, eval, p),
             None => {
                 let m = walk.with_material(b, scene.root, p);
                 m.unwrap_or_else(|| b.u(0))
@@ -109,13 +100,7 @@ pub fn lower(scene: &Scene, entry: Entry, options: &tracer::Options) -> naga::Mo
     let loose = (!scene.root_node().unit_gradient).then(|| {
         point_function(&mut mb, "map_loose", u32t, |b, p| match data {
             // The data form's looseness: the tag's bit (`lower/data.rs`).
-            Some(eval) => {
-                let r = b.call(eval, vec![p]);
-                let bits = b.at(r, 1);
-                let bits = b.bitcast(bits, naga::ScalarKind::Uint);
-                let shift = b.u(31);
-                b.bin(naga::BinaryOperator::ShiftRight, bits, shift)
-            }
+            Some(eval) => data::loose(b, eval, p),
             None => {
                 let l = walk.with_loose(b, scene.root, p);
                 l.unwrap_or_else(|| b.u(0))

@@ -199,11 +199,10 @@ pub fn data(scene: &Scene, tree: &Part, layout: &Layout) -> Result<Data, Why> {
         }
         None => ranges.push([start, 0]),
     }
-    let cells_leaves = leaves;
     Ok(Data {
         words,
         ranges,
-        mean_leaves: cells_leaves as f64 / cells.parts.len().max(1) as f64,
+        mean_leaves: leaves as f64 / cells.parts.len().max(1) as f64,
     })
 }
 

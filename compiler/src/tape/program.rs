@@ -237,7 +237,7 @@ pub fn run(program: &Program, p: DVec3) -> (f64, Option<u32>) {
                 let Some(prim) = program.kinds.get(op.wrapping_sub(LEAF) as usize) else {
                     return (f64::NAN, None);
                 };
-                let rows: Vec<[f64; 4]> = words[pc + 1..pc + 4].to_vec();
+                let rows = &words[pc + 1..pc + 4];
                 let q = DVec3::new(
                     rows[0][0] * p.x + rows[0][1] * p.y + rows[0][2] * p.z + rows[0][3],
                     rows[1][0] * p.x + rows[1][1] * p.y + rows[1][2] * p.z + rows[1][3],

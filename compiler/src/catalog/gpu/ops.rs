@@ -91,6 +91,12 @@ pub fn smooth_subtract(b: &mut FnBuilder, c: &Ctx, p: Ex, child: ChildLower) -> 
 /// helper's three arguments; with them.
 fn blend_term(b: &mut FnBuilder) -> (Ex, Ex, Ex) {
     let (x, y, k) = (b.arg(0), b.arg(1), b.arg(2));
+    (x, y, blend(b, x, y, k))
+}
+
+/// The blend term h²k/4 of IQ's quadratic smooth minimum of `x` and `y` with radius `k`, as the
+/// `op_smooth_*` helpers compute it (the data form's evaluator too: `lower/data.rs`).
+pub(crate) fn blend(b: &mut FnBuilder, x: Ex, y: Ex, k: Ex) -> Ex {
     let diff = b.sub(x, y);
     let diff = b.abs(diff);
     let kd = b.sub(k, diff);
@@ -103,7 +109,7 @@ fn blend_term(b: &mut FnBuilder) -> (Ex, Ex, Ex) {
     let hh = b.mul(h, h);
     let hhk = b.mul(hh, k);
     let quarter = b.f(0.25);
-    (x, y, b.mul(hhk, quarter))
+    b.mul(hhk, quarter)
 }
 
 /// Body of `op_smooth_union(a, b, k)`: min(a, b) − h²k/4.
