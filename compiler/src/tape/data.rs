@@ -42,6 +42,13 @@ pub struct Data {
     pub mean_leaves: f64,
 }
 
+impl Data {
+    /// The bytes of both buffers.
+    pub fn bytes(&self) -> usize {
+        self.words.len() * 16 + self.ranges.len() * 8
+    }
+}
+
 /// Why a scene has no data form.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Why {

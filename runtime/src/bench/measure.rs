@@ -22,6 +22,7 @@ fn compile(
     options.passes = passes > 1;
     options.bounding_volumes = job.bvh;
     options.fixed_offset = job.fixed_offset;
+    options.form = job.form;
     let (module, _) = emit::module(&s, entry, &options).map_err(|e| Error::Compile(e.0))?;
     let plan = match passes {
         0 | 1 => None,

@@ -121,4 +121,6 @@ pub struct Job<'a> {
     pub bvh: sdfc_compiler::lower::tracer::BoundingVolumes,
     /// Start secondary rays a fixed 2·ε_floor off the surface.
     pub fixed_offset: bool,
+    /// How `map` holds the scene (the data form's buffers are set on the GPU beforehand).
+    pub form: sdfc_compiler::lower::tracer::Form,
 }

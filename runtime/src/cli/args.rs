@@ -299,6 +299,10 @@ pub struct BenchArgs {
     /// Measure a shader larger than the driver compiles in reasonable time (as `render`).
     #[arg(long)]
     pub allow_slow_compile: bool,
+    /// How `map` holds the scene (as `render --form`): `data` measures the scene as data,
+    /// pruned per cell, and reports the CPU's pre-pass time.
+    #[arg(long, value_enum, default_value = "inline")]
+    pub form: super::tracer::FormArg,
     #[command(flatten)]
     pub bake: BakeArgs,
 }

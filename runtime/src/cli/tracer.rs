@@ -132,23 +132,16 @@ impl TracerArgs {
         options.fixed_offset = self.fixed_offset;
         if self.form == FormArg::Data {
             data_form_allowed(self.passes, scene)?;
-            if let Err(why) =
-                sdfc_compiler::tape::data::layout(scene, sdfc_compiler::tape::data::CELLS)
-            {
-                return Err(Error::Usage(format!(
-                    "error: `--form data` cannot hold this scene: {}",
-                    sdfc_compiler::tape::data::say(scene, &why)
-                )));
-            }
             options.form = sdfc_compiler::lower::tracer::Form::Data;
         }
         Ok(options)
     }
 }
 
-/// Refuses what the data form cannot do yet: several passes, and shapes whose arguments
-/// follow parameters (the buffers hold the values they were made with).
-fn data_form_allowed(passes: u32, scene: &sdfc_compiler::scene::Scene) -> Result<(), Error> {
+/// Refuses what the data form cannot do yet: several passes, shapes whose arguments follow
+/// parameters (the buffers hold the values they were made with), and nodes it has no data
+/// for (`tape::data::layout` says which).
+pub fn data_form_allowed(passes: u32, scene: &sdfc_compiler::scene::Scene) -> Result<(), Error> {
     use sdfc_compiler::scene::NodeKind;
     if passes > 1 {
         return Err(Error::Usage(
@@ -165,6 +158,12 @@ fn data_form_allowed(passes: u32, scene: &sdfc_compiler::scene::Scene) -> Result
              buffers would keep the values they were made with"
                 .into(),
         ));
+    }
+    if let Err(why) = sdfc_compiler::tape::data::layout(scene, sdfc_compiler::tape::data::CELLS) {
+        return Err(Error::Usage(format!(
+            "error: `--form data` cannot hold this scene: {}",
+            sdfc_compiler::tape::data::say(scene, &why)
+        )));
     }
     Ok(())
 }

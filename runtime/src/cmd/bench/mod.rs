@@ -4,13 +4,13 @@
 use super::common::progress_bar;
 use crate::cli::driver::driver_module;
 use crate::cli::input::{exit_code, load_scene, print_out};
-use crate::cli::tracer::{bounding_volumes, check_passes};
+use crate::cli::tracer::{FormArg, bounding_volumes, check_passes, data_form_allowed};
 use crate::cli::values::parse_size;
 use crate::cli::{BenchArgs, Error};
 use sdfc::bench::{self, Cell, Truth};
 use sdfc::gpu::Gpu;
 use sdfc_compiler::check::tracer::with_overrides;
-use sdfc_compiler::lower::tracer::BoundingVolumes;
+use sdfc_compiler::lower::tracer::{BoundingVolumes, Form};
 use sdfc_compiler::reference::truth;
 use sdfc_compiler::scene::{Scene, Trace};
 use sdfc_compiler::view::View;
@@ -39,9 +39,23 @@ struct Report {
     cells: Vec<Cell>,
     /// `--bake-sweep`: the scene at each resolution, then the `--truth` scene ("analytic").
     sweep: Vec<sweep::Swept>,
+    /// How `map` held the scene: `inline` or `data` (`--form`).
+    form: &'static str,
+    /// The data form: seconds the CPU took to build the scene's buffers (tree, pruning per
+    /// cell, programs) — the pre-pass a parameter change reruns; their size in bytes.
+    prepass: Option<Prepass>,
     target_error: Option<f64>,
     max_mismatch: f64,
     fastest: Option<Cell>,
+}
+
+/// The data form's pre-pass, as measured.
+#[derive(Serialize)]
+struct Prepass {
+    seconds: f64,
+    bytes: usize,
+    cells: usize,
+    mean_leaves: f64,
 }
 
 /// How frames were timed on `gpu`.
@@ -99,6 +113,11 @@ fn bench(args: &BenchArgs) -> Result<(), Error> {
     let mut options = sdfc_compiler::lower::tracer::Options::from_scene(&scene);
     options.bounding_volumes = bvh(args);
     options.fixed_offset = args.fixed_offset;
+    let data = args.form == FormArg::Data;
+    if data {
+        data_form_allowed(args.passes, &scene)?;
+        options.form = Form::Data;
+    }
     driver_module(&scene, &sources, &mut options, args.allow_slow_compile)?;
     let cells = plan(args, &scene)?;
     let gpu = Gpu::new(args.backend.into())?;
@@ -109,6 +128,19 @@ fn bench(args: &BenchArgs) -> Result<(), Error> {
     let bvh_now = options.bounding_volumes;
     let mut measured = Vec::new();
     let mut swept = Vec::new();
+    let mut prepass = None;
+    if data {
+        let clock = std::time::Instant::now();
+        let tape = crate::cli::tape_data(&scene, &scene)?;
+        let seconds = clock.elapsed().as_secs_f64();
+        gpu.set_tape(Some(&tape));
+        prepass = Some(Prepass {
+            seconds,
+            bytes: tape.bytes(),
+            cells: tape.ranges.len(),
+            mean_leaves: tape.mean_leaves,
+        });
+    }
     if sweep.is_empty() {
         // A scene with parameters is measured at their defaults, as its ground truth is.
         gpu.set_scene(&scene);
@@ -144,6 +176,8 @@ fn bench(args: &BenchArgs) -> Result<(), Error> {
         volumes: scene.volumes().iter().map(sweep::Baked::of).collect(),
         cells: measured,
         sweep: swept,
+        form: if data { "data" } else { "inline" },
+        prepass,
         target_error: args.target_error,
         max_mismatch: args.max_mismatch,
         fastest,
@@ -204,6 +238,14 @@ fn check_flags(args: &BenchArgs) -> Result<(), Error> {
         .into());
     }
     Ok(())
+}
+
+/// The form `--form` asks for.
+fn options_form(args: &BenchArgs) -> Form {
+    match args.form {
+        FormArg::Inline => Form::Inline,
+        FormArg::Data => Form::Data,
+    }
 }
 
 /// The trees `--bvh` or `--no-bvh` ask for.
@@ -283,6 +325,7 @@ fn measure(
             reference,
             bvh,
             fixed_offset: args.fixed_offset,
+            form: options_form(args),
         };
         measured.push(bench::measure(gpu, &job)?);
     }
@@ -369,6 +412,15 @@ fn table(r: &Report) -> String {
     );
     if let Some(t) = &r.truth_scene {
         out += &format!("truth: the f64 field of {t}\n");
+    }
+    if let Some(p) = &r.prepass {
+        out += &format!(
+            "form: data — pre-pass on the CPU {:.1} ms, {} cells, {:.1} leaves a cell, {:.1} MiB of buffers\n",
+            p.seconds * 1e3,
+            p.cells,
+            p.mean_leaves,
+            p.bytes as f64 / f64::from(1u32 << 20)
+        );
     }
     if !r.sweep.is_empty() {
         return out + &sweep::table(&r.sweep);
