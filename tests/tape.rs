@@ -195,12 +195,32 @@ fn pruned_trees_equal_the_whole_inside_their_cells() {
                 );
                 points += 1;
             }
+            // Pruned again for a quarter of the cell, from the cell's pruned tree (as the grid's
+            // levels are: `cells::map_grid`): still the whole tree's field in there.
+            let quarter = size / 4.0;
+            let corner = center - DVec3::splat(size / 2.0);
+            let sub = corner
+                + (DVec3::new(r.below(4) as f64, r.below(4) as f64, r.below(4) as f64) + 0.5)
+                    * quarter;
+            let inner = cells::prune(&s, &pruned, sub, quarter * 3f64.sqrt() / 2.0);
+            for _ in 0..10 {
+                let half = DVec3::splat(quarter / 2.0);
+                let p = point(&mut r, sub - half, sub + half);
+                let whole = tape::eval::sample(&s, &tree, p);
+                let part = tape::eval::sample(&s, &inner, p);
+                assert!(
+                    whole.0.to_bits() == part.0.to_bits() && whole.1 == part.1,
+                    "seed {seed} case {case}: at {p} in the sub-cell at {sub} of size {quarter}: \
+                     whole {whole:?}, pruned twice {part:?}\n{source}"
+                );
+                points += 1;
+            }
         }
     }
     report(&format!(
-        "tape: {cases} random trees (seed {seed}), {points} points in random cells: the pruned \
-         tree's value and material equal the whole tree's bit for bit; the cells kept {:.1}% of \
-         the leaves",
+        "tape: {cases} random trees (seed {seed}), {points} points in random cells and their \
+         sub-cells pruned from them: the pruned tree's value and material equal the whole tree's \
+         bit for bit; the cells kept {:.1}% of the leaves",
         100.0 * kept as f64 / leaves as f64
     ));
 }
@@ -318,7 +338,7 @@ fn programs_run_as_their_trees_evaluate() {
         let s = scene("tape.sdf", &source);
         let tree = tape::build(&s).expect("a tree");
         let (lo, hi) = region(&s);
-        let mut kinds = Vec::new();
+        let table = program::Table::new(&s, &tree).expect("a table");
         for cell in 0..4 {
             let (center, size) = (
                 point(&mut r, lo, hi),
@@ -329,8 +349,8 @@ fn programs_run_as_their_trees_evaluate() {
             } else {
                 cells::prune(&s, &tree, center, size * 0.87)
             };
-            let prog = program::encode(&s, &t, &mut kinds).expect("a program");
-            assert_eq!(prog.leaves(), t.leaves());
+            let prog = program::encode(&table, &t).expect("a program");
+            assert_eq!(prog.leaves, t.leaves());
             (words, programs, deepest) = (
                 words + prog.words.len(),
                 programs + 1,
@@ -344,7 +364,7 @@ fn programs_run_as_their_trees_evaluate() {
                     point(&mut r, center - half, center + half)
                 };
                 let (want, want_m) = tape::eval::sample(&s, &t, p);
-                let (got, got_m) = program::run(&prog, p);
+                let (got, got_m) = program::run(&table, &prog, p);
                 assert!(
                     (got - want).abs() <= 1e-12 * (1.0 + want.abs()),
                     "seed {seed} case {case} at {p}: program {got}, tree {want}\n{source}"
@@ -358,7 +378,7 @@ fn programs_run_as_their_trees_evaluate() {
     }
     report(&format!(
         "tape programs: {programs} programs of random trees and cells (seed {seed}) run as their \
-         trees evaluate; {:.0} words (16 bytes) a program, stack at most {deepest}",
+         trees evaluate; {:.0} instructions (4 bytes) a program, stack at most {deepest}",
         words as f64 / programs as f64
     ));
 }
@@ -408,5 +428,61 @@ fn data_form_modules_validate_and_stay_the_same_size() {
     report(&format!(
         "tape: data form WGSL (compute entry) {} bytes for 10 spheres, {} for 1000",
         sizes[0], sizes[1]
+    ));
+}
+
+/// The buffers the host uploads (`data::data`: every cell's program, shared where equal, found
+/// through its range, pruned level by level) give the whole tree's value at random points of
+/// the grid, and the program outside it gives the parts the grid does not hold.
+#[test]
+fn the_data_s_programs_give_the_whole_field_in_every_cell() {
+    use sdfc_compiler::tape::{data, program};
+    let mut r = Rng::new(21);
+    let scenes = [
+        format!("smooth_union(0.03) {{\n{}\n}}\nplane(y, -1.2)", balls(&mut r, 300)),
+        "subtract { box((1.6, 1.2, 1.4))  smooth_union(0.1) { sphere(0.7) at (-0.6, 0, 0)  box((0.8, 0.8, 3)) } }".to_string(),
+    ];
+    let mut said = Vec::new();
+    for source in &scenes {
+        let s = scene("cells.sdf", source);
+        let (tree, layout) = data::layout(&s, None).expect("a data form");
+        let d = data::data(&s, &tree, &layout).expect("its buffers");
+        let table = program::Table::new(&s, &tree).expect("a table");
+        let n = layout.n.map(|k| k as f64);
+        let hi = layout.lo + DVec3::new(n[0], n[1], n[2]) * layout.size;
+        let run = |i: usize, p: DVec3| {
+            let [start, len] = d.ranges[i];
+            let words = d.code[start as usize..(start + len) as usize].to_vec();
+            let code = program::Code {
+                words,
+                leaves: 0,
+                depth: 0,
+            };
+            program::run(&table, &code, p).0
+        };
+        for _ in 0..5000 {
+            let p = point(&mut r, layout.lo, hi);
+            let c = ((p - layout.lo) / layout.size).floor();
+            let i = c.x as usize + layout.n[0] * (c.y as usize + layout.n[1] * c.z as usize);
+            let (got, want) = (run(i, p), tape::eval::value(&s, &tree, p));
+            assert!(
+                (got - want).abs() <= 1e-12 * (1.0 + want.abs()),
+                "at {p} (cell {c}): program {got}, tree {want}\n{source}"
+            );
+        }
+        // Outside the grid, the parts it does not hold (the plane) where there are any.
+        if let Some(outside) = data::outside(&s, &tree) {
+            let p = hi + DVec3::new(0.5, 0.7, 0.3);
+            let want = tape::eval::value(&s, &outside, p);
+            assert!((run(d.ranges.len() - 1, p) - want).abs() <= 1e-12 * (1.0 + want.abs()));
+        }
+        said.push(format!(
+            "{}×{}×{} cells, {:.1} leaves a cell",
+            layout.n[0], layout.n[1], layout.n[2], d.mean_leaves
+        ));
+    }
+    report(&format!(
+        "tape: the data's programs give the field in every cell: {}",
+        said.join("; ")
     ));
 }

@@ -73,9 +73,10 @@ pub const PARAMS_BINDING: u32 = 9;
 /// i of `Scene::volumes` at this + i.
 pub const VOLUME_BINDING: u32 = 16;
 
-/// The data form's buffers (`crate::tape::data`, `lower/data.rs`): the programs' words
-/// (`array<vec4<u32>>`) and each cell's range in them (`array<vec2<u32>>`), read only.
-pub const TAPE_BINDINGS: [u32; 2] = [12, 13];
+/// The data form's buffers (`crate::tape::data`, `lower/data.rs`), read only: the table of
+/// the scene's parts (`array<vec4<u32>>`), the cells' programs (`array<u32>`) and each cell's
+/// range in them (`array<vec2<u32>>`).
+pub const TAPE_BINDINGS: [u32; 3] = [12, 13, 14];
 
 /// Most baked volumes a scene may have: each is a texture every entry reads (WebGPU promises
 /// 16 sampled textures per shader stage).

@@ -57,8 +57,7 @@ fn the_data_form_draws_what_the_inline_form_draws() {
             gpu.set_scene(&scene);
             let data = (form == Form::Data).then(|| {
                 let (tree, layout) =
-                    sdfc_compiler::tape::data::layout(&scene, sdfc_compiler::tape::data::CELLS)
-                        .expect("a data form");
+                    sdfc_compiler::tape::data::layout(&scene, None).expect("a data form");
                 sdfc_compiler::tape::data::data(&scene, &tree, &layout).expect("its buffers")
             });
             gpu.set_tape(data.as_ref());
@@ -96,7 +95,7 @@ fn the_data_form_draws_what_the_inline_form_draws() {
             "{name}: of {pixels} pixels {masks} hit masks, {deep} depths, {colours} colours, {materials} materials differ"
         );
         let b = buffers.expect("buffers");
-        said.push(format!("{name} ({masks}/{deep}/{colours}/{materials} of {pixels} differ; {:.1} leaves a cell, {} KiB)", b.mean_leaves, b.words.len() * 16 / 1024));
+        said.push(format!("{name} ({masks}/{deep}/{colours}/{materials} of {pixels} differ; {:.1} leaves a cell, {} KiB)", b.mean_leaves, b.bytes() / 1024));
     }
     report(&format!(
         "data form against inline (hit mask/depth/colour/material): {}",

@@ -1,13 +1,17 @@
 //! The data form's evaluator (issue 33): `tape_eval(p)` runs the program of the grid cell that
-//! holds `p` (`crate::tape::data`: words and ranges in two storage buffers) with a small stack,
+//! holds `p` (`crate::tape::program`: a table of parts, the cells' programs and their ranges in
+//! three storage buffers) with a running value in registers and a small stack for nested folds,
 //! one `switch` arm per primitive kind the scene uses, and returns vec2(value, tag bits): the
 //! material + 1 and the looseness bit (`program::LOOSE`); `map`, `map_material` and
 //! `map_loose` read it. The code does not grow with the number of parts.
 
+mod join;
+
 use crate::ir::{Arm, Ex, FnBuilder, ModuleBuilder};
 use crate::layout;
 use crate::tape::data::Layout;
-use crate::tape::program::{COMBINE, END, LEAF, LOOSE, MAX_STACK, MOVED, NEGATE};
+use crate::tape::program::{END, FIRST, LOOSE, MATERIAL, MOVED, OFFSET, SPILL};
+use join::{end_tag, flag, fold_in, has_bit, start};
 use naga::{
     AddressSpace, ArraySize, Function, Handle, ScalarKind, StorageAccess, TypeInner, VectorSize,
 };
@@ -21,68 +25,68 @@ pub(super) fn add(mb: &mut ModuleBuilder, layout: &Layout) -> Handle<Function> {
     let read = AddressSpace::Storage {
         access: StorageAccess::LOAD,
     };
-    let words_ty = mb.ty(TypeInner::Array {
-        base: uvec4,
-        size: ArraySize::Dynamic,
-        stride: 16,
-    });
-    let ranges_ty = mb.ty(TypeInner::Array {
-        base: uvec2,
-        size: ArraySize::Dynamic,
-        stride: 8,
-    });
-    let [w, r] = layout::TAPE_BINDINGS;
-    let words = super::globals::global(mb, "tape_words", words_ty, read, w);
-    let ranges = super::globals::global(mb, "tape_ranges", ranges_ty, read, r);
-    let stack = |mb: &mut ModuleBuilder, base| {
-        let size =
-            ArraySize::Constant(std::num::NonZeroU32::new(MAX_STACK as u32).expect("a stack"));
-        let stride = 4;
-        mb.ty(TypeInner::Array { base, size, stride })
+    let array = |mb: &mut ModuleBuilder, base, stride| {
+        mb.ty(TypeInner::Array {
+            base,
+            size: ArraySize::Dynamic,
+            stride,
+        })
     };
-    let (values_ty, tags_ty) = (stack(mb, f32t), stack(mb, u32t));
+    let (nodes_ty, code_ty, ranges_ty) = (
+        array(mb, uvec4, 16),
+        array(mb, u32t, 4),
+        array(mb, uvec2, 8),
+    );
+    let [n, c, r] = layout::TAPE_BINDINGS;
+    let nodes = super::globals::global(mb, "tape_nodes", nodes_ty, read, n);
+    let code = super::globals::global(mb, "tape_code", code_ty, read, c);
+    let ranges = super::globals::global(mb, "tape_ranges", ranges_ty, read, r);
+    // (As deep as the scene's tree needs: none for one fold of leaves.)
+    let stack_ty = |mb: &mut ModuleBuilder, base| {
+        let size = ArraySize::Constant(std::num::NonZeroU32::new(layout.depth as u32)?);
+        let stride = 4;
+        Some(mb.ty(TypeInner::Array { base, size, stride }))
+    };
+    let stack_tys = stack_ty(mb, f32t).zip(stack_ty(mb, u32t));
     let v3 = mb.vec3();
     let v2 = mb.vec(VectorSize::Bi);
-    let kinds: Vec<Handle<Function>> = layout
+    let kinds: Vec<(Handle<Function>, &'static crate::catalog::Primitive)> = layout
         .kinds
         .iter()
-        .map(|k| mb.helper(&format!("sd_{}", k.name)))
+        .map(|k| (mb.helper(&format!("sd_{}", k.name)), *k))
         .collect();
     let mut b = FnBuilder::new(mb, "tape_eval", &[("p", v3)], Some(v2));
     let p = b.arg(0);
-    let words = b.expr(naga::Expression::GlobalVariable(words));
+    let nodes = b.expr(naga::Expression::GlobalVariable(nodes));
+    let code = b.expr(naga::Expression::GlobalVariable(code));
     let ranges = b.expr(naga::Expression::GlobalVariable(ranges));
     let (range, inside) = cell_range(&mut b, layout, ranges, p);
     let start = b.at(range, 0);
     let len = b.at(range, 1);
     let end = b.add(start, len);
-    let value = b.local("value", values_ty, None);
-    let best = b.local("best", values_ty, None);
-    let tag = b.local("tag", tags_ty, None);
-    let zero = b.u(0);
     // An empty program (outside a grid that holds every part) leaves "nothing here".
-    let (v0, t0) = (b.index(value, zero), b.index(tag, zero));
     let far = b.f(crate::ir::FAR);
-    b.store(v0, far);
-    b.store(t0, zero);
-    let sp = b.local("sp", u32t, Some(zero));
+    let zero = b.u(0);
+    let running = [
+        b.local("value", f32t, Some(far)),
+        b.local("best", f32t, Some(far)),
+        b.local("tag", u32t, Some(zero)),
+    ];
+    let stack = stack_tys.map(|(values_ty, tags_ty)| Stack {
+        value: b.local("stack_value", values_ty, None),
+        best: b.local("stack_best", values_ty, None),
+        tag: b.local("stack_tag", tags_ty, None),
+        sp: b.local("sp", u32t, Some(zero)),
+    });
     let pc = b.local("pc", u32t, Some(start));
-    let at = Stack {
-        value,
-        best,
-        tag,
-        sp,
+    let at = Eval {
+        nodes,
+        running,
+        stack,
     };
-    let kinds: Vec<(Handle<Function>, &'static crate::catalog::Primitive)> = kinds
-        .into_iter()
-        .zip(layout.kinds.iter().copied())
-        .collect();
-    b.loop_(|b| instruction(b, at, (words, pc, end), &kinds, p));
-    let first = b.u(0);
-    let v0 = b.index(value, first);
-    let mut v0 = b.load(v0);
-    let t0 = b.index(tag, first);
-    let t0 = b.load(t0);
+    b.loop_(|b| instruction(b, at, (code, pc, end), &kinds, p));
+    let mut v0 = b.load(running[0]);
+    let t0 = b.load(running[2]);
     let t0 = b.bitcast(t0, ScalarKind::Float);
     if let (Some(margin), Some(inside)) = (layout.proxy, inside) {
         let d = proxy(&mut b, layout, p, margin);
@@ -111,7 +115,7 @@ fn tag_bits(b: &mut FnBuilder, eval: Handle<Function>, p: Ex) -> Ex {
 /// `map_material`'s material (+ 1, 0 for none) from the tag.
 pub(super) fn material(b: &mut FnBuilder, eval: Handle<Function>, p: Ex) -> Ex {
     let bits = tag_bits(b, eval, p);
-    let material = b.u(!LOOSE);
+    let material = b.u(MATERIAL);
     b.bin(naga::BinaryOperator::And, bits, material)
 }
 
@@ -122,49 +126,97 @@ pub(super) fn loose(b: &mut FnBuilder, eval: Handle<Function>, p: Ex) -> Ex {
     b.bin(naga::BinaryOperator::ShiftRight, bits, shift)
 }
 
-/// One turn of the evaluator's loop: the instruction at `pc` (below `end`) of `words` run on
-/// the stack, `pc` moved past it; the loop left at `end`.
+/// One turn of the evaluator's loop: the instruction at `pc` (below `end`) of `code` run,
+/// `pc` moved past it; the loop left at `end`.
 fn instruction(
     b: &mut FnBuilder,
-    at: Stack,
-    (words, pc, end): (Ex, Ex, Ex),
+    at: Eval,
+    (code, pc, end): (Ex, Ex, Ex),
     kinds: &[(Handle<Function>, &'static crate::catalog::Primitive)],
     p: Ex,
 ) {
     let here = b.load(pc);
     let done = b.ge(here, end);
     b.break_if(done);
-    let ptr = b.index(words, here);
-    let word = b.load(ptr);
-    let op = b.at(word, 0);
+    let ptr = b.index(code, here);
+    let ins = b.load(ptr);
     let one = b.u(1);
-    let mut cases: Vec<Arm> = vec![
-        (
-            COMBINE,
-            Box::new(move |b: &mut FnBuilder| combine(b, at, word)),
-        ),
-        (NEGATE, Box::new(move |b: &mut FnBuilder| negate(b, at))),
-        (
-            END,
-            Box::new(move |b: &mut FnBuilder| end_fold(b, at, word)),
-        ),
-    ];
-    for (i, &(f, kind)) in kinds.iter().enumerate() {
-        cases.push((
-            LEAF + i as u32,
-            Box::new(move |b: &mut FnBuilder| leaf(b, at, (words, here, word), (f, kind), p)),
-        ));
-    }
-    b.switch_(op, cases, |_| {});
-    // A leaf moves on by its words, anything else by one.
-    let leaf_op = b.u(LEAF);
-    let is_leaf = b.ge(op, leaf_op);
-    let size = b.at(word, 1);
-    let count = b.u(!MOVED);
-    let size = b.bin(naga::BinaryOperator::And, size, count);
-    let step = b.select(is_leaf, size, one);
-    let moved = b.add(here, step);
-    b.store(pc, moved);
+    let next = b.add(here, one);
+    b.store(pc, next);
+    let mask = b.u(OFFSET);
+    let offset = b.bin(naga::BinaryOperator::And, ins, mask);
+    let ptr = b.index(at.nodes, offset);
+    let head = b.load(ptr);
+    let first = has_bit(b, ins, FIRST);
+    let is_end = has_bit(b, ins, END);
+    let factor = b.at(head, 2);
+    let factor = b.bitcast(factor, ScalarKind::Float);
+    let own = b.at(head, 3);
+    b.if_(
+        is_end,
+        |b| {
+            let [v, _, tag] = at.running.map(|r| b.load(r));
+            let v = b.mul(v, factor);
+            let tag = end_tag(b, tag, own, head);
+            let started = |b: &mut FnBuilder| {
+                let x = start(b, (v, tag), head);
+                set(b, at.running, x);
+            };
+            // (Without a stack every fold is a first part.)
+            let Some(stack) = at.stack else {
+                return started(b);
+            };
+            b.if_(first, started, |b| {
+                let sp = b.load(stack.sp);
+                let sp = b.sub(sp, one);
+                b.store(stack.sp, sp);
+                let below = stack.entry(b, sp).map(|e| b.load(e));
+                let x = fold_in(b, below, (v, tag), head);
+                set(b, at.running, x);
+            });
+        },
+        |b| {
+            let d = leaf(b, at.nodes, (offset, head), kinds, p);
+            let v = b.mul(d, factor);
+            b.if_(
+                first,
+                |b| {
+                    if let Some(stack) = at.stack {
+                        let spill = has_bit(b, ins, SPILL);
+                        b.if_(
+                            spill,
+                            |b| {
+                                let sp = b.load(stack.sp);
+                                let to = stack.entry(b, sp);
+                                for (to, from) in to.into_iter().zip(at.running) {
+                                    let x = b.load(from);
+                                    b.store(to, x);
+                                }
+                                b.increment(stack.sp);
+                            },
+                            |_| {},
+                        );
+                    }
+                    let x = start(b, (v, own), head);
+                    set(b, at.running, x);
+                },
+                |b| {
+                    let a = at.running.map(|r| b.load(r));
+                    let x = fold_in(b, a, (v, own), head);
+                    set(b, at.running, x);
+                },
+            );
+        },
+    );
+}
+
+/// What the evaluator's loop works on: the table, the running value (value, best, tag) and
+/// the stack (none where no program needs one).
+#[derive(Clone, Copy)]
+struct Eval {
+    nodes: Ex,
+    running: [Ex; 3],
+    stack: Option<Stack>,
 }
 
 /// The evaluator's stack: pointers to its three arrays and its height.
@@ -174,6 +226,107 @@ struct Stack {
     best: Ex,
     tag: Ex,
     sp: Ex,
+}
+
+impl Stack {
+    /// Pointers to entry `k`'s value, best and tag.
+    fn entry(self, b: &mut FnBuilder, k: Ex) -> [Ex; 3] {
+        [
+            b.index(self.value, k),
+            b.index(self.best, k),
+            b.index(self.tag, k),
+        ]
+    }
+}
+
+/// Stores (value, best, tag) into the running value's three variables.
+fn set(b: &mut FnBuilder, running: [Ex; 3], values: [Ex; 3]) {
+    for (to, v) in running.into_iter().zip(values) {
+        b.store(to, v);
+    }
+}
+
+/// A leaf's raw field: its frame's point (one word if it only moves, else three rows), its
+/// arguments from the words after the frame, `sd_<kind>` by a `switch` on its kind.
+fn leaf(
+    b: &mut FnBuilder,
+    nodes: Ex,
+    (offset, head): (Ex, Ex),
+    kinds: &[(Handle<Function>, &'static crate::catalog::Primitive)],
+    p: Ex,
+) -> Ex {
+    let word = |b: &mut FnBuilder, base: Ex, k: u32| {
+        let k = b.u(k);
+        let at = b.add(base, k);
+        let ptr = b.index(nodes, at);
+        let w = b.load(ptr);
+        b.bitcast(w, ScalarKind::Float)
+    };
+    let v3 = b.m.vec3();
+    let (f32t, u32t) = (b.m.f32(), b.m.u32());
+    let q = b.local("q", v3, None);
+    let args = b.local("args", u32t, None);
+    let moved = flag(b, head, MOVED);
+    b.if_(
+        moved,
+        |b| {
+            let t = word(b, offset, 1);
+            let t = b.swizzle(t, &[0, 1, 2]);
+            let x = b.add(p, t);
+            b.store(q, x);
+            let two = b.u(2);
+            let a = b.add(offset, two);
+            b.store(args, a);
+        },
+        |b| {
+            let mut c = Vec::with_capacity(3);
+            for row in 1..=3 {
+                let r = word(b, offset, row);
+                let m = b.swizzle(r, &[0, 1, 2]);
+                let t = b.at(r, 3);
+                let d = b.dot(m, p);
+                c.push(b.add(d, t));
+            }
+            let x = b.compose_vec3([c[0], c[1], c[2]]);
+            b.store(q, x);
+            let four = b.u(4);
+            let a = b.add(offset, four);
+            b.store(args, a);
+        },
+    );
+    let far = b.f(crate::ir::FAR);
+    let d = b.local("d", f32t, Some(far));
+    let kind = b.at(head, 0);
+    let low = b.u(0xff);
+    let kind = b.bin(naga::BinaryOperator::And, kind, low);
+    let mut cases: Vec<Arm> = Vec::with_capacity(kinds.len());
+    for (i, &(f, prim)) in kinds.iter().enumerate() {
+        cases.push((
+            i as u32,
+            Box::new(move |b: &mut FnBuilder| {
+                let point = b.load(q);
+                let base = b.load(args);
+                let mut call = vec![point];
+                for (j, param) in prim.params.iter().enumerate() {
+                    let w = word(b, base, j as u32);
+                    call.push(match param.ty {
+                        crate::catalog::Ty::Count
+                        | crate::catalog::Ty::CountTo(_)
+                        | crate::catalog::Ty::WholeIn(..) => {
+                            let x = b.at(w, 0);
+                            b.cast(x, ScalarKind::Uint)
+                        }
+                        ty if crate::tape::program::vector(ty) => b.swizzle(w, &[0, 1, 2]),
+                        _ => b.at(w, 0),
+                    });
+                }
+                let x = b.call(f, call);
+                b.store(d, x);
+            }),
+        ));
+    }
+    b.switch_(kind, cases, |_| {});
+    b.load(d)
 }
 
 /// The distance from `p` to the grid's box plus `margin`: outside it, a distance bound for the
@@ -233,159 +386,4 @@ fn cell_range(b: &mut FnBuilder, layout: &Layout, ranges: Ex, p: Ex) -> (Ex, Opt
     let index = b.select(inside, index, total);
     let ptr = b.index(ranges, index);
     (b.load(ptr), Some(inside))
-}
-
-/// The index of the entry `depth` below the stack's top (1: the top).
-fn below_top(b: &mut FnBuilder, s: Stack, depth: u32) -> Ex {
-    let sp = b.load(s.sp);
-    let d = b.u(depth);
-    b.sub(sp, d)
-}
-
-/// The stack's entry `k` (three pointers).
-fn entry(b: &mut FnBuilder, s: Stack, k: Ex) -> [Ex; 3] {
-    [b.index(s.value, k), b.index(s.best, k), b.index(s.tag, k)]
-}
-
-/// Pushes a value with its material bits.
-fn push(b: &mut FnBuilder, s: Stack, value: Ex, tag: Ex) {
-    let sp = b.load(s.sp);
-    let [v, bst, t] = entry(b, s, sp);
-    b.store(v, value);
-    b.store(bst, value);
-    b.store(t, tag);
-    b.increment(s.sp);
-}
-
-/// `COMBINE`: the top (a child, negated if flagged) folded into the entry below.
-fn combine(b: &mut FnBuilder, s: Stack, word: Ex) {
-    let (one, two) = (b.u(1), b.u(2));
-    let top = below_top(b, s, 1);
-    let below = below_top(b, s, 2);
-    let [cv, _, ct] = entry(b, s, top);
-    let (cv, ct) = (b.load(cv), b.load(ct));
-    let [av, ab, at] = entry(b, s, below);
-    let (a, a_best, a_tag) = (b.load(av), b.load(ab), b.load(at));
-    let flags = b.at(word, 1);
-    let largest = b.bin(naga::BinaryOperator::And, flags, one);
-    let largest = b.bin(naga::BinaryOperator::Equal, largest, one);
-    let negate = b.bin(naga::BinaryOperator::And, flags, two);
-    let negate = b.bin(naga::BinaryOperator::Equal, negate, two);
-    let minus = b.neg(cv);
-    let v = b.select(negate, minus, cv);
-    let k = b.at(word, 2);
-    let k = b.bitcast(k, ScalarKind::Float);
-    // IQ's quadratic smooth minimum and maximum as `op_smooth_union` and `op_smooth_intersect`
-    // compute them, operation for operation; at k = 0 the blend term is 0 and they are min and
-    // max.
-    let term = crate::catalog::gpu::ops::blend(b, a, v, k);
-    let (m, big) = (b.min(a, v), b.max(a, v));
-    let lo = b.sub(m, term);
-    let hi = b.add(big, term);
-    let value = b.select(largest, hi, lo);
-    let nearer = b.lt(v, a_best);
-    let farther = b.gt(v, a_best);
-    let better = b.select(largest, farther, nearer);
-    let best = b.select(better, v, a_best);
-    // The material of the better; loose as the nearest is for a minimum, and where either is
-    // for a maximum (more than `eval::loose` says: a hit confirmed where it need not be).
-    let picked = b.select(better, ct, a_tag);
-    let loose_bit = b.u(LOOSE);
-    let either = b.bin(naga::BinaryOperator::InclusiveOr, ct, a_tag);
-    let either = b.bin(naga::BinaryOperator::And, either, loose_bit);
-    let with_either = b.bin(naga::BinaryOperator::InclusiveOr, picked, either);
-    let tag = b.select(largest, with_either, picked);
-    b.store(av, value);
-    b.store(ab, best);
-    b.store(at, tag);
-    b.store(s.sp, top);
-}
-
-/// `NEGATE`: the top's value negated.
-fn negate(b: &mut FnBuilder, s: Stack) {
-    let top = below_top(b, s, 1);
-    let [v, bst, _] = entry(b, s, top);
-    let x = b.load(v);
-    let x = b.neg(x);
-    b.store(v, x);
-    b.store(bst, x);
-}
-
-/// `END`: the fold's result times its factor, its material where it picked none.
-fn end_fold(b: &mut FnBuilder, s: Stack, word: Ex) {
-    let top = below_top(b, s, 1);
-    let [v, bst, t] = entry(b, s, top);
-    let factor = b.at(word, 2);
-    let factor = b.bitcast(factor, ScalarKind::Float);
-    let x = b.load(v);
-    let x = b.mul(x, factor);
-    b.store(v, x);
-    b.store(bst, x);
-    let own = b.at(word, 3);
-    let tag = b.load(t);
-    let loose_bit = b.u(LOOSE);
-    let material_bits = b.u(!LOOSE);
-    let picked = b.bin(naga::BinaryOperator::And, tag, material_bits);
-    let given = b.bin(naga::BinaryOperator::And, own, material_bits);
-    let zero = b.u(0);
-    let has = b.bin(naga::BinaryOperator::NotEqual, picked, zero);
-    let material = b.select(has, picked, given);
-    let loose = b.bin(naga::BinaryOperator::InclusiveOr, tag, own);
-    let loose = b.bin(naga::BinaryOperator::And, loose, loose_bit);
-    let tag = b.bin(naga::BinaryOperator::InclusiveOr, material, loose);
-    b.store(t, tag);
-}
-
-/// A leaf: its frame's point, its arguments from the words after the header, `sd_<kind>`.
-fn leaf(
-    b: &mut FnBuilder,
-    s: Stack,
-    (words, here, header): (Ex, Ex, Ex),
-    (f, kind): (Handle<Function>, &'static crate::catalog::Primitive),
-    p: Ex,
-) {
-    let word = |b: &mut FnBuilder, k: u32| {
-        let offset = b.u(k);
-        let at = b.add(here, offset);
-        let ptr = b.index(words, at);
-        let w = b.load(ptr);
-        b.bitcast(w, ScalarKind::Float)
-    };
-    let mut q = Vec::with_capacity(3);
-    let mut t = Vec::with_capacity(3);
-    for row in 1..=3 {
-        let r = word(b, row);
-        let m = b.swizzle(r, &[0, 1, 2]);
-        t.push(b.at(r, 3));
-        let d = b.dot(m, p);
-        q.push(b.add(d, t[row as usize - 1]));
-    }
-    let turned = b.compose_vec3([q[0], q[1], q[2]]);
-    let offset = b.compose_vec3([t[0], t[1], t[2]]);
-    let moved = b.add(p, offset);
-    let count = b.at(header, 1);
-    let flag = b.u(MOVED);
-    let only = b.bin(naga::BinaryOperator::And, count, flag);
-    let only = b.bin(naga::BinaryOperator::Equal, only, flag);
-    let q = b.select(only, moved, turned);
-    let mut args = vec![q];
-    for (i, param) in kind.params.iter().enumerate() {
-        let w = word(b, 4 + i as u32);
-        args.push(match param.ty {
-            crate::catalog::Ty::Count
-            | crate::catalog::Ty::CountTo(_)
-            | crate::catalog::Ty::WholeIn(..) => {
-                let x = b.at(w, 0);
-                b.cast(x, ScalarKind::Uint)
-            }
-            ty if crate::tape::program::vector(ty) => b.swizzle(w, &[0, 1, 2]),
-            _ => b.at(w, 0),
-        });
-    }
-    let d = b.call(f, args);
-    let factor = b.at(header, 2);
-    let factor = b.bitcast(factor, ScalarKind::Float);
-    let d = b.mul(d, factor);
-    let tag = b.at(header, 3);
-    push(b, s, d, tag);
 }

@@ -74,7 +74,7 @@ pub fn lower(scene: &Scene, entry: Entry, options: &tracer::Options) -> naga::Mo
     let f32t = mb.f32();
     // The data form's evaluator, where asked for and the scene has one.
     let data = (options.form == tracer::Form::Data)
-        .then(|| crate::tape::data::layout(scene, crate::tape::data::CELLS).ok())
+        .then(|| crate::tape::data::layout(scene, None).ok())
         .flatten()
         .map(|(_, layout)| data::add(&mut mb, &layout));
     let map = point_function(&mut mb, "map", f32t, |b, p| match data {

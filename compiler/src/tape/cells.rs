@@ -99,6 +99,46 @@ pub fn keep(way: Way, k: f64, bounds: &[(f64, f64)]) -> Vec<usize> {
     kept
 }
 
+/// Cells a side of the coarser grid a fine one is pruned from (see [`map_grid`]).
+const SPLIT: usize = 4;
+
+/// `made` of each cell's tree for the grid from `lo` of `n` cells of edge `size`, x fastest
+/// (the fine cells' trees are not kept: a grid of millions of cells holds only what `made`
+/// makes of them). Pruned hierarchically, as the paper does (§4.2): where the grid is larger
+/// than `2 · SPLIT` cells a side, each cell is pruned from the tree of the coarser cell,
+/// `SPLIT` cells a side, that holds it — that tree equals the whole one inside the coarse
+/// cell, so inside the fine one too, and its children's values there are the whole
+/// children's — so the work per fine cell is the parts its coarse cell kept, not all of them.
+pub fn map_grid<R: Send>(
+    scene: &Scene,
+    part: &Part,
+    (lo, size, n): (DVec3, f64, [usize; 3]),
+    made: impl Fn(Part) -> R + Sync,
+) -> Vec<R> {
+    let radius = size * 3f64.sqrt() / 2.0;
+    let cells: Vec<usize> = (0..n[0] * n[1] * n[2]).collect();
+    let at = |i: usize| [i % n[0], (i / n[0]) % n[1], i / (n[0] * n[1])];
+    let center =
+        |[x, y, z]: [usize; 3]| lo + (DVec3::new(x as f64, y as f64, z as f64) + 0.5) * size;
+    if n.iter().all(|&k| k <= 2 * SPLIT) {
+        return crate::parallel::par_map(&cells, |&i| {
+            made(prune(scene, part, center(at(i)), radius))
+        });
+    }
+    let up = n.map(|k| k.div_ceil(SPLIT));
+    let coarse = map_grid(
+        scene,
+        part,
+        (lo, size * SPLIT as f64, up),
+        std::convert::identity,
+    );
+    crate::parallel::par_map(&cells, |&i| {
+        let [x, y, z] = at(i);
+        let parent = &coarse[x / SPLIT + up[0] * (y / SPLIT + up[1] * (z / SPLIT))];
+        made(prune(scene, parent, center([x, y, z]), radius))
+    })
+}
+
 /// A grid of cells over a box, each with its pruned tree.
 pub struct Cells {
     /// The box's lowest corner.
@@ -115,16 +155,7 @@ impl Cells {
     /// The scene's tree pruned for each cube of edge `size` of the grid from `lo` with `n`
     /// cells along each axis.
     pub fn new(scene: &Scene, part: &Part, lo: DVec3, size: f64, n: [usize; 3]) -> Cells {
-        let radius = size * 3f64.sqrt() / 2.0;
-        let count = n[0] * n[1] * n[2];
-        let parts = crate::parallel::par_map(&(0..count).collect::<Vec<_>>(), |&i| {
-            let cell = DVec3::new(
-                (i % n[0]) as f64,
-                ((i / n[0]) % n[1]) as f64,
-                (i / (n[0] * n[1])) as f64,
-            );
-            prune(scene, part, lo + (cell + 0.5) * size, radius)
-        });
+        let parts = map_grid(scene, part, (lo, size, n), std::convert::identity);
         Cells { lo, size, n, parts }
     }
 

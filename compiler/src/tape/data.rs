@@ -1,23 +1,36 @@
-//! What the data form's shader reads (issue 33 §1–2): the program of every cell of a grid over
-//! the scene, concatenated in one buffer of words, each cell's range in a second buffer, and a
-//! last range for points outside the grid (the whole tree). The [`Layout`] — the primitive kinds'
-//! opcodes and the grid — is compiled into the shader; the [`Data`] is the host's to upload, and
-//! to make again when parameters change.
+//! What the data form's shader reads (issue 33 §1–2): the table of the scene's parts, the
+//! program of every cell of a grid over the scene (one u32 a part it evaluates) concatenated in
+//! a second buffer, each cell's range in a third, and a last range for points outside the grid.
+//! The [`Layout`] — the primitive kinds and the grid — is compiled into the shader; the [`Data`]
+//! is the host's to upload, and to make again when parameters change.
 
-use super::cells::Cells;
-use super::program::{self, Program, Refused};
+use super::cells::map_grid;
+use super::program::{self, Code, Refused, Table};
 use super::{Part, Unsupported};
 use crate::catalog::Primitive;
 use crate::scene::Scene;
 use glam::DVec3;
 
-/// Cells along the grid's longest side, by default.
-pub const CELLS: usize = 32;
+/// The fewest and the most cells along the grid's longest side.
+pub const CELLS: (usize, usize) = (8, 128);
+
+/// Cells the grid has for every leaf, about (see [`cells_for`]).
+const CELLS_PER_LEAF: f64 = 256.0;
+
+/// Cells along the grid's longest side for a tree of `leaves` leaves: about
+/// [`CELLS_PER_LEAF`] cells a leaf, within [`CELLS`]. Measured on 1000 smoothly blended
+/// spheres (`docs/data-form.md`): 32 cells a side keep 13 leaves a cell, 64 keep 5.7, 128 keep
+/// 3.2, and a frame's trace takes 97, 53 and 49 ms; the pre-pass and the buffers grow with the
+/// cells.
+pub fn cells_for(leaves: usize) -> usize {
+    let side = (CELLS_PER_LEAF * leaves as f64).cbrt().round() as usize;
+    side.clamp(CELLS.0, CELLS.1)
+}
 
 /// What the shader is compiled with: the opcodes' kinds and the grid.
 #[derive(Clone, Debug)]
 pub struct Layout {
-    /// The primitive kinds, in opcode order (`program::LEAF + i`).
+    /// The primitive kinds, in the order the table's heads number them.
     pub kinds: Vec<&'static Primitive>,
     /// The grid's lowest corner.
     pub lo: DVec3,
@@ -25,27 +38,33 @@ pub struct Layout {
     pub size: f64,
     /// Cells along x, y and z (0 cells: no grid, every point runs the whole program).
     pub n: [usize; 3],
+    /// The deepest stack a program needs (the whole tree's; a pruned one needs no more): the
+    /// shader's stack has this many entries, none for a single fold of leaves.
+    pub depth: usize,
     /// Where the parts left out of the program outside the grid lie at least this far inside
     /// it: outside, the distance to the grid's box plus this is a distance bound for them, the
     /// proxy the evaluator takes the smaller of with that program (none: nothing is left out).
     pub proxy: Option<f64>,
 }
 
-/// The buffers: programs and ranges.
+/// The buffers: the parts, the programs and their ranges.
 #[derive(Clone, Debug)]
 pub struct Data {
-    /// Every cell's program, then the whole tree's: words as the shader reads them.
-    pub words: Vec<[u32; 4]>,
-    /// Each cell's program (first word, words), x fastest, then y, then z; then the whole's.
+    /// The table of the tree's parts (`program::Table`), as the shader reads it.
+    pub nodes: Vec<[u32; 4]>,
+    /// Every cell's program, then the one outside the grid.
+    pub code: Vec<u32>,
+    /// Each cell's program (first instruction, count), x fastest, then y, then z; then the
+    /// one outside the grid.
     pub ranges: Vec<[u32; 2]>,
     /// The mean leaves a cell's program evaluates.
     pub mean_leaves: f64,
 }
 
 impl Data {
-    /// The bytes of both buffers.
+    /// The bytes of the three buffers.
     pub fn bytes(&self) -> usize {
-        self.words.len() * 16 + self.ranges.len() * 8
+        self.nodes.len() * 16 + self.code.len() * 4 + self.ranges.len() * 8
     }
 }
 
@@ -58,15 +77,16 @@ pub enum Why {
     Program(Refused),
 }
 
-/// The scene's tree and layout, `cells` along the longest side of the box the scene's finite
-/// parts lie in.
-pub fn layout(scene: &Scene, cells: usize) -> Result<(Part, Layout), Why> {
+/// The scene's tree and layout, `cells` (by default [`cells_for`] its leaves) along the
+/// longest side of the box the scene's finite parts lie in.
+pub fn layout(scene: &Scene, cells: Option<usize>) -> Result<(Part, Layout), Why> {
     let tree = super::build(scene).map_err(Why::Node)?;
-    let mut kinds = Vec::new();
-    program::encode(scene, &tree, &mut kinds).map_err(Why::Program)?;
+    let table = Table::new(scene, &tree).map_err(Why::Program)?;
+    let whole = program::encode(&table, &tree).map_err(Why::Program)?;
     let (lo, size, n, proxy) = match finite_box(scene, &tree) {
         Some((lo, hi, grow)) => {
-            let size = (hi - lo).max_element() / cells.max(1) as f64;
+            let cells = cells.unwrap_or_else(|| cells_for(tree.leaves())).max(1);
+            let size = (hi - lo).max_element() / cells as f64;
             let n = ((hi - lo) / size).ceil().max(DVec3::ONE);
             let proxy = outside(scene, &tree).is_none_or(|o| o.leaves() < tree.leaves());
             let n = [n.x as usize, n.y as usize, n.z as usize];
@@ -75,10 +95,11 @@ pub fn layout(scene: &Scene, cells: usize) -> Result<(Part, Layout), Why> {
         None => (DVec3::ZERO, 1.0, [0; 3], None),
     };
     let layout = Layout {
-        kinds,
+        kinds: table.kinds,
         lo,
         size,
         n,
+        depth: whole.depth,
         proxy,
     };
     Ok((tree, layout))
@@ -171,21 +192,21 @@ fn leaves(part: &Part, f: &mut impl FnMut(&Part)) {
 /// The buffers for `tree` on `layout`'s grid: each cell's pruned program, then the whole's.
 pub fn data(scene: &Scene, tree: &Part, layout: &Layout) -> Result<Data, Why> {
     let [nx, ny, nz] = layout.n;
-    let cells = Cells::new(scene, tree, layout.lo, layout.size, [nx, ny, nz]);
-    let mut words = Vec::new();
-    let mut ranges = Vec::with_capacity(cells.parts.len() + 1);
-    let mut kinds = layout.kinds.clone();
+    let table = Table::new(scene, tree).map_err(Why::Program)?;
+    let grid = (layout.lo, layout.size, [nx, ny, nz]);
+    let codes = map_grid(scene, tree, grid, |part| program::encode(&table, &part));
+    let count = codes.len();
+    let mut code = Vec::new();
+    let mut ranges = Vec::with_capacity(count + 1);
     let mut leaves = 0;
-    // Cells with the same program (neighbours that keep the same parts) share its words.
-    let mut seen: std::collections::HashMap<Vec<[u32; 4]>, [u32; 2]> =
-        std::collections::HashMap::new();
-    for part in &cells.parts {
-        let p: Program = program::encode(scene, part, &mut kinds).map_err(Why::Program)?;
-        leaves += p.leaves();
-        let gpu = p.to_gpu();
-        let range = *seen.entry(gpu).or_insert_with_key(|gpu| {
-            let range = [words.len() as u32, gpu.len() as u32];
-            words.extend_from_slice(gpu);
+    // Cells with the same program (neighbours that keep the same parts) share it.
+    let mut seen: std::collections::HashMap<Vec<u32>, [u32; 2]> = std::collections::HashMap::new();
+    for p in codes {
+        let p: Code = p.map_err(Why::Program)?;
+        leaves += p.leaves;
+        let range = *seen.entry(p.words).or_insert_with_key(|words| {
+            let range = [code.len() as u32, words.len() as u32];
+            code.extend_from_slice(words);
             range
         });
         ranges.push(range);
@@ -197,19 +218,20 @@ pub fn data(scene: &Scene, tree: &Part, layout: &Layout) -> Result<Data, Why> {
         (_, Some(o)) => Some(o),
         (None, None) => Some(tree.clone()),
     };
-    let start = words.len() as u32;
+    let start = code.len() as u32;
     match beyond {
         Some(part) => {
-            let p = program::encode(scene, &part, &mut kinds).map_err(Why::Program)?;
+            let p = program::encode(&table, &part).map_err(Why::Program)?;
             ranges.push([start, p.words.len() as u32]);
-            words.extend(p.to_gpu());
+            code.extend(p.words);
         }
         None => ranges.push([start, 0]),
     }
     Ok(Data {
-        words,
+        nodes: table.to_gpu(),
+        code,
         ranges,
-        mean_leaves: leaves as f64 / cells.parts.len().max(1) as f64,
+        mean_leaves: leaves as f64 / count.max(1) as f64,
     })
 }
 
@@ -228,5 +250,9 @@ pub fn say(scene: &Scene, why: &Why) -> String {
         Why::Program(Refused::NotPrimitive | Refused::WordArgument) => {
             "a part has an argument the data cannot carry".to_string()
         }
+        Why::Program(Refused::TooLarge) => format!(
+            "its parts need more than {} words of data, what a program can address",
+            program::OFFSET
+        ),
     }
 }

@@ -62,6 +62,9 @@ pub struct Part {
     pub kind: PartKind,
     /// The scene node it stands for (the primitive, or the fold's operator).
     pub node: NodeId,
+    /// Its place in the whole tree, in pre-order (a pruned tree keeps its parts' numbers: they
+    /// name their entries in the program's table, `program::Table`).
+    pub id: usize,
     /// World points to the node's own point.
     pub frame: Frame,
     /// How far the node's point moves when the world point moves by 1 (the frame's scales).
@@ -99,6 +102,16 @@ pub enum PartKind {
 }
 
 impl Part {
+    /// The number of parts in it, itself included (its ids run from its own to its own + this).
+    pub fn size(&self) -> usize {
+        match &self.kind {
+            PartKind::Leaf => 1,
+            PartKind::Fold { children, .. } => {
+                1 + children.iter().map(|(c, _)| c.size()).sum::<usize>()
+            }
+        }
+    }
+
     /// The number of leaves (primitive evaluations) the part makes.
     pub fn leaves(&self) -> usize {
         match &self.kind {
@@ -131,7 +144,20 @@ pub fn build(scene: &Scene) -> Result<Part, Unsupported> {
         proven: true,
         loose: false,
     };
-    part(scene, scene.root, at)
+    let mut tree = part(scene, scene.root, at)?;
+    number(&mut tree, &mut 0);
+    Ok(tree)
+}
+
+/// Numbers `part` and everything in it in pre-order from `next`.
+fn number(part: &mut Part, next: &mut usize) {
+    part.id = *next;
+    *next += 1;
+    if let PartKind::Fold { children, .. } = &mut part.kind {
+        for (c, _) in children {
+            number(c, next);
+        }
+    }
 }
 
 /// Where a part is and how its parent sees it (the fields of [`Part`] of those names), as the
@@ -166,6 +192,7 @@ fn part(scene: &Scene, id: NodeId, at: At) -> Result<Part, Unsupported> {
         NodeKind::Primitive { prim, .. } => Ok(Part {
             kind: PartKind::Leaf,
             node: id,
+            id: 0,
             frame: at.frame,
             zoom: at.zoom,
             factor: at.factor,
@@ -230,6 +257,7 @@ fn fold(
             children: parts,
         },
         node: id,
+        id: 0,
         frame: at.frame,
         zoom: at.zoom,
         factor: at.factor,

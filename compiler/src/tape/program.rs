@@ -1,46 +1,88 @@
-//! A part tree as the shader will read it: a post-order program of four-number words (one
-//! `vec4<f32>` each on the GPU), run with a small stack by a generic evaluator — the form whose
-//! code does not grow with the scene, only with the kinds of primitive it uses (issue 33 §1).
-//! [`run`] is that evaluator in f64, the reference the shader's must match.
+//! A part tree as the shader reads it (issue 33 §1): a [`Table`] of the whole tree's parts —
+//! each leaf's primitive kind, frame and arguments, each fold's factor and material, and how
+//! each part enters its parent fold — and, per cell, a [`Code`] of one u32 per part its pruned
+//! tree evaluates, in post-order. A generic evaluator runs it with a running value in
+//! registers and a small stack for nested folds; [`run`] is that evaluator in f64, the
+//! reference the shader's must match. Parts are stored once, so a cell's program costs four
+//! bytes a part, not the part's words (Barbier, Sanchez et al. 2025 keep per-cell lists of
+//! active nodes the same way).
 //!
-//! Instructions (the first word's x is the opcode as bits of a u32):
+//! A part's entry in the table (words of four numbers; a field that is a u32 is its bits):
 //!
-//! - `LEAF + kind`: `[op, words, factor, tag]` (tag: material + 1 or 0, and [`LOOSE`]), three
-//!   words of the frame's rows
-//!   (`m` row i in xyz, `t` component i in w), then one word per argument (a number in x, a
-//!   vector in xyz). Pushes the primitive's field at the frame's point times the factor.
-//! - `COMBINE`: `[op, flags, k, 0]` (flags: 1 = largest, 2 = negate the top first): pops the
-//!   top (a child) and combines it into the one below (the fold's running result), picking the
-//!   material as the fold does.
-//! - `NEGATE`: `[op, 0, 0, 0]`: the top's value negated (a fold's first child, negated).
-//! - `END`: `[op, 0, factor, tag]`: the fold's result seen by its parent; its material where
-//!   it picked none, loose where it or what it picked is.
+//! - head `[kind | flags << 8, k, factor, tag]`: `kind` the leaf's primitive kind (its index in
+//!   [`Table::kinds`]); flags [`LARGEST`] (the parent fold keeps the larger value), [`NEGATED`]
+//!   (the parent negates this part), for a leaf [`MOVED`] (its frame only moves), for a fold
+//!   [`OWN_LARGEST`] (it keeps the larger value itself); `k` the
+//!   parent's blend radius; `factor` what the part's raw value is multiplied by; `tag` its
+//!   material + 1 (0 for none) and [`LOOSE`].
+//! - a leaf's frame: one word `[t, 0]` if it only moves (applied as p + t, as the inline form's
+//!   p − offset, to the bit), else three words, `m`'s row i in xyz and `t` component i in w;
+//!   then one word per argument (a number in x, a vector in xyz).
+//!
+//! An instruction is a part's word offset in the table, with [`END`] for a fold (its children
+//! came before it) and [`FIRST`] for the first child its fold keeps. A first part starts its
+//! fold's running value; a later one is combined into it; a later fold's end combines its
+//! result into the value it takes off the stack, which the first leaf under it put there
+//! ([`SPILL`]). A tree of one fold of leaves needs no stack at all.
 
 use super::{Part, PartKind, Way};
 use crate::catalog::{Ctx, Primitive, Ty, Val};
 use crate::scene::{NodeKind, Scene};
 use glam::DVec3;
 
-/// Opcode of a fold's combination step.
-pub const COMBINE: u32 = 1;
-/// Opcode negating the top value.
-pub const NEGATE: u32 = 2;
-/// Opcode ending a fold.
-pub const END: u32 = 3;
-/// Opcode of the first primitive kind; kind `i` of [`Program::kinds`] is `LEAF + i`.
-pub const LEAF: u32 = 16;
-/// The bit of a leaf's word count that says its frame only moves (`m` is the identity).
-pub const MOVED: u32 = 1 << 30;
+/// An instruction's bit: the part is a fold, whose children are done.
+pub const END: u32 = 1 << 31;
+/// An instruction's bit: the part is the first its fold keeps.
+pub const FIRST: u32 = 1 << 30;
+/// An instruction's bit: the leaf (a first one) puts the running value on the stack first,
+/// for the later fold above it that will take it back at its end.
+pub const SPILL: u32 = 1 << 29;
+/// The bits of an instruction that hold the part's word offset.
+pub const OFFSET: u32 = SPILL - 1;
+/// A head's flag: the parent fold keeps the larger value.
+pub const LARGEST: u32 = 1;
+/// A head's flag: the parent fold negates this part (a subtraction's cutters).
+pub const NEGATED: u32 = 2;
+/// A head's flag: the leaf's frame only moves (`m` is the identity; one frame word).
+pub const MOVED: u32 = 4;
+/// A head's flag: the fold itself keeps the larger value (an intersection or a cut), so its
+/// end decides looseness by [`ALL_LOOSE`] and [`OUT_LOOSE`].
+pub const OWN_LARGEST: u32 = 8;
+/// The shift of a head's flags above its kind.
+pub const FLAGS_SHIFT: u32 = 8;
 /// The deepest stack a program may need (the shader's arrays have this many entries).
 pub const MAX_STACK: usize = 16;
+/// The bit of a tag that says the part is loose (its hit needs confirming); the rest is the
+/// material + 1, or 0 for none.
+pub const LOOSE: u32 = 1 << 31;
+/// A running tag's bit while a largest fold runs: every child so far is loose.
+pub const ALL_LOOSE: u32 = 1 << 30;
+/// A running tag's bit while a largest fold runs: a loose child is positive where it is (the
+/// point is outside it, as the fold sees it).
+pub const OUT_LOOSE: u32 = 1 << 29;
+/// The bits of a tag that hold the material + 1. At a largest fold's end, the fold is loose
+/// where every child is or a loose child is positive — `MatRule::pick_loose`, as the inline
+/// form decides it — over the children its cell kept.
+pub const MATERIAL: u32 = !(LOOSE | ALL_LOOSE | OUT_LOOSE);
 
-/// A program and what runs it needs.
+/// Every part of a tree, stored once.
 #[derive(Clone, Debug)]
-pub struct Program {
+pub struct Table {
     /// The words, four numbers each (bits of a u32 where a field is one).
     pub words: Vec<[f64; 4]>,
-    /// The primitive kinds its leaves use, in opcode order.
+    /// Each part's first word, by its id.
+    pub at: Vec<u32>,
+    /// The primitive kinds its leaves use, in the order their heads number them.
     pub kinds: Vec<&'static Primitive>,
+}
+
+/// One cell's program.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub struct Code {
+    /// The instructions.
+    pub words: Vec<u32>,
+    /// The leaves it evaluates (primitive evaluations per point).
+    pub leaves: usize,
     /// The deepest its stack gets.
     pub depth: usize,
 }
@@ -54,6 +96,8 @@ pub enum Refused {
     NotPrimitive,
     /// A primitive has an argument that is a word, not a number.
     WordArgument,
+    /// The table would need more words than an instruction can address.
+    TooLarge,
 }
 
 /// A u32 as a word's number (its bits, as the shader reads them with `bitcast`).
@@ -66,98 +110,147 @@ fn unbits(x: f64) -> u32 {
     (x as f32).to_bits()
 }
 
-/// `part` (of `scene`) as a program; `kinds` the primitive kinds opcodes already name (shared
-/// by every cell's program of one scene), extended with new ones.
-pub fn encode(
-    scene: &Scene,
-    part: &Part,
-    kinds: &mut Vec<&'static Primitive>,
-) -> Result<Program, Refused> {
-    let mut words = Vec::new();
-    let depth = emit(scene, part, kinds, &mut words)?;
-    if depth > MAX_STACK {
-        return Err(Refused::TooDeep(depth));
-    }
-    Ok(Program {
-        words,
-        kinds: kinds.clone(),
-        depth,
-    })
-}
-
-/// The bit of a tag that says the part is loose (its hit needs confirming); the rest is the
-/// material + 1, or 0 for none.
-pub const LOOSE: u32 = 1 << 31;
-
 /// A part's tag word: its material + 1 (0: none) and its looseness bit.
 fn tag_of(part: &Part) -> f64 {
     let m = part.material.map_or(0, |m| m + 1);
     bits(m | if part.loose { LOOSE } else { 0 })
 }
 
-/// Appends `part`'s instructions; returns the stack depth they reach.
+impl Table {
+    /// The table of `tree` (of `scene`), whose parts are numbered `0..tree.size()`.
+    pub fn new(scene: &Scene, tree: &Part) -> Result<Table, Refused> {
+        let mut table = Table {
+            words: Vec::new(),
+            at: vec![0; tree.size()],
+            kinds: Vec::new(),
+        };
+        table.add(scene, tree, (Way::Min, 0.0, false))?;
+        if table.words.len() > OFFSET as usize {
+            return Err(Refused::TooLarge);
+        }
+        Ok(table)
+    }
+
+    /// Adds `part` and everything in it; `(way, k, negated)`: how its parent takes it.
+    fn add(
+        &mut self,
+        scene: &Scene,
+        part: &Part,
+        (way, k, negated): (Way, f64, bool),
+    ) -> Result<(), Refused> {
+        let flags = (u32::from(way == Way::Max) * LARGEST) | (u32::from(negated) * NEGATED);
+        self.at[part.id] = self.words.len() as u32;
+        match &part.kind {
+            PartKind::Leaf => {
+                let NodeKind::Primitive { prim, ctx } = &scene.nodes[part.node].kind else {
+                    return Err(Refused::NotPrimitive);
+                };
+                if ctx.args.iter().any(|v| matches!(v, Val::Word(_))) {
+                    return Err(Refused::WordArgument);
+                }
+                let kind = match self.kinds.iter().position(|k| std::ptr::eq(*k, *prim)) {
+                    Some(i) => i,
+                    None => {
+                        self.kinds.push(prim);
+                        self.kinds.len() - 1
+                    }
+                };
+                let (m, t) = (part.frame.m, part.frame.t);
+                let moved = m == glam::DMat3::IDENTITY;
+                let flags = flags | if moved { MOVED } else { 0 };
+                self.words.push([
+                    bits(kind as u32 | flags << FLAGS_SHIFT),
+                    k,
+                    part.factor,
+                    tag_of(part),
+                ]);
+                if moved {
+                    self.words.push(t.extend(0.0).to_array());
+                } else {
+                    for i in 0..3 {
+                        let row = m.row(i);
+                        self.words.push([row.x, row.y, row.z, t[i]]);
+                    }
+                }
+                for (param, v) in prim.params.iter().zip(&ctx.args) {
+                    self.words.push(match vector(param.ty) {
+                        true => v.vec().extend(0.0).to_array(),
+                        false => [v.num(), 0.0, 0.0, 0.0],
+                    });
+                }
+            }
+            PartKind::Fold {
+                way: inner,
+                k: inner_k,
+                children,
+            } => {
+                let flags = flags | if *inner == Way::Max { OWN_LARGEST } else { 0 };
+                self.words
+                    .push([bits(flags << FLAGS_SHIFT), k, part.factor, tag_of(part)]);
+                for (c, negate) in children {
+                    self.add(scene, c, (*inner, *inner_k, *negate))?;
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The words as the shader's buffer holds them: every number as the bits of an f32 (a
+    /// field that is a u32 is one already: see [`bits`]), read with `bitcast` — loads of u32
+    /// are exact, where a float load might flush the small kinds' bits (denormals) to zero.
+    pub fn to_gpu(&self) -> Vec<[u32; 4]> {
+        self.words.iter().map(|w| w.map(unbits)).collect()
+    }
+}
+
+/// `part` (a tree numbered as `table`'s, or a pruning of it) as a program.
+pub fn encode(table: &Table, part: &Part) -> Result<Code, Refused> {
+    let mut code = Code {
+        words: Vec::new(),
+        leaves: 0,
+        depth: 0,
+    };
+    let mut height = 0;
+    emit(table, part, (true, false), &mut code, &mut height);
+    if code.depth > MAX_STACK {
+        return Err(Refused::TooDeep(code.depth));
+    }
+    Ok(code)
+}
+
+/// Appends `part`'s instructions; `first`: it is the first its fold keeps, `save`: (for a
+/// first part) the running value below it must be kept for a fold's end; `height` is the
+/// stack's.
 fn emit(
-    scene: &Scene,
+    table: &Table,
     part: &Part,
-    kinds: &mut Vec<&'static Primitive>,
-    words: &mut Vec<[f64; 4]>,
-) -> Result<usize, Refused> {
+    (first, save): (bool, bool),
+    code: &mut Code,
+    height: &mut usize,
+) {
+    let first_bit = if first { FIRST } else { 0 };
+    let at = table.at[part.id];
     match &part.kind {
         PartKind::Leaf => {
-            let NodeKind::Primitive { prim, ctx } = &scene.nodes[part.node].kind else {
-                return Err(Refused::NotPrimitive);
-            };
-            let kind = match kinds.iter().position(|k| std::ptr::eq(*k, *prim)) {
-                Some(i) => i,
-                None => {
-                    kinds.push(prim);
-                    kinds.len() - 1
-                }
-            };
-            let n = 4 + prim.params.len();
-            // A frame that only moves is applied as p + t: as the inline form's p − offset, to
-            // the bit (`MOVED` in the word count's high bit).
-            let moved = if part.frame.m == glam::DMat3::IDENTITY {
-                MOVED
-            } else {
-                0
-            };
-            words.push([
-                bits(LEAF + kind as u32),
-                bits(n as u32 | moved),
-                part.factor,
-                tag_of(part),
-            ]);
-            let (m, t) = (part.frame.m, part.frame.t);
-            for i in 0..3 {
-                let row = m.row(i);
-                words.push([row.x, row.y, row.z, t[i]]);
+            let spill = first && save;
+            if spill {
+                *height += 1;
+                code.depth = code.depth.max(*height);
             }
-            if ctx.args.iter().any(|v| matches!(v, Val::Word(_))) {
-                return Err(Refused::WordArgument);
-            }
-            for (param, v) in prim.params.iter().zip(&ctx.args) {
-                words.push(match vector(param.ty) {
-                    true => v.vec().extend(0.0).to_array(),
-                    false => [v.num(), 0.0, 0.0, 0.0],
-                });
-            }
-            Ok(1)
+            code.leaves += 1;
+            code.words
+                .push(at | first_bit | if spill { SPILL } else { 0 });
         }
-        PartKind::Fold { way, k, children } => {
-            let mut depth = 0;
-            for (i, (child, negate)) in children.iter().enumerate() {
-                // The running result sits below each later child.
-                depth = depth.max(emit(scene, child, kinds, words)? + usize::from(i > 0));
-                if i == 0 && *negate {
-                    words.push([bits(NEGATE), 0.0, 0.0, 0.0]);
-                } else if i > 0 {
-                    let flags = u32::from(*way == Way::Max) | (u32::from(*negate) << 1);
-                    words.push([bits(COMBINE), bits(flags), *k, 0.0]);
-                }
+        PartKind::Fold { children, .. } => {
+            // A later fold's end takes a value off the stack: its first leaf puts it there.
+            let save = !first || save;
+            for (i, (c, _)) in children.iter().enumerate() {
+                emit(table, c, (i == 0, save), code, height);
             }
-            words.push([bits(END), 0.0, part.factor, tag_of(part)]);
-            Ok(depth)
+            code.words.push(at | END | first_bit);
+            if !first {
+                *height -= 1;
+            }
         }
     }
 }
@@ -170,124 +263,122 @@ pub fn vector(ty: Ty) -> bool {
     )
 }
 
-/// One entry of the stack: the value, the fold's nearest (or farthest) child value so far,
-/// and its material.
+/// A value being folded: the value, the fold's nearest (or farthest) child value so far, and
+/// its material.
 #[derive(Clone, Copy)]
-struct Entry {
+struct Running {
     value: f64,
     best: f64,
     material: Option<u32>,
 }
 
-/// The program's value and material at `p`, as [`super::eval::sample`] gives them for its tree.
-pub fn run(program: &Program, p: DVec3) -> (f64, Option<u32>) {
-    let words = &program.words;
-    let mut stack: Vec<Entry> = Vec::with_capacity(MAX_STACK);
-    let mut pc = 0;
+/// `v` (with `material`) folded into `a` as a head's flags and `k` say.
+fn fold_in(a: Running, (v, material): (f64, Option<u32>), head: [f64; 4]) -> Running {
+    let flags = unbits(head[0]) >> FLAGS_SHIFT;
+    let way = if flags & LARGEST != 0 {
+        Way::Max
+    } else {
+        Way::Min
+    };
+    let v = if flags & NEGATED != 0 { -v } else { v };
+    let better = match way {
+        Way::Min => v < a.best,
+        Way::Max => v > a.best,
+    };
+    let (best, material) = if better {
+        (v, material)
+    } else {
+        (a.best, a.material)
+    };
+    Running {
+        value: super::eval::combine(way, head[1], a.value, v),
+        best,
+        material,
+    }
+}
+
+/// A first part's value starting its fold: negated if its head says.
+fn start(v: f64, material: Option<u32>, head: [f64; 4]) -> Running {
+    let v = match unbits(head[0]) >> FLAGS_SHIFT & NEGATED {
+        0 => v,
+        _ => -v,
+    };
+    Running {
+        value: v,
+        best: v,
+        material,
+    }
+}
+
+/// The program's value and material at `p`, as [`super::eval::sample`] gives them for its
+/// tree; an empty program gives [`crate::ir::FAR`] and no material.
+pub fn run(table: &Table, code: &Code, p: DVec3) -> (f64, Option<u32>) {
+    let words = &table.words;
     // (The looseness bit is the shader's; this runner gives materials.)
-    let tag = |x: f64| match unbits(x) & !LOOSE {
+    let tag = |x: f64| match unbits(x) & MATERIAL {
         0 => None,
         m => Some(m - 1),
     };
-    while pc < words.len() {
-        let w = words[pc];
-        match unbits(w[0]) {
-            COMBINE => {
-                let flags = unbits(w[1]);
-                let way = if flags & 1 == 1 { Way::Max } else { Way::Min };
-                let (Some(c), Some(a)) = (stack.pop(), stack.pop()) else {
+    let mut running = Running {
+        value: crate::ir::FAR,
+        best: crate::ir::FAR,
+        material: None,
+    };
+    let mut stack: Vec<Running> = Vec::with_capacity(MAX_STACK);
+    for &ins in &code.words {
+        let at = (ins & OFFSET) as usize;
+        let head = words[at];
+        let first = ins & FIRST != 0;
+        if ins & END != 0 {
+            let v = running.value * head[2];
+            let material = running.material.or(tag(head[3]));
+            running = if first {
+                start(v, material, head)
+            } else {
+                let Some(below) = stack.pop() else {
                     return (f64::NAN, None);
                 };
-                let v = if flags & 2 == 2 { -c.value } else { c.value };
-                let better = match way {
-                    Way::Min => v < a.best,
-                    Way::Max => v > a.best,
-                };
-                let (best, material) = if better {
-                    (v, c.material)
-                } else {
-                    (a.best, a.material)
-                };
-                let value = super::eval::combine(way, w[2], a.value, v);
-                stack.push(Entry {
-                    value,
-                    best,
-                    material,
-                });
-                pc += 1;
-            }
-            NEGATE => {
-                if let Some(top) = stack.last_mut() {
-                    (top.value, top.best) = (-top.value, -top.best);
+                fold_in(below, (v, material), head)
+            };
+        } else {
+            let v = leaf(table, at, p) * head[2];
+            let material = tag(head[3]);
+            if first {
+                if ins & SPILL != 0 {
+                    stack.push(running);
                 }
-                pc += 1;
-            }
-            END => {
-                if let Some(top) = stack.last_mut() {
-                    let value = top.value * w[2];
-                    *top = Entry {
-                        value,
-                        best: value,
-                        material: top.material.or(tag(w[3])),
-                    };
-                }
-                pc += 1;
-            }
-            op => {
-                let Some(prim) = program.kinds.get(op.wrapping_sub(LEAF) as usize) else {
-                    return (f64::NAN, None);
-                };
-                let rows = &words[pc + 1..pc + 4];
-                let q = DVec3::new(
-                    rows[0][0] * p.x + rows[0][1] * p.y + rows[0][2] * p.z + rows[0][3],
-                    rows[1][0] * p.x + rows[1][1] * p.y + rows[1][2] * p.z + rows[1][3],
-                    rows[2][0] * p.x + rows[2][1] * p.y + rows[2][2] * p.z + rows[2][3],
-                );
-                let args: Vec<Val> = prim
-                    .params
-                    .iter()
-                    .zip(&words[pc + 4..pc + (unbits(w[1]) & !MOVED) as usize])
-                    .map(|(param, a)| match vector(param.ty) {
-                        true => Val::Vec3(DVec3::new(a[0], a[1], a[2])),
-                        false => Val::Num(a[0]),
-                    })
-                    .collect();
-                let value = (prim.eval)(&Ctx::of_args(args), q) * w[2];
-                stack.push(Entry {
-                    value,
-                    best: value,
-                    material: tag(w[3]),
-                });
-                pc += (unbits(w[1]) & !MOVED) as usize;
+                running = start(v, material, head);
+            } else {
+                running = fold_in(running, (v, material), head);
             }
         }
     }
-    stack
-        .last()
-        .map_or((f64::NAN, None), |e| (e.value, e.material))
+    (running.value, running.material)
 }
 
-impl Program {
-    /// The words as the shader's buffer holds them: every number as the bits of an f32 (a
-    /// field that is a u32 is one already: see [`bits`]), read with `bitcast` — loads of u32
-    /// are exact, where a float load might flush the small opcodes' bits (denormals) to zero.
-    pub fn to_gpu(&self) -> Vec<[u32; 4]> {
-        self.words.iter().map(|w| w.map(unbits)).collect()
-    }
-
-    /// The leaves it evaluates (primitive evaluations per point).
-    pub fn leaves(&self) -> usize {
-        let mut pc = 0;
-        let mut n = 0;
-        while pc < self.words.len() {
-            let op = unbits(self.words[pc][0]);
-            if op >= LEAF {
-                n += 1;
-                pc += (unbits(self.words[pc][1]) & !MOVED) as usize;
-            } else {
-                pc += 1;
-            }
-        }
-        n
-    }
+/// The raw field of the leaf whose entry starts at word `at`, at `p`.
+fn leaf(table: &Table, at: usize, p: DVec3) -> f64 {
+    let words = &table.words;
+    let head = unbits(words[at][0]);
+    let Some(prim) = table.kinds.get((head & 0xff) as usize) else {
+        return f64::NAN;
+    };
+    let (q, args) = if head >> FLAGS_SHIFT & MOVED != 0 {
+        let t = words[at + 1];
+        (p + DVec3::new(t[0], t[1], t[2]), at + 2)
+    } else {
+        let r = &words[at + 1..at + 4];
+        let row = |i: usize| r[i][0] * p.x + r[i][1] * p.y + r[i][2] * p.z + r[i][3];
+        (DVec3::new(row(0), row(1), row(2)), at + 4)
+    };
+    let args: Vec<Val> = prim
+        .params
+        .iter()
+        .zip(&words[args..])
+        .map(|(param, a)| match vector(param.ty) {
+            true => Val::Vec3(DVec3::new(a[0], a[1], a[2])),
+            false => Val::Num(a[0]),
+        })
+        .collect();
+    (prim.eval)(&Ctx::of_args(args), q)
 }

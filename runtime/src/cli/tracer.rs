@@ -159,7 +159,7 @@ pub fn data_form_allowed(passes: u32, scene: &sdfc_compiler::scene::Scene) -> Re
                 .into(),
         ));
     }
-    if let Err(why) = sdfc_compiler::tape::data::layout(scene, sdfc_compiler::tape::data::CELLS) {
+    if let Err(why) = sdfc_compiler::tape::data::layout(scene, None) {
         return Err(Error::Usage(format!(
             "error: `--form data` cannot hold this scene: {}",
             sdfc_compiler::tape::data::say(scene, &why)
@@ -210,7 +210,7 @@ pub fn tape_data(
     use sdfc_compiler::tape::data;
     let fail =
         |why: data::Why| Error::Usage(format!("error: `--form data`: {}", data::say(scene, &why)));
-    let (_, layout) = data::layout(scene, data::CELLS).map_err(fail)?;
+    let (_, layout) = data::layout(scene, None).map_err(fail)?;
     let tree = sdfc_compiler::tape::build(valued).map_err(|u| fail(data::Why::Node(u)))?;
     data::data(valued, &tree, &layout).map_err(fail)
 }

@@ -57,8 +57,9 @@ pub struct Gpu {
     /// The baked volumes the next prepared modules read, each uploaded once
     /// ([`Gpu::set_volumes`]).
     volumes: Arc<Mutex<Vec<volumes::OnDevice>>>,
-    /// The data form's words and ranges the next prepared modules read ([`Gpu::set_tape`]).
-    tape: Arc<Mutex<Option<[wgpu::Buffer; 2]>>>,
+    /// The data form's parts, programs and ranges the next prepared modules read
+    /// ([`Gpu::set_tape`]).
+    tape: Arc<Mutex<Option<[wgpu::Buffer; 3]>>>,
 }
 
 impl Gpu {

@@ -1,5 +1,5 @@
-//! The data form's buffers on the device (issue 33): the programs' words and the cells' ranges
-//! (`sdfc_compiler::tape::data`), bound at `layout::TAPE_BINDINGS` in every module that
+//! The data form's buffers on the device (issue 33): the table of parts, the cells' programs
+//! and their ranges (`sdfc_compiler::tape::data`), bound at `layout::TAPE_BINDINGS` in every module that
 //! declares them (compiled with `Form::Data`).
 
 use super::{Gpu, lock};
@@ -11,10 +11,12 @@ impl Gpu {
     /// Sets the data form's buffers the modules prepared from now on read (`None`: none).
     pub fn set_tape(&self, data: Option<&Data>) {
         let buffers = data.map(|d| {
-            let bytes =
-                |words: &[u32]| -> Vec<u8> { words.iter().flat_map(|w| w.to_le_bytes()).collect() };
-            let words: Vec<u32> = d.words.iter().flatten().copied().collect();
-            let ranges: Vec<u32> = d.ranges.iter().flatten().copied().collect();
+            // (A binding cannot be empty: at least 16 bytes each.)
+            let bytes = |words: Vec<u32>| -> Vec<u8> {
+                let mut b: Vec<u8> = words.iter().flat_map(|w| w.to_le_bytes()).collect();
+                b.resize(b.len().max(16), 0);
+                b
+            };
             let make = |label: &str, contents: Vec<u8>| {
                 self.device
                     .create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -24,8 +26,15 @@ impl Gpu {
                     })
             };
             [
-                make("tape words", bytes(&words)),
-                make("tape ranges", bytes(&ranges)),
+                make(
+                    "tape nodes",
+                    bytes(d.nodes.iter().flatten().copied().collect()),
+                ),
+                make("tape code", bytes(d.code.clone())),
+                make(
+                    "tape ranges",
+                    bytes(d.ranges.iter().flatten().copied().collect()),
+                ),
             ]
         });
         *lock(&self.tape) = buffers;
@@ -40,10 +49,10 @@ impl Gpu {
                 .is_some_and(|b| b.group == GROUP && b.binding == TAPE_BINDINGS[0])
         });
         match (&*lock(&self.tape), declared) {
-            (Some([words, ranges]), true) => vec![
-                (TAPE_BINDINGS[0], words.clone()),
-                (TAPE_BINDINGS[1], ranges.clone()),
-            ],
+            (Some(buffers), true) => TAPE_BINDINGS
+                .into_iter()
+                .zip(buffers.iter().cloned())
+                .collect(),
             _ => Vec::new(),
         }
     }
