@@ -202,3 +202,72 @@ fn a_reference_that_does_not_compile_is_a_user_error() {
     );
     let _ = std::fs::remove_dir_all(dir);
 }
+
+/// `--count-primitives` counts what every primitive's function is called for: with every
+/// part evaluated at every step (`--no-bvh`), the trace's primitive evaluations are the parts
+/// times its evaluations, pixel for pixel on average; the data form's, pruned per cell, are
+/// fewer for the same picture; `--form data` reports its pre-pass.
+#[test]
+fn bench_counts_primitive_evaluations() {
+    let dir = scratch("bench-primitives");
+    let balls: Vec<String> = (0..24)
+        .map(|i| {
+            let a = i as f64 * 0.9;
+            format!(
+                "sphere(0.12) at ({:.3}, {:.3}, {:.3})",
+                a.cos(),
+                (i as f64 * 0.37).sin() * 0.8,
+                a.sin()
+            )
+        })
+        .collect();
+    let scene = crate::common::write(
+        &dir,
+        "balls.sdf",
+        &format!(
+            "camera {{ eye (0, 1, -4)  target (0, 0, 0) }}\nunion {{\n{}\n}}\n",
+            balls.join("\n")
+        ),
+    );
+    let run = |extra: &[&str]| {
+        let mut args = vec![
+            "bench",
+            &scene,
+            "--size",
+            "48x27",
+            "--tracers",
+            "basic",
+            "--steps",
+            "64",
+            "--repeat",
+            "1",
+            "--json",
+            "--count-primitives",
+        ];
+        args.extend_from_slice(extra);
+        let o = sdfc(&args);
+        assert_eq!(
+            o.status.code(),
+            Some(0),
+            "{}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+        serde_json::from_slice::<serde_json::Value>(&o.stdout).expect("JSON")
+    };
+    let inline = run(&["--no-bvh"]);
+    let cell = &inline["cells"][0];
+    let evals = cell["evals_mean"].as_f64().unwrap();
+    let traced = cell["primitives"][0].as_f64().unwrap();
+    assert!(
+        (traced - 24.0 * evals).abs() < 1e-6 * traced,
+        "{traced} primitive evaluations, {evals} evaluations of 24 parts"
+    );
+    let data = run(&["--form", "data"]);
+    assert_eq!(data["form"], "data");
+    assert!(data["prepass"]["cells"].as_u64().unwrap() > 1);
+    let pruned = data["cells"][0]["primitives"][0].as_f64().unwrap();
+    assert!(
+        pruned > 0.0 && pruned < traced / 4.0,
+        "data form {pruned}, inline {traced}"
+    );
+}

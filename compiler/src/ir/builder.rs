@@ -19,6 +19,8 @@ pub struct ModuleBuilder {
     helpers: std::collections::HashMap<String, Handle<Function>>,
     /// The compute entry's count of shading evaluations, if it has one (`lower/count.rs`).
     pub evaluations: Option<Handle<naga::GlobalVariable>>,
+    /// Whether that counter counts primitive evaluations instead (`Options::count_primitives`).
+    pub primitives: bool,
     /// The `Params` uniform, if the scene has parameters (`lower/params.rs`).
     pub params: Option<Handle<naga::GlobalVariable>>,
     /// Per primitive function (`sd_<name>`), which arguments are constants inside it rather

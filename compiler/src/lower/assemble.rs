@@ -28,7 +28,7 @@ pub(super) fn add(
     }
     let floor = scene.camera.epsilon_floor();
     let (tracer, result_ty) = add_tracer(mb, scene, (map, loose), options, floor);
-    if entry == Entry::Compute {
+    if entry == Entry::Compute && mb.evaluations.is_none() {
         count::add_counter(mb);
     }
     let normal = shading::add_normal(mb, map);

@@ -27,8 +27,25 @@ pub(super) fn add_counter(mb: &mut ModuleBuilder) {
     mb.evaluations = Some(g);
 }
 
-/// `evaluations += n`, where the module counts (nothing elsewhere).
+/// `evaluations += n`, where the module counts evaluations (nothing elsewhere, nor where it
+/// counts primitive evaluations).
 pub(super) fn count(b: &mut FnBuilder, n: u32) {
+    if !b.m.primitives {
+        add(b, n);
+    }
+}
+
+/// `evaluations += 1` at the start of a primitive's function, where the module counts
+/// primitive evaluations (`Options::count_primitives`: the measure of Barbier, Sanchez et al.
+/// 2025, whatever the form — inline code, box trees or the data form's programs).
+pub(super) fn primitive(b: &mut FnBuilder) {
+    if b.m.primitives {
+        add(b, 1);
+    }
+}
+
+/// `evaluations += n` where the module has the counter.
+fn add(b: &mut FnBuilder, n: u32) {
     let Some(g) = b.m.evaluations else {
         return;
     };

@@ -160,6 +160,14 @@ pub(super) fn add_trace_only(mb: &mut ModuleBuilder, fns: &Fns) {
     b.func.arguments[0].binding = Some(Binding::BuiltIn(BuiltIn::GlobalInvocationId));
     let (index, pixel) = compute_pixel(&mut b, fns);
     let ((_, _, result, _), steps) = trace_in_pass(&mut b, fns, hand_over, (index, pixel));
+    // Counting primitive evaluations: their count where the steps go.
+    let steps = match b.m.evaluations {
+        Some(g) if b.m.primitives => {
+            let g = b.expr(Expression::GlobalVariable(g));
+            b.load(g)
+        }
+        _ => steps,
+    };
     let t = b.at(result, 0);
     let bits = b.expr(Expression::As {
         expr: t,
@@ -211,6 +219,12 @@ pub(super) fn add_compute(
     b.func.arguments[0].binding = Some(Binding::BuiltIn(BuiltIn::GlobalInvocationId));
     let (index, pixel) = compute_pixel(&mut b, fns);
     let (traced, steps) = trace_in_pass(&mut b, fns, hand_over, (index, pixel));
+    let counter =
+        b.m.evaluations
+            .expect("the compute entry counts evaluations");
+    let counter = b.expr(Expression::GlobalVariable(counter));
+    // (What the trace counted: primitive evaluations, where those are counted.)
+    let traced_count = b.load(counter);
     let result = traced.2;
     let s = shade_hit(&mut b, scene, fns, options, floor, traced);
     let zero = b.f(0.0);
@@ -230,11 +244,8 @@ pub(super) fn add_compute(
     let depth = b.select(is_hit, t, miss);
     let [nx, ny, nz] = b.xyz(s.normal);
     let n4 = b.compose(v4t, vec![nx, ny, nz, zero]);
-    let counter =
-        b.m.evaluations
-            .expect("the compute entry counts evaluations");
-    let counter = b.expr(Expression::GlobalVariable(counter));
     let shading = b.load(counter);
+    let shading = b.sub(shading, traced_count);
     let values = [packed, depth, n4, s.material, steps, shading];
     for (g, v) in outputs.iter().zip(values) {
         let base = b.expr(Expression::GlobalVariable(*g));

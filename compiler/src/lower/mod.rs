@@ -56,6 +56,10 @@ pub fn lower(scene: &Scene, entry: Entry, options: &tracer::Options) -> naga::Mo
     );
     let reachable = scene.reachable();
     volumes::add(&mut mb, scene);
+    if options.count_primitives && matches!(entry, Entry::Compute | Entry::Trace) {
+        count::add_counter(&mut mb);
+        mb.primitives = true;
+    }
     add_primitive_functions(&mut mb, scene, &reachable);
     add_operator_helpers(&mut mb, scene, &reachable);
     let trees = options.bounding_volumes;
@@ -229,6 +233,7 @@ fn add_primitive_functions(mb: &mut ModuleBuilder, scene: &Scene, reachable: &[N
             args.push((name, ty));
         }
         let mut b = FnBuilder::new(mb, &name, &args, Some(f32t));
+        count::primitive(&mut b);
         let p = b.arg(0);
         let mut next = 1;
         let params: Vec<Ex> = prim

@@ -57,6 +57,10 @@ pub struct Options {
     pub params_binding: u32,
     /// How `map` holds the scene: as code, or as data a generic evaluator runs (issue 33).
     pub form: Form,
+    /// Count primitive evaluations instead of field evaluations (`sdfc bench
+    /// --count-primitives`): the trace-only entry writes the camera ray's where it writes its
+    /// steps, the compute entry's shading count (binding 8) is shading's.
+    pub count_primitives: bool,
 }
 
 /// How `map` holds the scene.
@@ -107,6 +111,7 @@ impl Options {
             private_params: false,
             params_binding: crate::layout::PARAMS_BINDING,
             form: Form::Inline,
+            count_primitives: false,
         }
     }
 }

@@ -13,7 +13,7 @@ use sdfc_compiler::scene::Trace;
 fn compile(
     job: &Job,
     trace: Trace,
-    entry: Entry,
+    (entry, count_primitives): (Entry, bool),
 ) -> Result<(naga::Module, Option<Vec<Pass>>), Error> {
     let (passes, view) = (job.passes, job.view);
     let mut s = job.scene.clone();
@@ -23,6 +23,7 @@ fn compile(
     options.bounding_volumes = job.bvh;
     options.fixed_offset = job.fixed_offset;
     options.form = job.form;
+    options.count_primitives = count_primitives;
     let (module, _) = emit::module(&s, entry, &options).map_err(|e| Error::Compile(e.0))?;
     let plan = match passes {
         0 | 1 => None,
@@ -69,6 +70,10 @@ pub fn measure(gpu: &Gpu, job: &Job) -> Result<Cell, Error> {
         Some(r) => Some(compare(r, &rays, &times[2], seconds, n)?),
         None => None,
     };
+    let primitives = match job.count_primitives {
+        true => Some(count_primitives(gpu, job, trace, n)?),
+        false => None,
+    };
     Ok(Cell {
         tracer: name.to_string(),
         steps: trace.steps,
@@ -85,7 +90,38 @@ pub fn measure(gpu: &Gpu, job: &Job) -> Result<Cell, Error> {
         hit_depth_error,
         error_x_time: mse * seconds,
         reference,
+        primitives,
     })
+}
+
+/// Mean primitive evaluations per pixel of the trace and of shading after it, from the trace
+/// and frame modules compiled once more with counters (run once, untimed).
+fn count_primitives(gpu: &Gpu, job: &Job, trace: Trace, n: f64) -> Result<[f64; 2], Error> {
+    let passes = job.passes > 1;
+    let (trace_module, plan) = compile(job, trace, (Entry::Trace, true))?;
+    let (full_module, _) = compile(job, trace, (Entry::Compute, true))?;
+    let whole = u32::MAX;
+    let layout = Layout::TraceOnly { passes };
+    let tracing = gpu.prepare(
+        Source::Module(&trace_module),
+        layout,
+        job.view,
+        plan.as_deref(),
+        whole,
+    )?;
+    let layout = Layout::Full { passes };
+    let full = gpu.prepare(
+        Source::Module(&full_module),
+        layout,
+        job.view,
+        plan.as_deref(),
+        whole,
+    )?;
+    tracing.run()?;
+    full.run()?;
+    let traced: f64 = tracing.rays()?.iter().map(|r| f64::from(r.steps)).sum();
+    let shaded: f64 = full.frame(0.0)?.shading.iter().map(|&e| f64::from(e)).sum();
+    Ok([traced / n, shaded / n])
 }
 
 /// The cell's trace-only module, its full frame and the reference (if any), prepared whole
@@ -96,8 +132,8 @@ fn prepare(
     trace: Trace,
 ) -> Result<(Prepared, Prepared, Option<Prepared>), Error> {
     let passes = job.passes > 1;
-    let (trace_module, plan) = compile(job, trace, Entry::Trace)?;
-    let (full_module, _) = compile(job, trace, Entry::Compute)?;
+    let (trace_module, plan) = compile(job, trace, (Entry::Trace, false))?;
+    let (full_module, _) = compile(job, trace, (Entry::Compute, false))?;
     let whole = u32::MAX;
     let tracing = gpu.prepare(
         Source::Module(&trace_module),

@@ -66,6 +66,10 @@ pub struct Cell {
     pub error_x_time: f64,
     /// A hand-written reference traced alternately with the trace-only module.
     pub reference: Option<Reference>,
+    /// With `--count-primitives`: mean primitive evaluations per pixel by the trace, and by
+    /// shading after it (Barbier, Sanchez et al. 2025's measure), counted by modules compiled
+    /// once more with counters in every primitive's function (not timed).
+    pub primitives: Option<[f64; 2]>,
 }
 
 /// A hand-written reference shader measured next to a cell's trace-only module.
@@ -123,4 +127,6 @@ pub struct Job<'a> {
     pub fixed_offset: bool,
     /// How `map` holds the scene (the data form's buffers are set on the GPU beforehand).
     pub form: sdfc_compiler::lower::tracer::Form,
+    /// Also count primitive evaluations per pixel ([`Cell::primitives`]).
+    pub count_primitives: bool,
 }

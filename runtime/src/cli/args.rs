@@ -303,6 +303,10 @@ pub struct BenchArgs {
     /// pruned per cell, and reports the CPU's pre-pass time.
     #[arg(long, value_enum, default_value = "inline")]
     pub form: super::tracer::FormArg,
+    /// Also count primitive evaluations per pixel, of the trace and of shading (compiles the
+    /// trace and the frame once more with a counter in every primitive's function; not timed).
+    #[arg(long)]
+    pub count_primitives: bool,
     #[command(flatten)]
     pub bake: BakeArgs,
 }

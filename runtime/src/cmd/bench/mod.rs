@@ -326,6 +326,7 @@ fn measure(
             bvh,
             fixed_offset: args.fixed_offset,
             form: options_form(args),
+            count_primitives: args.count_primitives,
         };
         measured.push(bench::measure(gpu, &job)?);
     }
@@ -471,6 +472,12 @@ fn table(r: &Report) -> String {
             c.mismatch * 100.0,
             c.error_x_time
         );
+        if let Some([traced, shaded]) = c.primitives {
+            out += &format!(
+                "{:<9} {:>6} {:>6}   primitive evaluations per pixel: {traced:.1} by the trace, +{shaded:.1} by shading\n",
+                "", "", ""
+            );
+        }
         if let Some(x) = &c.reference {
             out += &format!(
                 "{:<9} {:>6} {:>6} {:>9.3} {:>9} {:>10.2}   hit/miss agree with sdfc's on {:.2}%; sdfc / reference = {:.3}×\n",
