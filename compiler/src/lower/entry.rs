@@ -222,9 +222,11 @@ pub(super) fn add_compute(
     let counter =
         b.m.evaluations
             .expect("the compute entry counts evaluations");
-    let counter = b.expr(Expression::GlobalVariable(counter));
     // (What the trace counted: primitive evaluations, where those are counted.)
-    let traced_count = b.load(counter);
+    let traced_count = b.m.primitives.then(|| {
+        let c = b.expr(Expression::GlobalVariable(counter));
+        b.load(c)
+    });
     let result = traced.2;
     let s = shade_hit(&mut b, scene, fns, options, floor, traced);
     let zero = b.f(0.0);
@@ -244,8 +246,11 @@ pub(super) fn add_compute(
     let depth = b.select(is_hit, t, miss);
     let [nx, ny, nz] = b.xyz(s.normal);
     let n4 = b.compose(v4t, vec![nx, ny, nz, zero]);
-    let shading = b.load(counter);
-    let shading = b.sub(shading, traced_count);
+    let counter = b.expr(Expression::GlobalVariable(counter));
+    let mut shading = b.load(counter);
+    if let Some(traced) = traced_count {
+        shading = b.sub(shading, traced);
+    }
     let values = [packed, depth, n4, s.material, steps, shading];
     for (g, v) in outputs.iter().zip(values) {
         let base = b.expr(Expression::GlobalVariable(*g));

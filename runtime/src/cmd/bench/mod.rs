@@ -58,6 +58,20 @@ struct Prepass {
     mean_leaves: f64,
 }
 
+/// The data form's buffers made on the CPU, timed, and set on `gpu`.
+fn prepass(gpu: &Gpu, scene: &Scene) -> Result<Prepass, Error> {
+    let clock = std::time::Instant::now();
+    let tape = crate::cli::tape_data(scene, scene)?;
+    let seconds = clock.elapsed().as_secs_f64();
+    gpu.set_tape(Some(&tape));
+    Ok(Prepass {
+        seconds,
+        bytes: tape.bytes(),
+        cells: tape.ranges.len(),
+        mean_leaves: tape.mean_leaves,
+    })
+}
+
 /// How frames were timed on `gpu`.
 fn timing(gpu: &Gpu) -> String {
     let how = if gpu.timestamps() {
@@ -128,19 +142,10 @@ fn bench(args: &BenchArgs) -> Result<(), Error> {
     let bvh_now = options.bounding_volumes;
     let mut measured = Vec::new();
     let mut swept = Vec::new();
-    let mut prepass = None;
-    if data {
-        let clock = std::time::Instant::now();
-        let tape = crate::cli::tape_data(&scene, &scene)?;
-        let seconds = clock.elapsed().as_secs_f64();
-        gpu.set_tape(Some(&tape));
-        prepass = Some(Prepass {
-            seconds,
-            bytes: tape.bytes(),
-            cells: tape.ranges.len(),
-            mean_leaves: tape.mean_leaves,
-        });
-    }
+    let prepass = match data {
+        true => Some(prepass(&gpu, &scene)?),
+        false => None,
+    };
     if sweep.is_empty() {
         // A scene with parameters is measured at their defaults, as its ground truth is.
         gpu.set_scene(&scene);
@@ -395,6 +400,38 @@ fn csv(cells: &[Cell]) -> String {
     out
 }
 
+/// The table's lines about the scene's parts: each baked part, the data form's pre-pass.
+fn parts(r: &Report) -> String {
+    let mut out = String::new();
+    for (i, v) in r.volumes.iter().enumerate() {
+        let [x, y, z] = v.points;
+        let took = v
+            .bake_seconds
+            .map_or("read from the cache".to_string(), |s| {
+                format!("baked in {s:.2} s")
+            });
+        out += &format!(
+            "baked part {i}: {x}×{y}×{z} points, spacing {:.4}, {:.1} MiB, λ {:.3}, {took}\n",
+            v.spacing,
+            v.bytes as f64 / f64::from(1u32 << 20),
+            v.lambda
+        );
+    }
+    if let Some(p) = &r.prepass {
+        out += &format!(
+            "form: data — pre-pass on the CPU {:.1} ms, {} cells, {:.1} leaves a cell, {:.1} MiB of buffers\n",
+            p.seconds * 1e3,
+            p.cells,
+            p.mean_leaves,
+            p.bytes as f64 / f64::from(1u32 << 20)
+        );
+    }
+    if r.truth_scene.is_some() || !r.volumes.is_empty() || r.prepass.is_some() {
+        out += "\n";
+    }
+    out
+}
+
 fn table(r: &Report) -> String {
     let mut out = format!(
         "{}: {}×{} on {} ({})\nground truth: basic, {} steps, ε {}·|eye − target|, {} bisections; {} of {} pixels escape (CPU {:.1} s)\ntime: {}\n\n",
@@ -414,35 +451,10 @@ fn table(r: &Report) -> String {
     if let Some(t) = &r.truth_scene {
         out += &format!("truth: the f64 field of {t}\n");
     }
-    if let Some(p) = &r.prepass {
-        out += &format!(
-            "form: data — pre-pass on the CPU {:.1} ms, {} cells, {:.1} leaves a cell, {:.1} MiB of buffers\n",
-            p.seconds * 1e3,
-            p.cells,
-            p.mean_leaves,
-            p.bytes as f64 / f64::from(1u32 << 20)
-        );
-    }
     if !r.sweep.is_empty() {
         return out + &sweep::table(&r.sweep);
     }
-    for (i, v) in r.volumes.iter().enumerate() {
-        let [x, y, z] = v.points;
-        let took = v
-            .bake_seconds
-            .map_or("read from the cache".to_string(), |s| {
-                format!("baked in {s:.2} s")
-            });
-        out += &format!(
-            "baked part {i}: {x}×{y}×{z} points, spacing {:.4}, {:.1} MiB, λ {:.3}, {took}\n",
-            v.spacing,
-            v.bytes as f64 / f64::from(1u32 << 20),
-            v.lambda
-        );
-    }
-    if r.truth_scene.is_some() || !r.volumes.is_empty() {
-        out += "\n";
-    }
+    out += &parts(r);
     out += &format!(
         "{:<9} {:>6} {:>6} {:>9} {:>9} {:>10} {:>9} {:>9} {:>11} {:>9} {:>11}\n",
         "tracer",
