@@ -28,8 +28,9 @@ fn scattered(n: usize) -> String {
     format!("camera {{ eye (0, 3, -9) target (0, 0, 0) }}\nunion {{\n{parts}}}\n")
 }
 
-/// A shader predicted to take the driver far past 30 s (a flat union of 4 097 spheres: the
-/// model says minutes, with or without box trees): `render`, `bench` and `view` refuse it
+/// A shader predicted to take the driver far past 30 s (a flat union of 4 097 spheres
+/// compiled inline, `--form inline`: the model says minutes, with or without box trees; by
+/// default the data form draws it, `data_form.rs`): `render`, `bench` and `view` refuse it
 /// before a device is opened, with the scene's span and the prediction; `check` prints the
 /// prediction, `emit` writes the shader (other engines' drivers differ).
 #[test]
@@ -48,11 +49,17 @@ fn a_shader_predicted_too_slow_is_refused_at_once() {
     let out = dir.join("big.png");
     let out = out.to_str().unwrap();
     for args in [
-        vec!["render", &file, "-o", out, "--size", "8x8"],
-        vec!["render", &file, "-o", out, "--size", "8x8", "--no-bvh"],
+        vec![
+            "render", &file, "-o", out, "--size", "8x8", "--form", "inline",
+        ],
+        vec![
+            "render", &file, "-o", out, "--size", "8x8", "--no-bvh", "--form", "inline",
+        ],
         vec![
             "bench",
             &file,
+            "--form",
+            "inline",
             "--size",
             "8x8",
             "--tracers",
@@ -76,7 +83,7 @@ fn a_shader_predicted_too_slow_is_refused_at_once() {
     assert!(!std::path::Path::new(out).exists(), "nothing is written");
     // The viewer refuses it before opening a window (the display is never contacted).
     let o = Command::new(env!("CARGO_BIN_EXE_sdfc"))
-        .args(["view", &file])
+        .args(["view", &file, "--form", "inline"])
         .env("DISPLAY", ":31999")
         .output()
         .unwrap();
@@ -110,12 +117,16 @@ fn box_trees_are_left_out_when_they_make_the_compile_too_slow() {
     let file = write(&dir, "many.sdf", &scattered(512));
     let out = dir.join("many.png");
     let out = out.to_str().unwrap();
-    let o = sdfc(&["render", &file, "-o", out, "--size", "8x8"]);
+    let o = sdfc(&[
+        "render", &file, "-o", out, "--size", "8x8", "--form", "inline",
+    ]);
     let err = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(0), "{err}");
     assert!(err.contains("the unions' box trees are left out"), "{err}");
     assert!(std::path::Path::new(out).exists());
-    let o = sdfc(&["render", &file, "-o", out, "--size", "8x8", "--bvh"]);
+    let o = sdfc(&[
+        "render", &file, "-o", out, "--size", "8x8", "--bvh", "--form", "inline",
+    ]);
     let err = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(1), "{err}");
     assert!(err.contains("predicted compile:"), "{err}");

@@ -102,3 +102,60 @@ fn the_data_form_draws_what_the_inline_form_draws() {
         said.join("; ")
     ));
 }
+
+/// `--form auto` (the default) draws a union of 150 spheres as data and one of 20 inline; a
+/// scene the data form cannot hold (a `repeat`) inline whatever its size; `--form data` on
+/// that one is an error naming the node.
+#[test]
+fn the_form_by_default_follows_the_parts() {
+    use crate::common::{scratch, sdfc, write};
+    let dir = scratch("auto-form");
+    let form = |name: &str, text: String, extra: &[&str]| {
+        let file = write(&dir, name, &text);
+        let mut args = vec![
+            "bench",
+            &file,
+            "--size",
+            "16x9",
+            "--tracers",
+            "basic",
+            "--steps",
+            "16",
+            "--repeat",
+            "1",
+            "--no-truth",
+            "--json",
+        ];
+        args.extend_from_slice(extra);
+        let o = sdfc(&args);
+        let err = String::from_utf8_lossy(&o.stderr).to_string();
+        match o.status.code() {
+            Some(0) => {
+                serde_json::from_slice::<serde_json::Value>(&o.stdout).expect("JSON")["form"]
+                    .as_str()
+                    .unwrap()
+                    .to_string()
+            }
+            _ => err,
+        }
+    };
+    let union = |n: usize| {
+        format!(
+            "camera {{ eye (0, 1, -4)  target (0, 0, 0) }}\nunion {{\n{}\n}}",
+            balls(n, false)
+        )
+    };
+    assert_eq!(form("many.sdf", union(150), &[]), "data");
+    assert_eq!(form("few.sdf", union(20), &[]), "inline");
+    assert_eq!(
+        form("many.sdf", union(150), &["--form", "inline"]),
+        "inline"
+    );
+    let repeated = format!("{}\nsphere(0.1) |> repeat((0.5, 0.5, 0.5))", union(150));
+    assert_eq!(form("repeat.sdf", repeated.clone(), &[]), "inline");
+    let err = form("repeat.sdf", repeated, &["--form", "data"]);
+    assert!(
+        err.contains("`--form data` cannot hold this scene") && err.contains("repeat"),
+        "{err}"
+    );
+}

@@ -17,6 +17,19 @@ pub const CELLS: (usize, usize) = (8, 128);
 /// Cells the grid has for every leaf, about (see [`cells_for`]).
 const CELLS_PER_LEAF: f64 = 256.0;
 
+/// Leaves from which `--form auto` draws a scene as data (where it can): measured on unions of
+/// spheres (`scripts/scale_bench.py`, docs/data-form.md), the data form's trace is as fast as
+/// the inline one at about 30 smoothly blended or 100 hard-united spheres, and its first frame
+/// costs a shader compile of about 1–3 s whatever the parts, where the inline one's grows
+/// with them.
+pub const AUTO_FROM: usize = 100;
+
+/// Whether `--form auto` draws `scene` as data: it has a data form of at least
+/// [`AUTO_FROM`] leaves (the caller checks what else the data form refuses).
+pub fn prefer(scene: &Scene) -> bool {
+    super::build(scene).is_ok_and(|tree| tree.leaves() >= AUTO_FROM)
+}
+
 /// Cells along the grid's longest side for a tree of `leaves` leaves: about
 /// [`CELLS_PER_LEAF`] cells a leaf, within [`CELLS`]. Measured on 1000 smoothly blended
 /// spheres (`docs/data-form.md`): 32 cells a side keep 13 leaves a cell, 64 keep 5.7, 128 keep

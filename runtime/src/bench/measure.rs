@@ -59,8 +59,11 @@ pub fn measure(gpu: &Gpu, job: &Job) -> Result<Cell, Error> {
         .collect();
     let times = time(&all, job.repeat)?;
     let rays = tracing.rays()?;
-    let (mse, mismatch) = errors(&rays, job.truth, trace.max_distance);
-    let hit_depth_error = hit_depth_error(&rays, job.truth);
+    let (mut mse, mut mismatch) = errors(&rays, job.truth, trace.max_distance);
+    let mut hit_depth_error = hit_depth_error(&rays, job.truth);
+    if job.no_truth {
+        (mse, mismatch, hit_depth_error) = (f64::NAN, f64::NAN, [f64::NAN; 3]);
+    }
     let n = job.truth.len().max(1) as f64;
     // What shading evaluated, counted by the full frame's module itself.
     let shaded = full.frame(0.0)?.shading;

@@ -129,4 +129,6 @@ pub struct Job<'a> {
     pub form: sdfc_compiler::lower::tracer::Form,
     /// Also count primitive evaluations per pixel ([`Cell::primitives`]).
     pub count_primitives: bool,
+    /// No ground truth (`--no-truth`): the errors are NaN (`null` in JSON).
+    pub no_truth: bool,
 }

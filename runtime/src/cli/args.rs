@@ -301,12 +301,16 @@ pub struct BenchArgs {
     pub allow_slow_compile: bool,
     /// How `map` holds the scene (as `render --form`): `data` measures the scene as data,
     /// pruned per cell, and reports the CPU's pre-pass time.
-    #[arg(long, value_enum, default_value = "inline")]
+    #[arg(long, value_enum, default_value = "auto")]
     pub form: super::tracer::FormArg,
     /// Also count primitive evaluations per pixel, of the trace and of shading (compiles the
     /// trace and the frame once more with a counter in every primitive's function; not timed).
     #[arg(long)]
     pub count_primitives: bool,
+    /// Skip the f64 ground truth (its CPU time grows with the parts: thousands of them take
+    /// hours): the errors are then reported as absent (`null` in JSON).
+    #[arg(long, conflicts_with_all = ["truth", "target_error", "bake_sweep"])]
+    pub no_truth: bool,
     #[command(flatten)]
     pub bake: BakeArgs,
 }

@@ -49,7 +49,7 @@ pub fn driver_module(
         "sdfc hands the driver shaders predicted to compile within {} (its model of lavapipe's compile time: docs/stability.md)",
         seconds(cost::MAX_COMPILE_SECONDS)
     ))
-    .help("share repeated shapes with `let` or `repeat`, or pass `--allow-slow-compile` to wait; `sdfc emit` writes the shader for other engines");
+    .help("share repeated shapes with `let` or `repeat`, draw the scene as data (`--form data`, for unions, intersections and cuts of primitives), or pass `--allow-slow-compile` to wait; `sdfc emit` writes the shader for other engines");
     say_raw!("{}", crate::cli::messages::report(&[d], sources));
     Err(Error::Reported)
 }

@@ -59,12 +59,13 @@ pub struct TracerArgs {
     /// Evaluate every part of every union each time: no bounding-box tests in `map`.
     #[arg(long)]
     pub no_bvh: bool,
-    /// How `map` holds the scene: `inline` code (the default), or `data`: the scene's parts
-    /// in storage buffers, each cell of a grid over it with only the parts that can matter
-    /// there (Lipschitz pruning), run by a generic evaluator whose code does not grow with
-    /// the parts (primitives under moves, turns and scales, folded by unions, intersections
-    /// and subtractions, hard or smooth).
-    #[arg(long, value_enum, default_value = "inline")]
+    /// How `map` holds the scene: `inline` code, or `data`: the scene's parts in storage
+    /// buffers, each cell of a grid over it with only the parts that can matter there
+    /// (Lipschitz pruning), run by a generic evaluator whose code does not grow with the parts
+    /// (primitives under moves, turns and scales, folded by unions, intersections and
+    /// subtractions, hard or smooth); `auto` (the default): `data` for a scene of many parts
+    /// it can hold (docs/data-form.md gives the measured threshold), else `inline`.
+    #[arg(long, value_enum, default_value = "auto")]
     pub form: FormArg,
     /// Start shadow, reflected and refracted rays a fixed 2·ε_floor off the surface instead of
     /// Keinert's ε_dynamic = 2·max(ε, |f(p)|): only to see and measure what ε_dynamic prevents
@@ -112,7 +113,9 @@ impl TracerArgs {
                  does not yet hand a host the buffers it reads (issue 33)"
             )));
         }
-        self.settle(scene)
+        let mut options = self.settle(scene)?;
+        options.form = sdfc_compiler::lower::tracer::Form::Inline;
+        Ok(options)
     }
 
     /// Applies the overrides to a scene and returns the lowering options, or an error for the
@@ -130,10 +133,7 @@ impl TracerArgs {
         options.passes = self.passes > 1;
         options.bounding_volumes = bounding_volumes(self.bvh, self.no_bvh);
         options.fixed_offset = self.fixed_offset;
-        if self.form == FormArg::Data {
-            data_form_allowed(self.passes, scene)?;
-            options.form = sdfc_compiler::lower::tracer::Form::Data;
-        }
+        options.form = self.form.choose(self.passes, scene)?;
         Ok(options)
     }
 }
@@ -171,11 +171,39 @@ pub fn data_form_allowed(passes: u32, scene: &sdfc_compiler::scene::Scene) -> Re
 /// `--form`: how `map` holds the scene.
 #[derive(clap::ValueEnum, Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum FormArg {
-    /// Every part's code in `map`.
+    /// The data form for a scene of many parts that has one (`tape::data::prefer`), else
+    /// inline.
     #[default]
+    Auto,
+    /// Every part's code in `map`.
     Inline,
     /// The scene as data, pruned per cell.
     Data,
+}
+
+impl FormArg {
+    /// The form for `scene` drawn in `passes` passes: `auto` takes the data form where the
+    /// scene has enough parts and nothing the data form refuses, else the inline one;
+    /// `data` is an error where the data form cannot draw the scene.
+    pub fn choose(
+        self,
+        passes: u32,
+        scene: &sdfc_compiler::scene::Scene,
+    ) -> Result<sdfc_compiler::lower::tracer::Form, Error> {
+        use sdfc_compiler::lower::tracer::Form;
+        Ok(match self {
+            FormArg::Inline => Form::Inline,
+            FormArg::Data => {
+                data_form_allowed(passes, scene)?;
+                Form::Data
+            }
+            FormArg::Auto => {
+                let data = sdfc_compiler::tape::data::prefer(scene)
+                    && data_form_allowed(passes, scene).is_ok();
+                if data { Form::Data } else { Form::Inline }
+            }
+        })
+    }
 }
 
 /// `--passes N` of `render`, `emit` and `bench`: a number of passes there is a schedule for.

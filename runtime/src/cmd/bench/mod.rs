@@ -4,7 +4,7 @@
 use super::common::progress_bar;
 use crate::cli::driver::driver_module;
 use crate::cli::input::{exit_code, load_scene, print_out};
-use crate::cli::tracer::{FormArg, bounding_volumes, check_passes, data_form_allowed};
+use crate::cli::tracer::{bounding_volumes, check_passes};
 use crate::cli::values::parse_size;
 use crate::cli::{BenchArgs, Error};
 use sdfc::bench::{self, Cell, Truth};
@@ -127,18 +127,18 @@ fn bench(args: &BenchArgs) -> Result<(), Error> {
     let mut options = sdfc_compiler::lower::tracer::Options::from_scene(&scene);
     options.bounding_volumes = bvh(args);
     options.fixed_offset = args.fixed_offset;
-    let data = args.form == FormArg::Data;
-    if data {
-        data_form_allowed(args.passes, &scene)?;
-        options.form = Form::Data;
-    }
+    options.form = args.form.choose(args.passes, &scene)?;
+    let data = options.form == Form::Data;
     driver_module(&scene, &sources, &mut options, args.allow_slow_compile)?;
     let cells = plan(args, &scene)?;
     let gpu = Gpu::new(args.backend.into())?;
     let view = View::new(&scene.camera, w, h);
     let reference = reference.as_ref().map(|(t, p)| (t.as_str(), p.as_str()));
     let truth_of = truth_scene.as_ref().unwrap_or(&scene);
-    let (truth, depth) = ground_truth(truth_of, &view);
+    let (truth, depth) = match args.no_truth {
+        false => ground_truth(truth_of, &view),
+        true => no_truth(&view),
+    };
     let bvh_now = options.bounding_volumes;
     let mut measured = Vec::new();
     let mut swept = Vec::new();
@@ -245,14 +245,6 @@ fn check_flags(args: &BenchArgs) -> Result<(), Error> {
     Ok(())
 }
 
-/// The form `--form` asks for.
-fn options_form(args: &BenchArgs) -> Form {
-    match args.form {
-        FormArg::Inline => Form::Inline,
-        FormArg::Data => Form::Data,
-    }
-}
-
 /// The trees `--bvh` or `--no-bvh` ask for.
 fn bvh(args: &BenchArgs) -> BoundingVolumes {
     bounding_volumes(args.bvh, args.no_bvh)
@@ -302,6 +294,20 @@ fn ground_truth(scene: &Scene, view: &View) -> (Truth, Vec<Option<f64>>) {
     (truth, depth)
 }
 
+/// `--no-truth`: no steps, every pixel without a depth.
+fn no_truth(view: &View) -> (Truth, Vec<Option<f64>>) {
+    let pixels = (view.width * view.height) as usize;
+    let truth = Truth {
+        steps: 0,
+        epsilon: 0.0,
+        bisections: 0,
+        pixels,
+        escaped: pixels,
+        seconds: 0.0,
+    };
+    (truth, vec![None; pixels])
+}
+
 /// Every cell on the GPU against the truth's `depth`, with a progress bar.
 fn measure(
     (args, bvh): (&BenchArgs, sdfc_compiler::lower::tracer::BoundingVolumes),
@@ -330,8 +336,9 @@ fn measure(
             reference,
             bvh,
             fixed_offset: args.fixed_offset,
-            form: options_form(args),
+            form: args.form.choose(args.passes, scene)?,
             count_primitives: args.count_primitives,
+            no_truth: args.no_truth,
         };
         measured.push(bench::measure(gpu, &job)?);
     }
@@ -433,20 +440,21 @@ fn parts(r: &Report) -> String {
 }
 
 fn table(r: &Report) -> String {
+    let truth = match r.truth.steps {
+        0 => "ground truth: none (`--no-truth`), so no errors".to_string(),
+        _ => format!(
+            "ground truth: basic, {} steps, ε {}·|eye − target|, {} bisections; {} of {} pixels escape (CPU {:.1} s)",
+            r.truth.steps,
+            r.truth.epsilon,
+            r.truth.bisections,
+            r.truth.escaped,
+            r.truth.pixels,
+            r.truth.seconds
+        ),
+    };
     let mut out = format!(
-        "{}: {}×{} on {} ({})\nground truth: basic, {} steps, ε {}·|eye − target|, {} bisections; {} of {} pixels escape (CPU {:.1} s)\ntime: {}\n\n",
-        r.scene,
-        r.width,
-        r.height,
-        r.adapter,
-        r.backend,
-        r.truth.steps,
-        r.truth.epsilon,
-        r.truth.bisections,
-        r.truth.escaped,
-        r.truth.pixels,
-        r.truth.seconds,
-        r.timing
+        "{}: {}×{} on {} ({})\n{truth}\ntime: {}\n\n",
+        r.scene, r.width, r.height, r.adapter, r.backend, r.timing
     );
     if let Some(t) = &r.truth_scene {
         out += &format!("truth: the f64 field of {t}\n");
