@@ -114,22 +114,36 @@ pub fn pick(rule: MatRule, ctx: &Ctx, children: &[(f64, Option<Blend>)]) -> Opti
     Some(blend)
 }
 
-/// Whether some blending operator the scene reaches has a material given below it (then
-/// shading blends: `eval::blend`, the shader's `map_blend`); a blend tagged as a whole has one
-/// material and needs none.
+/// Whether some blending operator the scene reaches has two different materials below it
+/// that can surface (then shading blends: `eval::blend`, the shader's `map_blend`): a blend
+/// tagged as a whole, or whose parts all carry one material, has one material and needs none.
 pub fn has_blends(scene: &Scene) -> bool {
-    let tagged_below = |id: usize| {
-        let mut stack: Vec<usize> = scene.nodes[id].children().to_vec();
-        while let Some(n) = stack.pop() {
-            if scene.nodes[n].material.is_some() {
-                return true;
+    // The materials given below `id`, and whether a leaf is reached without one (it then
+    // surfaces with what is given at or above `id`: one more material).
+    let surfacing = |id: usize| {
+        let mut given = std::collections::BTreeSet::new();
+        let mut bare = false;
+        let mut stack: Vec<(usize, bool)> = scene.nodes[id]
+            .children()
+            .iter()
+            .map(|&c| (c, false))
+            .collect();
+        while let Some((n, tagged)) = stack.pop() {
+            let node = &scene.nodes[n];
+            if let Some(m) = node.material {
+                given.insert(m);
             }
-            stack.extend(scene.nodes[n].children());
+            let tagged = tagged || node.material.is_some();
+            let children = node.children();
+            if children.is_empty() && !tagged {
+                bare = true;
+            }
+            stack.extend(children.iter().map(|&c| (c, tagged)));
         }
-        false
+        given.len() + usize::from(bare)
     };
     scene.reachable().into_iter().any(|n| {
         matches!(&scene.nodes[n].kind, NodeKind::Operator { op, .. } if op.materials.blends())
-            && tagged_below(n)
+            && surfacing(n) > 1
     })
 }
