@@ -13,7 +13,7 @@ sdfc's smooth operators) over `primitive` nodes (`sphere` radius, `box` full `si
 this converter does:
 
 - a left-deep chain of one operator with one radius becomes one n-ary fold, folded in the
-  same order (so the same field);
+  same order (so the same field); a radius below 1e-6 is written as the sharp operator;
 - a matrix must be a move (the scenes here have no turns or scales; anything else is an
   error): the primitive is placed `at` the opposite of its offset;
 - a box whose corners and extrusion are rounded alike becomes `rounded_box(sides, r)`; where
@@ -86,7 +86,9 @@ class Writer:
         chain.append(x)
         chain.reverse()
         hard, smooth = OPS[mode]
-        head = f"{smooth}({num(k)})" if k > 0 else hard
+        # (A radius below a millionth — the trees' root has 1e-8 — blends nothing at float
+        # precision: written as the sharp operator.)
+        head = f"{smooth}({num(k)})" if k > 1e-6 else hard
         lines = [f"{pad}{head} {{"]
         for c in chain:
             lines += self.node(c, indent + 1)
