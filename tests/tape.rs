@@ -451,7 +451,7 @@ fn the_data_s_programs_give_the_whole_field_in_every_cell() {
         let n = layout.n.map(|k| k as f64);
         let hi = layout.lo + DVec3::new(n[0], n[1], n[2]) * layout.size;
         let run = |i: usize, p: DVec3| {
-            let [start, len] = d.ranges[i];
+            let [start, len] = d.ranges[data::HEADER + i];
             let words = d.code[start as usize..(start + len) as usize].to_vec();
             let code = program::Code {
                 words,
@@ -474,7 +474,7 @@ fn the_data_s_programs_give_the_whole_field_in_every_cell() {
         if let Some(outside) = data::outside(&s, &tree) {
             let p = hi + DVec3::new(0.5, 0.7, 0.3);
             let want = tape::eval::value(&s, &outside, p);
-            assert!((run(d.ranges.len() - 1, p) - want).abs() <= 1e-12 * (1.0 + want.abs()));
+            assert!((run(d.cells(), p) - want).abs() <= 1e-12 * (1.0 + want.abs()));
         }
         said.push(format!(
             "{}×{}×{} cells, {:.1} leaves a cell",

@@ -159,3 +159,61 @@ fn the_form_by_default_follows_the_parts() {
         "{err}"
     );
 }
+
+/// Parameters in shapes' arguments drive the data form without a new shader: `render --param`
+/// makes the buffers at the value for the shader compiled at the defaults, and draws what the
+/// inline form draws there — here a sphere among 150 that grows and moves.
+#[test]
+fn parameters_move_the_parts_of_the_data_form() {
+    use crate::common::{scratch, sdfc, write};
+    let dir = scratch("data-params");
+    let text = format!(
+        "param r = 0.3 in 0.05..0.8\nparam pos = (0, 0, -1.2)\ncamera {{ eye (0, 1, -4)  target (0, 0, 0) }}\nunion {{\n{}\nsphere(r) at pos\n}}",
+        balls(150, false)
+    );
+    let file = write(&dir, "moved.sdf", &text);
+    let draw = |form: &str, values: &[&str]| {
+        let out = dir.join(format!("{form}-{}.png", values.len()));
+        let out = out.to_str().unwrap().to_string();
+        let mut args = vec![
+            "render",
+            &file,
+            "--size",
+            "160x90",
+            "--samples",
+            "1",
+            "--form",
+            form,
+            "-o",
+            &out,
+            "-q",
+        ];
+        args.extend_from_slice(values);
+        let o = sdfc(&args);
+        assert_eq!(
+            o.status.code(),
+            Some(0),
+            "{}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+        image::open(&out).unwrap().to_rgba8()
+    };
+    let moved = ["--param", "r=0.6", "--param", "pos=0.5,0.9,-1.3"];
+    let (data, inline) = (draw("data", &moved), draw("inline", &moved));
+    let differ = |a: &image::RgbaImage, b: &image::RgbaImage| {
+        a.pixels()
+            .zip(b.pixels())
+            .filter(|(p, q)| (0..3).any(|k| p[k].abs_diff(q[k]) > 2))
+            .count()
+    };
+    let pixels = (160 * 90) as usize;
+    assert!(
+        differ(&data, &inline) <= pixels / 40,
+        "{} of {pixels} pixels differ",
+        differ(&data, &inline)
+    );
+    assert!(
+        differ(&data, &draw("data", &[])) > pixels / 20,
+        "the parameters moved nothing"
+    );
+}

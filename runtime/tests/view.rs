@@ -317,37 +317,46 @@ fn without_a_display_view_says_so() {
 }
 
 /// The keys change a parameter live: `=` raises the selected one (the first) by a twentieth of
-/// its range, and the picture is `sdfc render --param` at that value.
+/// its range, and the picture is `sdfc render --param` at that value — inline and as data.
 #[test]
 fn keys_change_a_parameter() {
     if !xvfb() {
         return;
     }
-    let dir = scratch("view-param");
-    let source = BASE
-        .replace("sphere(0.8)", "sphere(r)")
-        .replace("camera", "param r = 0.8 in 0.4..1.2\ncamera");
-    let extra = ["--script", "key =", "--quit-after", "2"];
-    let Viewer {
-        mut child,
-        shots,
-        log,
-        ..
-    } = start_view(&dir, &source, &extra);
-    wait_for(&shots.join("001.png"), &mut child, &log);
-    assert!(child.wait().unwrap().success());
-    let want = rendered_with(&dir, &source, "want", &["--param", "r=0.84"]);
-    let share = agreement(&shots.join("001.png"), &want);
-    assert!(
-        share >= 0.995,
-        "{:.2}%\n{}",
-        share * 100.0,
-        std::fs::read_to_string(&log).unwrap()
-    );
-    assert!(
-        agreement(&shots.join("000.png"), &want) < 0.99,
-        "the key changed nothing"
-    );
+    // Inline, the uniform changes; as data (issue 33), the window makes the buffers again at
+    // the new value for the same shader.
+    for form in ["inline", "data"] {
+        let dir = scratch(&format!("view-param-{form}"));
+        let source = BASE
+            .replace("sphere(0.8)", "sphere(r)")
+            .replace("camera", "param r = 0.8 in 0.4..1.2\ncamera");
+        let extra = ["--script", "key =", "--quit-after", "2", "--form", form];
+        let Viewer {
+            mut child,
+            shots,
+            log,
+            ..
+        } = start_view(&dir, &source, &extra);
+        wait_for(&shots.join("001.png"), &mut child, &log);
+        assert!(child.wait().unwrap().success());
+        let want = rendered_with(
+            &dir,
+            &source,
+            "want",
+            &["--param", "r=0.84", "--form", form],
+        );
+        let share = agreement(&shots.join("001.png"), &want);
+        assert!(
+            share >= 0.995,
+            "{form}: {:.2}%\n{}",
+            share * 100.0,
+            std::fs::read_to_string(&log).unwrap()
+        );
+        assert!(
+            agreement(&shots.join("000.png"), &want) < 0.99,
+            "{form}: the key changed nothing"
+        );
+    }
 }
 
 /// The keys check annotations at the values they set: a bound right at the default (slope

@@ -67,18 +67,58 @@ pub struct Data {
     pub nodes: Vec<[u32; 4]>,
     /// Every cell's program, then the one outside the grid.
     pub code: Vec<u32>,
-    /// Each cell's program (first instruction, count), x fastest, then y, then z; then the
-    /// one outside the grid.
+    /// The grid ([`HEADER`] entries: its lowest corner, cell size, cells along x, y and z and
+    /// the proxy's margin, as f32 bits where not counts), then each cell's program (first
+    /// instruction, count), x fastest, then y, then z; then the one outside the grid.
     pub ranges: Vec<[u32; 2]>,
     /// The mean leaves a cell's program evaluates.
     pub mean_leaves: f64,
 }
 
 impl Data {
+    /// The grid's cells.
+    pub fn cells(&self) -> usize {
+        self.ranges.len().saturating_sub(HEADER + 1)
+    }
+
     /// The bytes of the three buffers.
     pub fn bytes(&self) -> usize {
         self.nodes.len() * 16 + self.code.len() * 4 + self.ranges.len() * 8
     }
+}
+
+impl Layout {
+    /// Whether a shader compiled for this layout runs `other`'s data: the same kinds, a stack
+    /// as deep, and a grid and a proxy where this one has them (their values are data).
+    pub fn holds(&self, other: &Layout) -> bool {
+        let grid = |l: &Layout| l.n.iter().product::<usize>() > 0;
+        self.kinds.len() == other.kinds.len()
+            && self
+                .kinds
+                .iter()
+                .zip(&other.kinds)
+                .all(|(a, b)| std::ptr::eq(*a, *b))
+            && other.depth <= self.depth
+            && grid(self) == grid(other)
+            && self.proxy.is_some() == other.proxy.is_some()
+    }
+}
+
+/// Entries of the ranges buffer before the cells': the grid, read by the shader at run time
+/// (so that parameters may move the parts without a new shader): `[lo.x, lo.y]`,
+/// `[lo.z, size]`, `[nx, ny]`, `[nz, margin]`.
+pub const HEADER: usize = 4;
+
+/// The grid's header entries of the ranges buffer (see [`HEADER`]).
+fn header(layout: &Layout) -> [[u32; 2]; HEADER] {
+    let f = |x: f64| (x as f32).to_bits();
+    let [nx, ny, nz] = layout.n.map(|n| n as u32);
+    [
+        [f(layout.lo.x), f(layout.lo.y)],
+        [f(layout.lo.z), f(layout.size)],
+        [nx, ny],
+        [nz, f(layout.proxy.unwrap_or(0.0))],
+    ]
 }
 
 /// Why a scene has no data form.
@@ -210,7 +250,8 @@ pub fn data(scene: &Scene, tree: &Part, layout: &Layout) -> Result<Data, Why> {
     let codes = map_grid(scene, tree, grid, |part| program::encode(&table, &part));
     let count = codes.len();
     let mut code = Vec::new();
-    let mut ranges = Vec::with_capacity(count + 1);
+    let mut ranges = Vec::with_capacity(HEADER + count + 1);
+    ranges.extend(header(layout));
     let mut leaves = 0;
     // Cells with the same program (neighbours that keep the same parts) share it.
     let mut seen: std::collections::HashMap<Vec<u32>, [u32; 2]> = std::collections::HashMap::new();

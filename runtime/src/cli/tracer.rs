@@ -139,8 +139,9 @@ impl TracerArgs {
 }
 
 /// Refuses what the data form cannot do yet: several passes, shapes whose arguments follow
-/// parameters (the buffers hold the values they were made with), and nodes it has no data
-/// for (`tape::data::layout` says which).
+/// `time` (an animation would need the buffers made again every frame), and nodes it has no
+/// data for (`tape::data::layout` says which). Other parameters are followed: the host makes
+/// the buffers at their values (`tape_data`), the shader stays.
 pub fn data_form_allowed(passes: u32, scene: &sdfc_compiler::scene::Scene) -> Result<(), Error> {
     use sdfc_compiler::scene::NodeKind;
     if passes > 1 {
@@ -148,14 +149,25 @@ pub fn data_form_allowed(passes: u32, scene: &sdfc_compiler::scene::Scene) -> Re
             "error: `--form data` takes one pass (`--passes 1`) so far".into(),
         ));
     }
+    let timed = |syms: &sdfc_compiler::catalog::ArgSyms| {
+        let mut found = false;
+        for comps in syms.iter().flatten() {
+            for f in comps {
+                f.params(&mut |r| {
+                    found |= scene.params[r.index].name == sdfc_compiler::check::TIME;
+                });
+            }
+        }
+        found
+    };
     let follows = scene.nodes.iter().any(|n| match &n.kind {
-        NodeKind::Primitive { ctx, .. } | NodeKind::Operator { ctx, .. } => !ctx.sym.is_empty(),
+        NodeKind::Primitive { ctx, .. } | NodeKind::Operator { ctx, .. } => timed(&ctx.sym),
         NodeKind::Implicit { .. } => false,
     });
     if follows {
         return Err(Error::Usage(
-            "error: `--form data` does not yet follow parameters in shapes' arguments: its \
-             buffers would keep the values they were made with"
+            "error: `--form data` does not yet follow `time` in shapes' arguments: its \
+             buffers would have to be made again every frame"
                 .into(),
         ));
     }
@@ -229,8 +241,9 @@ pub fn bounding_volumes(bvh: bool, no_bvh: bool) -> BoundingVolumes {
     }
 }
 
-/// The data form's buffers for a scene compiled at its defaults (`scene`: its layout, the
-/// kinds and grid compiled into the shader) drawn at other values (`valued`: the programs).
+/// The data form's buffers for a scene compiled at its defaults (`scene`: the kinds, the
+/// stack's depth and whether there is a grid and a proxy are compiled into the shader) drawn
+/// at other values (`valued`: the grid, the cells' programs and the parts' arguments).
 pub fn tape_data(
     scene: &sdfc_compiler::scene::Scene,
     valued: &sdfc_compiler::scene::Scene,
@@ -238,7 +251,14 @@ pub fn tape_data(
     use sdfc_compiler::tape::data;
     let fail =
         |why: data::Why| Error::Usage(format!("error: `--form data`: {}", data::say(scene, &why)));
-    let (_, layout) = data::layout(scene, None).map_err(fail)?;
-    let tree = sdfc_compiler::tape::build(valued).map_err(|u| fail(data::Why::Node(u)))?;
+    let (_, compiled) = data::layout(scene, None).map_err(fail)?;
+    let (tree, layout) = data::layout(valued, None).map_err(fail)?;
+    if !compiled.holds(&layout) {
+        return Err(Error::Usage(
+            "error: `--form data`: at these parameter values the scene's parts need another \
+             shader (their kinds, nesting or bounds changed): draw it with `--form inline`"
+                .into(),
+        ));
+    }
     data::data(valued, &tree, &layout).map_err(fail)
 }

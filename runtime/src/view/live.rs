@@ -71,13 +71,16 @@ pub struct Live {
     pub stats: (f64, f64),
     /// The last finished picture at full size (kept through a failed reload).
     last: Vec<u8>,
+    /// The values the data form's buffers were made at (they are made again, the shader
+    /// kept, when the keys change one).
+    tape_values: HashMap<String, Vec<f64>>,
 }
 
 impl Live {
     /// Compiles and prepares `scene` for a window of `size`.
     pub fn new(gpu: Gpu, scene: Scene, options: Options, size: (u32, u32)) -> Result<Live, Error> {
         let orbit = Orbit::new(&scene.camera);
-        let (full, coarse) = prepare(&gpu, &scene, &options, size)?;
+        let (full, coarse) = prepare(&gpu, &scene, &options, size, &HashMap::new())?;
         Ok(Live {
             gpu,
             scene,
@@ -97,13 +100,15 @@ impl Live {
             paused: None,
             stats: (0.0, 0.0),
             last: Vec::new(),
+            tape_values: HashMap::new(),
         })
     }
 
     /// A new scene (a reload that checked): compiled and prepared; the camera stays where the
     /// user turned it.
     pub fn replace(&mut self, scene: Scene, options: Options) -> Result<(), Error> {
-        let (full, coarse) = prepare(&self.gpu, &scene, &options, self.size)?;
+        let (full, coarse) = prepare(&self.gpu, &scene, &options, self.size, &HashMap::new())?;
+        self.tape_values.clear();
         // Values set with the keys stay only where the new scene still has the parameter,
         // of the same size, and within its range.
         self.values.retain(|name, v| {
@@ -127,7 +132,8 @@ impl Live {
     /// The window's new size.
     pub fn resize(&mut self, size: (u32, u32)) -> Result<(), Error> {
         let size = (size.0.clamp(1, MAX_SIDE), size.1.clamp(1, MAX_SIDE));
-        (self.full, self.coarse) = prepare(&self.gpu, &self.scene, &self.options, size)?;
+        let values = &self.tape_values;
+        (self.full, self.coarse) = prepare(&self.gpu, &self.scene, &self.options, size, values)?;
         self.size = size;
         self.restart();
         Ok(())
@@ -247,6 +253,14 @@ impl Live {
 
     /// Renders the next frame: coarse while moving, else the next sample of the full picture.
     pub fn step(&mut self) -> Result<Picture, Error> {
+        if self.options.form == sdfc_compiler::lower::tracer::Form::Data
+            && self.values != self.tape_values
+        {
+            // The data form at new values: its buffers made again for the same shader.
+            let (scene, options) = (&self.scene, &self.options);
+            (self.full, self.coarse) = prepare(&self.gpu, scene, options, self.size, &self.values)?;
+            self.tape_values = self.values.clone();
+        }
         let camera = self.orbit.camera();
         let params = self.params();
         if Instant::now() < self.moving_until {
@@ -339,12 +353,13 @@ fn coarse_size((w, h): (u32, u32)) -> (u32, u32) {
 }
 
 /// The compute module of `scene`, prepared at `size` and at a quarter of it (one dispatch
-/// each: a frame is one submission).
+/// each: a frame is one submission); the data form's buffers made at `values`.
 fn prepare(
     gpu: &Gpu,
     scene: &Scene,
     options: &Options,
     size: (u32, u32),
+    values: &HashMap<String, Vec<f64>>,
 ) -> Result<(Prepared, Prepared), Error> {
     let (module, _) =
         emit::module(scene, Entry::Compute, options).map_err(|e| Error::Compiler(e.0))?;
@@ -352,7 +367,7 @@ fn prepare(
     gpu.set_volumes(&scene.volumes());
     let data = options.form == sdfc_compiler::lower::tracer::Form::Data;
     gpu.set_tape(
-        data.then(|| crate::cli::tape_data(scene, scene))
+        data.then(|| crate::cli::tape_data(scene, &scene.with_values(values)))
             .transpose()?
             .as_ref(),
     );

@@ -67,7 +67,7 @@ fn prepass(gpu: &Gpu, scene: &Scene) -> Result<Prepass, Error> {
     Ok(Prepass {
         seconds,
         bytes: tape.bytes(),
-        cells: tape.ranges.len(),
+        cells: tape.cells(),
         mean_leaves: tape.mean_leaves,
     })
 }
