@@ -74,7 +74,7 @@ pub fn measure(gpu: &Gpu, job: &Job) -> Result<Cell, Error> {
         None => None,
     };
     let primitives = match job.count_primitives {
-        true => Some(count_primitives(gpu, job, trace, n)?),
+        true => Some(count_primitives(gpu, job, trace)?),
         false => None,
     };
     Ok(Cell {
@@ -99,44 +99,26 @@ pub fn measure(gpu: &Gpu, job: &Job) -> Result<Cell, Error> {
 
 /// Mean primitive evaluations per pixel of the trace and of shading after it, from the trace
 /// and frame modules compiled once more with counters (run once, untimed).
-fn count_primitives(gpu: &Gpu, job: &Job, trace: Trace, n: f64) -> Result<[f64; 2], Error> {
-    let passes = job.passes > 1;
-    let (trace_module, plan) = compile(job, trace, (Entry::Trace, true))?;
-    let (full_module, _) = compile(job, trace, (Entry::Compute, true))?;
-    let whole = u32::MAX;
-    let layout = Layout::TraceOnly { passes };
-    let tracing = gpu.prepare(
-        Source::Module(&trace_module),
-        layout,
-        job.view,
-        plan.as_deref(),
-        whole,
-    )?;
-    let layout = Layout::Full { passes };
-    let full = gpu.prepare(
-        Source::Module(&full_module),
-        layout,
-        job.view,
-        plan.as_deref(),
-        whole,
-    )?;
+fn count_primitives(gpu: &Gpu, job: &Job, trace: Trace) -> Result<[f64; 2], Error> {
+    let (tracing, full) = prepare_pair(gpu, job, trace, true)?;
     tracing.run()?;
     full.run()?;
-    let traced: f64 = tracing.rays()?.iter().map(|r| f64::from(r.steps)).sum();
-    let shaded: f64 = full.frame(0.0)?.shading.iter().map(|&e| f64::from(e)).sum();
-    Ok([traced / n, shaded / n])
+    let shaded = full.frame(0.0)?.shading;
+    let shaded = shaded.iter().map(|&e| f64::from(e)).sum::<f64>() / shaded.len().max(1) as f64;
+    Ok([mean_steps(&tracing.rays()?), shaded])
 }
 
-/// The cell's trace-only module, its full frame and the reference (if any), prepared whole
-/// (one dispatch per pass).
-fn prepare(
+/// The cell's trace-only module and its full frame (`count`: compiled to count primitive
+/// evaluations), prepared whole (one dispatch per pass).
+fn prepare_pair(
     gpu: &Gpu,
     job: &Job,
     trace: Trace,
-) -> Result<(Prepared, Prepared, Option<Prepared>), Error> {
+    count: bool,
+) -> Result<(Prepared, Prepared), Error> {
     let passes = job.passes > 1;
-    let (trace_module, plan) = compile(job, trace, (Entry::Trace, false))?;
-    let (full_module, _) = compile(job, trace, (Entry::Compute, false))?;
+    let (trace_module, plan) = compile(job, trace, (Entry::Trace, count))?;
+    let (full_module, _) = compile(job, trace, (Entry::Compute, count))?;
     let whole = u32::MAX;
     let tracing = gpu.prepare(
         Source::Module(&trace_module),
@@ -152,13 +134,24 @@ fn prepare(
         plan.as_deref(),
         whole,
     )?;
+    Ok((tracing, full))
+}
+
+/// The cell's trace-only module, its full frame and the reference (if any), prepared whole
+/// (one dispatch per pass).
+fn prepare(
+    gpu: &Gpu,
+    job: &Job,
+    trace: Trace,
+) -> Result<(Prepared, Prepared, Option<Prepared>), Error> {
+    let (tracing, full) = prepare_pair(gpu, job, trace, false)?;
     let reference = match job.reference {
         Some((text, path)) => Some(gpu.prepare(
             Source::Wgsl(text, path),
             Layout::TraceOnly { passes: false },
             job.view,
             None,
-            whole,
+            u32::MAX,
         )?),
         None => None,
     };
