@@ -245,13 +245,7 @@ fn bench_counts_primitive_evaluations() {
             "--count-primitives",
         ];
         args.extend_from_slice(extra);
-        let o = sdfc(&args);
-        assert_eq!(
-            o.status.code(),
-            Some(0),
-            "{}",
-            String::from_utf8_lossy(&o.stderr)
-        );
+        let o = crate::common::succeeded(&args);
         serde_json::from_slice::<serde_json::Value>(&o.stdout).expect("JSON")
     };
     let inline = run(&["--no-bvh"]);

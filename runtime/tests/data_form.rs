@@ -165,7 +165,7 @@ fn the_form_by_default_follows_the_parts() {
 /// inline form draws there — here a sphere among 150 that grows and moves.
 #[test]
 fn parameters_move_the_parts_of_the_data_form() {
-    use crate::common::{scratch, sdfc, write};
+    use crate::common::{scratch, succeeded, write};
     let dir = scratch("data-params");
     let text = format!(
         "param r = 0.3 in 0.05..0.8\nparam pos = (0, 0, -1.2)\ncamera {{ eye (0, 1, -4)  target (0, 0, 0) }}\nunion {{\n{}\nsphere(r) at pos\n}}",
@@ -189,13 +189,7 @@ fn parameters_move_the_parts_of_the_data_form() {
             "-q",
         ];
         args.extend_from_slice(values);
-        let o = sdfc(&args);
-        assert_eq!(
-            o.status.code(),
-            Some(0),
-            "{}",
-            String::from_utf8_lossy(&o.stderr)
-        );
+        succeeded(&args);
         image::open(&out).unwrap().to_rgba8()
     };
     let moved = ["--param", "r=0.6", "--param", "pos=0.5,0.9,-1.3"];

@@ -6,7 +6,7 @@
 //! Needs `xvfb-run` (Debian's `xvfb`), which `.ci/run` installs; without it the window tests
 //! say SKIPPED loudly, and fail instead when `SDFC_REQUIRE_DISPLAY=1` (as `.ci/run` sets).
 
-use crate::common::{root, scratch, sdfc};
+use crate::common::{root, scratch, succeeded};
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
@@ -153,13 +153,7 @@ fn rendered_with(dir: &Path, scene: &str, name: &str, extra: &[&str]) -> PathBuf
         "-q",
     ];
     args.extend(extra);
-    let o = sdfc(&args);
-    assert_eq!(
-        o.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&o.stderr)
-    );
+    succeeded(&args);
     out
 }
 

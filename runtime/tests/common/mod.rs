@@ -214,6 +214,18 @@ pub fn sdfc(args: &[&str]) -> Output {
     bounded(&[], TIME_CAP, args)
 }
 
+/// Runs `sdfc args` and checks that it succeeded (exit 0; its standard error shown if not).
+pub fn succeeded(args: &[&str]) -> Output {
+    let run = sdfc(args);
+    assert_eq!(
+        run.status.code(),
+        Some(0),
+        "{args:?}: {}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    run
+}
+
 /// Runs `sdfc args` and checks that it refused them as a user error (exit 1) saying `says`,
 /// without a panic, and left no file at `out`.
 pub fn refused(args: &[&str], says: &str, out: &std::path::Path) {
