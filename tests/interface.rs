@@ -40,6 +40,7 @@ fn describe(
         emit::write_reflected(m, &info, Target::Wgsl, entry, &settings).unwrap();
     let origin = Origin {
         volume_files: &[],
+        data: None,
         scene: "scene.sdf",
         target: "wgsl",
         entry,

@@ -70,6 +70,7 @@ pub fn render(job: &Job) -> Result<Vec<u8>, String> {
     };
     let origin = sdfc_compiler::manifest::Origin {
         volume_files: &[],
+        data: None,
         scene: "host",
         target: "wgsl",
         entry: Entry::Library,

@@ -6,7 +6,8 @@
 //! `examples/hosts/test`), which `.ci/run` installs; without them the test says
 //! SKIPPED loudly, and fails instead when `SDFC_REQUIRE_BROWSER=1` (as `.ci/run` sets).
 
-use crate::common::{compile, examples, gpu, render, root, scratch, sdfc, within_levels};
+use crate::common::{compile, examples, gpu, render, root, scratch, succeeded, within_levels};
+use sdfc_compiler::scene::Scene;
 use sdfc_compiler::view::View;
 use std::collections::HashMap;
 use std::process::Command;
@@ -86,28 +87,28 @@ fn the_webgpu_page_draws_what_render_draws() {
         root().join("examples/baked.sdf"),
         vec!["{}"],
     ));
+    // The data form (`--form data`): its buffers loaded from the files beside the shader; a
+    // value of the parameter that moves its plane, held in those buffers, is refused.
+    scenes.push((DATA.into(), data_scene(&dir), vec!["{}", DATA_MOVED]));
     for (name, file, settings) in &scenes {
         let (wgsl, json) = (
             dir.join(format!("{name}.wgsl")),
             dir.join(format!("{name}.json")),
         );
-        let out = sdfc(&[
+        let form = if name == DATA { "data" } else { "inline" };
+        succeeded(&[
             "emit",
             file.to_str().unwrap(),
             "--entry",
             "library",
+            "--form",
+            form,
             "-q",
             "-o",
             wgsl.to_str().unwrap(),
             "--manifest",
             json.to_str().unwrap(),
         ]);
-        assert_eq!(
-            out.status.code(),
-            Some(0),
-            "{}",
-            String::from_utf8_lossy(&out.stderr)
-        );
         let source = std::fs::read_to_string(file).unwrap();
         for values in settings {
             jobs.push((name.clone(), source.clone(), *values));
@@ -117,7 +118,8 @@ fn the_webgpu_page_draws_what_render_draws() {
         .iter()
         .map(|(name, _, values)| {
             let v: serde_json::Value = serde_json::from_str(values).unwrap();
-            serde_json::json!({"name": name, "width": w, "height": h, "values": v})
+            let refused = *values == DATA_MOVED;
+            serde_json::json!({"name": name, "width": w, "height": h, "values": v, "refused": refused})
         })
         .collect();
     let run = Command::new("node")
@@ -145,12 +147,26 @@ fn the_webgpu_page_draws_what_render_draws() {
     );
     let gpu = gpu();
     let mut least: f64 = 1.0;
+    assert!(
+        said.contains(&format!(
+            "refused {DATA}: lift moves parts of the data form"
+        )),
+        "the page drew the data form at a value its buffers do not hold: {said}"
+    );
     for (i, (name, source, json)) in jobs.iter().enumerate() {
+        if *json == DATA_MOVED {
+            continue;
+        }
         let values: HashMap<String, Vec<f64>> = serde_json::from_str(json).unwrap();
         let page = std::fs::read(dir.join(format!("{i}.rgba"))).unwrap();
         assert_eq!(page.len(), (4 * w * h) as usize);
         let here = compile(source).with_values(&values);
-        let frame = render(&gpu, &here, &View::new(&here.camera, w, h));
+        let view = View::new(&here.camera, w, h);
+        let frame = if name == DATA {
+            render_data(&gpu, &here, &view)
+        } else {
+            render(&gpu, &here, &view)
+        };
         let (share, worst) = within_levels(&frame.color, &page, 2);
         println!(
             "{name} {json}: the WebGPU page within 2 levels of sdfc render on {:.2}% of pixels (worst {worst})",
@@ -160,10 +176,46 @@ fn the_webgpu_page_draws_what_render_draws() {
         least = least.min(share);
     }
     crate::common::report(&format!(
-        "Chrome's WebGPU page: {} pictures (6 examples, one with 2 baked maps read from their files, and a parametric scene, defaults and other values), each >= {:.2}% within 2 levels of sdfc render",
-        jobs.len(),
+        "Chrome's WebGPU page: {} pictures (6 examples, one with 2 baked maps read from their files, a parametric scene, defaults and other values, and 200 balls emitted as data, its buffers read from their files), each >= {:.2}% within 2 levels of sdfc render; a value the data's buffers do not hold refused",
+        jobs.len() - 1,
         least * 100.0
     ));
+}
+
+/// The browser's data-form scene's name, and the values the page must refuse to draw it at.
+const DATA: &str = "balls";
+const DATA_MOVED: &str = r#"{"lift": [-0.9]}"#;
+
+/// A scene for the data form, written into `dir`: 200 balls of three materials over a plane
+/// whose height is a parameter (so the buffers follow it).
+fn data_scene(dir: &std::path::Path) -> std::path::PathBuf {
+    let text = format!(
+        "param lift = -1.2 in -1.5..0\nmaterial red {{ color #d04038 }}\nmaterial blue {{ color #3050d0 }}\ncamera {{ eye (0, 1, -4)  target (0, 0, 0) }}\nunion {{\n{}\nplane(y, lift)\n}}",
+        crate::data_form::balls(200, true)
+    );
+    let path = dir.join("balls.sdf");
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+/// `scene` rendered on `gpu` by the compute entry in the data form, its buffers made at the
+/// scene's values.
+fn render_data(gpu: &sdfc::gpu::Gpu, scene: &Scene, view: &View) -> sdfc::gpu::Frame {
+    use sdfc_compiler::lower::tracer::{Form, Options};
+    let options = Options {
+        form: Form::Data,
+        ..Options::from_scene(scene)
+    };
+    let (module, _) =
+        sdfc_compiler::emit::module(scene, sdfc_compiler::lower::Entry::Compute, &options)
+            .unwrap_or_else(|e| panic!("{}", e.0));
+    let (tree, layout) = sdfc_compiler::tape::data::layout(scene, None).expect("a data form");
+    let data = sdfc_compiler::tape::data::data(scene, &tree, &layout).expect("its buffers");
+    gpu.set_scene(scene);
+    gpu.set_tape(Some(&data));
+    let frame = gpu.render(&module, view, None, |_, _| {}).unwrap();
+    gpu.set_tape(None);
+    frame
 }
 
 /// Every example's WGSL, for each of the compute, fragment, library and trace entries, with

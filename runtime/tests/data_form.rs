@@ -10,7 +10,7 @@ use sdfc_compiler::lower::tracer::{Form, Options};
 use sdfc_compiler::view::View;
 
 /// `n` balls in the unit box (a fixed sequence), as lines of a union.
-fn balls(n: usize, materials: bool) -> String {
+pub(crate) fn balls(n: usize, materials: bool) -> String {
     let mut x: u64 = 0x9e37_79b9;
     let mut next = || {
         x ^= x << 13;
@@ -210,4 +210,115 @@ fn parameters_move_the_parts_of_the_data_form() {
         differ(&data, &draw("data", &[])) > pixels / 20,
         "the parameters moved nothing"
     );
+}
+
+/// `sdfc emit --form data` hands a host everything it needs: the shader reads the three buffers
+/// at the bindings the manifest names, each written beside the shader with the bytes the
+/// manifest says and the runtime itself uploads; the parameters they follow are listed. By
+/// default `emit` writes the inline form (no files beside it); targets without storage buffers
+/// (GLSL ES 3.00, a Shadertoy tab) and a shader with no file to write the buffers beside are
+/// refused, leaving nothing behind. (Chrome's WebGPU page drawing an emitted data form:
+/// `browser::the_webgpu_page_draws_what_render_draws`.)
+#[test]
+fn emit_writes_the_data_form_for_a_host() {
+    use crate::common::{refused, scratch, succeeded, write};
+    let dir = scratch("data-emit");
+    let text = format!(
+        "param lift = -1.2 in -1.5..0\ncamera {{ eye (0, 1, -4)  target (0, 0, 0) }}\nunion {{\n{}\nplane(y, lift)\n}}",
+        balls(150, false)
+    );
+    let file = write(&dir, "host.sdf", &text);
+    let path = |name: &str| dir.join(name).to_str().unwrap().to_string();
+    let (wgsl, json) = (path("host.wgsl"), path("host.json"));
+    succeeded(&[
+        "emit",
+        &file,
+        "--form",
+        "data",
+        "-o",
+        &wgsl,
+        "--manifest",
+        &json,
+        "-q",
+    ]);
+    let manifest: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let data = &manifest["data"];
+    assert_eq!(data["follows"], serde_json::json!(["lift"]), "{data}");
+    let scene = compile(&text);
+    let (tree, layout) = sdfc_compiler::tape::data::layout(&scene, None).unwrap();
+    let made = sdfc_compiler::tape::data::data(&scene, &tree, &layout).unwrap();
+    let shader = std::fs::read_to_string(&wgsl).unwrap();
+    for (i, bytes) in made.buffers().iter().enumerate() {
+        let b = &data["buffers"][i];
+        let written = std::fs::read(path(b["file"].as_str().unwrap())).unwrap();
+        assert_eq!(&written, bytes, "{b}");
+        assert_eq!(b["bytes"], written.len(), "{b}");
+        let binding = b["binding"]["binding"].as_u64().unwrap();
+        let declared = format!(
+            "@group(0) @binding({binding}) \nvar<storage> {}",
+            b["global"].as_str().unwrap()
+        );
+        assert!(shader.contains(&declared), "{declared}");
+    }
+    assert_eq!(data["grid"]["cells"], serde_json::json!(layout.n), "{data}");
+    // By default, inline: nothing beside the shader.
+    let (inline, inline_json) = (path("inline.wgsl"), path("inline.json"));
+    succeeded(&[
+        "emit",
+        &file,
+        "-o",
+        &inline,
+        "--manifest",
+        &inline_json,
+        "-q",
+    ]);
+    let manifest: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&inline_json).unwrap()).unwrap();
+    assert!(manifest["data"].is_null(), "{}", manifest["data"]);
+    assert!(!dir.join("inline.nodes.u32").exists());
+    let out = dir.join("no.nodes.u32");
+    let no = path("no.frag");
+    let gles = [
+        "emit",
+        &file,
+        "--form",
+        "data",
+        "--target",
+        "glsl",
+        "--glsl-version",
+        "300es",
+        "--entry",
+        "fragment",
+        "-o",
+        &no,
+    ];
+    refused(&gles, "GLSL ES 3.00 (WebGL2) does not have", &out);
+    let toy = [
+        "emit",
+        &file,
+        "--form",
+        "data",
+        "--entry",
+        "shadertoy",
+        "-o",
+        &no,
+    ];
+    refused(&toy, "a Shadertoy tab has none", &out);
+    refused(
+        &["emit", &file, "--form", "data"],
+        "give the shader a file with `-o FILE`",
+        &out,
+    );
+    let lost = dir.join("missing/no.wgsl");
+    let lost = lost.to_str().unwrap();
+    refused(
+        &["emit", &file, "--form", "data", "-o", lost],
+        "",
+        &dir.join("missing/no.nodes.u32"),
+    );
+    report(&format!(
+        "emit --form data: 3 buffers ({} bytes) beside the shader, equal to the runtime's, bindings as the manifest says; GLSL ES 3.00, Shadertoy and no file refused",
+        made.buffers().iter().map(Vec::len).sum::<usize>()
+    ));
 }

@@ -377,6 +377,7 @@ fn the_fragment_entry_draws_in_a_wgpu_host_from_its_manifest() {
                     .unwrap();
             let origin = Origin {
                 volume_files: &[],
+                data: None,
                 scene: name,
                 target: "wgsl",
                 entry: Entry::Fragment,

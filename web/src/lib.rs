@@ -200,6 +200,7 @@ fn emitted(
         .collect();
     let origin = sdfc_compiler::manifest::Origin {
         volume_files: &volume_files,
+        data: None,
         scene: name,
         target: if target == Target::Wgsl {
             "wgsl"

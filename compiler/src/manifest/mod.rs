@@ -2,11 +2,15 @@
 //! drive it (bindings, uniform layouts, parameters, entry points, functions, materials, the
 //! scene's camera and lights), read from the validated module itself. Format: docs/interface.md.
 
+mod data;
+mod scene;
 mod volumes;
+
+pub use data::DataFiles;
 
 use crate::emit::{Output, Reflection};
 use crate::lower::Entry;
-use crate::scene::{LightKind, Scene, Shadow};
+use crate::scene::Scene;
 use naga::{AddressSpace, Module, ScalarKind, TypeInner, VectorSize};
 use serde_json::{Value, json};
 
@@ -33,12 +37,14 @@ pub struct Origin<'a> {
     /// The files `emit` wrote each baked volume of `Scene::volumes` to (as the manifest names
     /// them: beside it), if it wrote them.
     pub volume_files: &'a [String],
+    /// The data form's buffers and the files `emit` wrote them to, if it did.
+    pub data: Option<DataFiles<'a>>,
 }
 
 /// The manifest of `module` (already prefixed, if it is) compiled from `scene`.
 pub fn manifest(scene: &Scene, module: &Module, origin: &Origin) -> Value {
     let (offsets, size) = crate::lower::params::layout(&scene.params);
-    let params = params(scene, &offsets);
+    let params = scene::params(scene, &offsets);
     let c = &scene.camera;
     json!({
         "format": FORMAT,
@@ -54,7 +60,8 @@ pub fn manifest(scene: &Scene, module: &Module, origin: &Origin) -> Value {
         "view": view_section(module, origin.prefix),
         "params": params_section(module, origin.prefix, params, size),
         "volumes": volumes::section(scene, module, origin.volume_files),
-        "materials": materials(scene, origin),
+        "data": data::section(scene, module, origin.data.as_ref()),
+        "materials": scene::materials(scene, origin),
         "fragment": fragment(origin.entry),
         "compile": (origin.entry != Entry::Library).then(|| compile_cost(module)),
         "camera": {
@@ -63,7 +70,7 @@ pub fn manifest(scene: &Scene, module: &Module, origin: &Origin) -> Value {
             "up": c.up.to_array(),
             "fov_degrees": c.fov.to_degrees(),
         },
-        "lights": lights(scene),
+        "lights": scene::lights(scene),
         "background": scene.background.to_array(),
         "colors": "sRGB components in 0..1; shaders compute in linear light",
     })
@@ -259,130 +266,6 @@ fn fragment(entry: Entry) -> Value {
         "srgb": flag(crate::layout::FRAGMENT_SRGB),
         "writes": "linear light, or sRGB-encoded (clamped to 0..1) when the srgb flag is 1",
     })
-}
-
-/// The names of the parameters each of a material's or light's settings reads (`syms`
-/// indexed as the settings are in `names`); null when none reads one.
-fn reads(scene: &Scene, syms: &crate::catalog::ArgSyms, names: &[&str]) -> Value {
-    let mut out = serde_json::Map::new();
-    for (name, sym) in names.iter().zip(syms) {
-        let mut read: Vec<String> = Vec::new();
-        for field in sym.iter().flatten() {
-            field.params(&mut |r| {
-                let n = &scene.params[r.index].name;
-                if !read.contains(n) {
-                    read.push(n.clone());
-                }
-            });
-        }
-        if !read.is_empty() {
-            out.insert(name.to_string(), json!(read));
-        }
-    }
-    if out.is_empty() {
-        Value::Null
-    } else {
-        Value::Object(out)
-    }
-}
-
-/// The scene's parameters, each at its offset in the `Params` struct.
-fn params(scene: &Scene, offsets: &[u32]) -> Vec<Value> {
-    scene
-        .params
-        .iter()
-        .zip(offsets)
-        .map(|(p, &offset)| {
-            let n = p.kind.components();
-            let comps = |v: glam::DVec3| v.to_array()[..n].to_vec();
-            let mut v = json!({
-                "name": p.name,
-                "member": crate::lower::interface::shader_name(&p.name),
-                "kind": p.kind.name(),
-                "type": crate::lower::params::wgsl_type(p.kind),
-                "offset": offset,
-                "default": comps(p.default),
-                "builtin": p.name == crate::check::TIME && p.span.start == p.span.end,
-            });
-            if let Some((lo, hi)) = p.range {
-                v["min"] = json!(comps(lo));
-                v["max"] = json!(comps(hi));
-            }
-            if p.kind == crate::scene::ParamKind::Angle {
-                v["unit"] = json!("radians");
-            }
-            v
-        })
-        .collect()
-}
-
-/// The default material (id 0) and the scene's, by id.
-fn materials(scene: &Scene, origin: &Origin) -> Vec<Value> {
-    let mut materials = vec![json!({
-        "id": 0,
-        "name": "default",
-        "color": crate::reference::shading::DEFAULT_COLOR.to_array(),
-    })];
-    for (i, m) in scene.materials.iter().enumerate() {
-        let mut v = json!({
-            "id": i + 1,
-            "name": m.name,
-            "color": m.color.to_array(),
-            "specular": m.specular,
-            "reflect": m.reflect,
-            "transparent": m.transparent,
-            "ior": m.ior,
-            "params": reads(scene, &m.sym, &["color", "specular"]),
-        });
-        if let Some(pt) = &m.pattern {
-            let kind = crate::reference::texture::PATTERNS
-                .iter()
-                .find(|p| p.1 == pt.kind)
-                .map_or("?", |p| p.0);
-            v["pattern"] = json!({
-                "kind": kind,
-                "second": pt.other.to_array(),
-                "scale": pt.scale,
-                "octaves": pt.octaves,
-            });
-        }
-        if origin.entry == Entry::Library {
-            v["constant"] = json!(prefixed(
-                origin.prefix,
-                &crate::lower::interface::material_constant(&m.name)
-            ));
-        }
-        materials.push(v);
-    }
-    materials
-}
-
-/// The scene's lights: kind, direction or position, colour, intensity, shadow.
-fn lights(scene: &Scene) -> Vec<Value> {
-    scene
-        .lights
-        .iter()
-        .map(|l| {
-            let (kind, place, vector) = match l.kind {
-                LightKind::Directional(d) => ("directional", "direction", d),
-                LightKind::Point(p) => ("point", "position", p),
-            };
-            let params = reads(scene, &l.sym, &[place, "color", "intensity"]);
-            let shadow = match l.shadow {
-                Shadow::None => json!("none"),
-                Shadow::Hard => json!("hard"),
-                Shadow::Soft(k) => json!({"soft": k}),
-            };
-            json!({
-                "kind": kind,
-                place: vector.to_array(),
-                "color": l.color.to_array(),
-                "intensity": l.intensity,
-                "shadow": shadow,
-                "params": params,
-            })
-        })
-        .collect()
 }
 
 /// The `params` section from the module itself: its `Params` global's binding (null when it

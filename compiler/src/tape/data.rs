@@ -85,6 +85,64 @@ impl Data {
     pub fn bytes(&self) -> usize {
         self.nodes.len() * 16 + self.code.len() * 4 + self.ranges.len() * 8
     }
+
+    /// The three buffers as a host uploads them, in [`BUFFERS`]' order: little-endian u32s,
+    /// each at least 16 bytes (a binding cannot be empty; the shader never reads the padding).
+    pub fn buffers(&self) -> [Vec<u8>; 3] {
+        let bytes = |words: &mut dyn Iterator<Item = u32>| -> Vec<u8> {
+            let mut b: Vec<u8> = words.flat_map(u32::to_le_bytes).collect();
+            b.resize(b.len().max(16), 0);
+            b
+        };
+        [
+            bytes(&mut self.nodes.iter().flatten().copied()),
+            bytes(&mut self.code.iter().copied()),
+            bytes(&mut self.ranges.iter().flatten().copied()),
+        ]
+    }
+
+    /// The grid the ranges buffer's header holds: lowest corner, cell size, cells along x, y
+    /// and z (0: no grid).
+    pub fn grid(&self) -> ([f32; 3], f32, [u32; 3]) {
+        let h = &self.ranges;
+        let f = f32::from_bits;
+        (
+            [f(h[0][0]), f(h[0][1]), f(h[1][0])],
+            f(h[1][1]),
+            [h[2][0], h[2][1], h[3][0]],
+        )
+    }
+}
+
+/// The data form's buffers by name, in the order of `layout::TAPE_BINDINGS` and
+/// [`Data::buffers`], with the type of their elements as WGSL spells it.
+pub const BUFFERS: [(&str, &str); 3] = [
+    ("nodes", "vec4<u32>"),
+    ("code", "u32"),
+    ("ranges", "vec2<u32>"),
+];
+
+/// The file `emit --form data` writes buffer `name` (of [`BUFFERS`]) of a shader named
+/// `stem` to: `STEM.NAME.u32`.
+pub fn file_name(stem: &str, name: &str) -> String {
+    format!("{stem}.{name}.u32")
+}
+
+/// The parameters (indices into `scene.params`) the shapes' arguments read: what the data's
+/// buffers are made at, so that a host changing one needs new buffers.
+pub fn follows(scene: &Scene) -> Vec<usize> {
+    use crate::scene::NodeKind;
+    let mut read = vec![false; scene.params.len()];
+    for n in &scene.nodes {
+        let syms = match &n.kind {
+            NodeKind::Primitive { ctx, .. } | NodeKind::Operator { ctx, .. } => &ctx.sym,
+            NodeKind::Implicit { .. } => continue,
+        };
+        for f in syms.iter().flatten().flatten() {
+            f.params(&mut |r| read[r.index] = true);
+        }
+    }
+    (0..read.len()).filter(|&i| read[i]).collect()
 }
 
 impl Layout {

@@ -3,9 +3,9 @@
 //
 //   node webgpu-render.mjs SCENE_DIR JOBS_JSON OUT_DIR LIVE_NAME
 //
-// JOBS_JSON is a list of {name, width, height, values}: each draws NAME.wgsl with NAME.json
-// (`sdfc emit --entry library --manifest`, in SCENE_DIR) into OUT_DIR/I.rgba (rows with y
-// down). Then the live page is opened on LIVE_NAME: sliders, frames, a drag. The page and
+// JOBS_JSON is a list of {name, width, height, values, refused}: each draws NAME.wgsl with
+// NAME.json (`sdfc emit --entry library --manifest`, in SCENE_DIR) into OUT_DIR/I.rgba (rows
+// with y down), or, where `refused` is set, must fail to draw (it prints "refused NAME: why"). Then the live page is opened on LIVE_NAME: sliders, frames, a drag. The page and
 // host.js are served from ../webgpu. CHROME names the browser (default
 // /usr/bin/chromium-headless-shell).
 import fs from "node:fs";
@@ -23,15 +23,23 @@ try {
   await page.goto(`http://127.0.0.1:${port}/index.html?test`);
   const jobs = JSON.parse(jobsJson);
   for (const [i, job] of jobs.entries()) {
-    const pixels = await page.evaluate(
+    const drawn = await page.evaluate(
       async (job) => {
         const host = await import("./host.js");
-        const px = await host.renderPixels(`scene/${job.name}`, job.width, job.height, job.values ?? {});
-        return Array.from(px);
+        try {
+          const px = await host.renderPixels(`scene/${job.name}`, job.width, job.height, job.values ?? {});
+          return { pixels: Array.from(px) };
+        } catch (e) {
+          return { refused: String(e.message ?? e) };
+        }
       },
       job,
     );
-    fs.writeFileSync(`${outDir}/${i}.rgba`, Buffer.from(pixels));
+    // A job marked `refused` must be refused by the page (no picture drawn), and only it.
+    if (drawn.refused && job.refused) console.log(`refused ${job.name}: ${drawn.refused}`);
+    else if (drawn.refused) throw new Error(`${job.name}: ${drawn.refused}`);
+    else if (job.refused) throw new Error(`${job.name}: drawn, but should have been refused`);
+    else fs.writeFileSync(`${outDir}/${i}.rgba`, Buffer.from(drawn.pixels));
   }
   const adapter = await page.evaluate(async () => {
     const a = await navigator.gpu.requestAdapter();

@@ -5,7 +5,8 @@
 //
 // Files it loads, written by:  sdfc emit SCENE.sdf --entry library -o scene.wgsl --manifest scene.json
 // (the page's `?scene=NAME` loads NAME.wgsl and NAME.json instead), and the distance maps of a
-// scene that bakes parts (`bake`), written beside them and named by the manifest's `volumes`.
+// scene that bakes parts (`bake`), written beside them and named by the manifest's `volumes`,
+// or the buffers of a scene emitted as data (`--form data`), named by the manifest's `data`.
 
 // The host's own shader: a full-screen triangle, and the pixel's ray given to the library's
 // `color` (its name from the manifest, so a `--prefix`ed library works too).
@@ -107,6 +108,26 @@ async function volumeEntries(device, manifest, manifestUrl, given = null) {
   );
 }
 
+/**
+ * The data form's buffers (the manifest's `data`, docs/data-form.md: `sdfc emit --form data`
+ * writes them beside the shader): each file uploaded whole as a read-only storage buffer at
+ * its binding. The bind group entries for them (none for the inline form).
+ */
+async function dataEntries(device, manifest, manifestUrl) {
+  return Promise.all(
+    (manifest.data?.buffers ?? []).map(async (b) => {
+      if (!b.file) throw new Error(`the data buffer ${b.name} has no file: emit with -o FILE`);
+      const r = await fetch(new URL(b.file, manifestUrl));
+      if (!r.ok) throw new Error(`${b.file}: ${r.status}`);
+      const bytes = await r.arrayBuffer();
+      if (bytes.byteLength !== b.bytes) throw new Error(`${b.file}: ${bytes.byteLength} bytes, the manifest says ${b.bytes}`);
+      const buffer = device.createBuffer({ size: bytes.byteLength, usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_DST });
+      device.queue.writeBuffer(buffer, 0, bytes);
+      return { binding: b.binding.binding, resource: { buffer } };
+    }),
+  );
+}
+
 /** Everything the page draws with: the device, pipeline and buffers for one scene. */
 export async function createHost(base, format) {
   if (!navigator.gpu) throw new Error("this browser has no WebGPU");
@@ -146,7 +167,10 @@ export async function createHostFrom(device, library, manifest, format, manifest
   });
   // The scene's parameters, where the manifest gives their binding (docs/interface.md), and
   // its baked maps: the library's group 0.
-  const entries = await volumeEntries(device, manifest, manifestUrl, volumes);
+  const entries = [
+    ...(await volumeEntries(device, manifest, manifestUrl, volumes)),
+    ...(await dataEntries(device, manifest, manifestUrl)),
+  ];
   let paramsBuffer = null;
   if (manifest.params.binding) {
     paramsBuffer = device.createBuffer({
@@ -161,6 +185,14 @@ export async function createHostFrom(device, library, manifest, format, manifest
   /** Draws into `view` (a texture view of `width`×`height`) from `eye` with `values`. */
   function draw(view, width, height, eye, values) {
     const c = manifest.camera;
+    // The data form's parts were placed at these parameters' defaults: another value would
+    // draw them where they are not (a wrong picture), so it is refused.
+    for (const name of manifest.data?.follows ?? []) {
+      const f = manifest.params.fields.find((f) => f.name === name);
+      if (values[name] && values[name].some((x, i) => x !== f.default[i])) {
+        throw new Error(`${name} moves parts of the data form, whose buffers hold them at its default: emit again to draw other values`);
+      }
+    }
     device.queue.writeBuffer(cameraBuffer, 0, cameraBytes(eye, c.target, c.up, c.fov_degrees, width, height));
     if (paramsBuffer) device.queue.writeBuffer(paramsBuffer, 0, paramsBytes(manifest, values));
     const encoder = device.createCommandEncoder();
@@ -239,6 +271,12 @@ async function main() {
         const input = Object.assign(document.createElement("input"), {
           type: "range", min: lo, max: hi, step: (hi - lo) / 1000, value: f.default[i],
         });
+        // A parameter that moves the data form's parts: its buffers hold them at the
+        // default, so the slider stays there (emit again for other values).
+        if (m.data?.follows.includes(f.name)) {
+          input.disabled = true;
+          label.title = "moves parts held in the data buffers, made at the default";
+        }
         values[f.name] = [...f.default];
         input.oninput = () => (values[f.name][i] = Number(input.value));
         sliders.append(label, input);

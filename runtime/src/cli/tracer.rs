@@ -64,7 +64,9 @@ pub struct TracerArgs {
     /// (Lipschitz pruning), run by a generic evaluator whose code does not grow with the parts
     /// (primitives under moves, turns and scales, folded by unions, intersections and
     /// subtractions, hard or smooth); `auto` (the default): `data` for a scene of many parts
-    /// it can hold (docs/data-form.md gives the measured threshold), else `inline`.
+    /// it can hold (docs/data-form.md gives the measured threshold), else `inline`. `emit`
+    /// writes the inline form unless given `data`: then the buffers are files beside the
+    /// shader, for the host to bind (the manifest's `data`).
     #[arg(long, value_enum, default_value = "auto")]
     pub form: FormArg,
     /// Start shadow, reflected and refracted rays a fixed 2·ε_floor off the surface instead of
@@ -99,22 +101,17 @@ impl TracerArgs {
             .map_err(|e| Error::Usage(format!("error: {e}")))
     }
 
-    /// [`TracerArgs::settle`] for a command that cannot run the data form yet (`command`:
-    /// `emit`, which would have to write the buffers for a host): `--form data` is an error
-    /// that says so.
-    pub fn settle_inline(
+    /// [`TracerArgs::settle`] for code a host runs (`emit`): `--form auto` is the inline form
+    /// there (the data form's buffers are files the host must load and bind, so it is asked for
+    /// by name), `--form data` the data form where the scene has one.
+    pub fn settle_emitted(
         &self,
         scene: &mut sdfc_compiler::scene::Scene,
-        command: &str,
     ) -> Result<sdfc_compiler::lower::tracer::Options, Error> {
-        if self.form == FormArg::Data {
-            return Err(Error::Usage(format!(
-                "error: `--form data` is for `sdfc render` and `sdfc view` so far: `sdfc {command}` \
-                 does not yet hand a host the buffers it reads (issue 33)"
-            )));
-        }
         let mut options = self.settle(scene)?;
-        options.form = sdfc_compiler::lower::tracer::Form::Inline;
+        if self.form != FormArg::Data {
+            options.form = sdfc_compiler::lower::tracer::Form::Inline;
+        }
         Ok(options)
     }
 
@@ -143,27 +140,14 @@ impl TracerArgs {
 /// data for (`tape::data::layout` says which). Other parameters are followed: the host makes
 /// the buffers at their values (`tape_data`), the shader stays.
 pub fn data_form_allowed(passes: u32, scene: &sdfc_compiler::scene::Scene) -> Result<(), Error> {
-    use sdfc_compiler::scene::NodeKind;
     if passes > 1 {
         return Err(Error::Usage(
             "error: `--form data` takes one pass (`--passes 1`) so far".into(),
         ));
     }
-    let timed = |syms: &sdfc_compiler::catalog::ArgSyms| {
-        let mut found = false;
-        for comps in syms.iter().flatten() {
-            for f in comps {
-                f.params(&mut |r| {
-                    found |= scene.params[r.index].name == sdfc_compiler::check::TIME;
-                });
-            }
-        }
-        found
-    };
-    let follows = scene.nodes.iter().any(|n| match &n.kind {
-        NodeKind::Primitive { ctx, .. } | NodeKind::Operator { ctx, .. } => timed(&ctx.sym),
-        NodeKind::Implicit { .. } => false,
-    });
+    let follows = sdfc_compiler::tape::data::follows(scene)
+        .into_iter()
+        .any(|i| scene.params[i].name == sdfc_compiler::check::TIME);
     if follows {
         return Err(Error::Usage(
             "error: `--form data` does not yet follow `time` in shapes' arguments: its \

@@ -52,7 +52,7 @@ fn once(args: &EmitArgs, plan: &Plan) -> i32 {
         return 1;
     };
     let name = sources.main_name();
-    let options = match args.tracer.settle_inline(&mut scene, "emit") {
+    let options = match args.tracer.settle_emitted(&mut scene) {
         Ok(mut o) => {
             o.private_params = plan.shadertoy;
             o.params_binding = args.params_binding;
@@ -69,21 +69,44 @@ fn once(args: &EmitArgs, plan: &Plan) -> i32 {
         );
         return 1;
     }
-    let volumes = match volume_paths(args, plan, &scene) {
+    let data = match data_form(plan, &scene, &options) {
+        Ok(d) => d,
+        Err(e) => {
+            say!("{e}");
+            return 1;
+        }
+    };
+    let mut sides = match volume_paths(args, plan, &scene) {
         Ok(v) => v,
         Err(e) => {
             say!("{e}");
             return 1;
         }
     };
-    let files: Vec<String> = volumes
+    let volumes = sides.len();
+    match data.as_ref().map(|d| data_paths(args, d)).transpose() {
+        Ok(d) => sides.extend(d.into_iter().flatten()),
+        Err(e) => {
+            say!("{e}");
+            return 1;
+        }
+    }
+    let files: Vec<String> = sides
         .iter()
         .map(|(p, _)| {
             p.file_name()
                 .map_or(String::new(), |n| n.to_string_lossy().into())
         })
         .collect();
-    let (out, manifest) = match compile(args, plan, &scene, &options, (name, &files)) {
+    let (volume_files, data_files) = files.split_at(volumes);
+    let data_files = data
+        .as_ref()
+        .map(|data| sdfc_compiler::manifest::DataFiles {
+            data,
+            files: data_files,
+        });
+    let given = (name, volume_files, data_files);
+    let (out, manifest) = match compile(args, plan, &scene, &options, given) {
         Ok(o) => o,
         Err(e) => {
             say!("internal compiler error while compiling `{name}`: {}", e.0);
@@ -93,7 +116,60 @@ fn once(args: &EmitArgs, plan: &Plan) -> i32 {
             return 2;
         }
     };
-    write(args, plan, &out, manifest, &volumes)
+    write(args, plan, &out, manifest, &sides)
+}
+
+/// The data form's buffers, made at the parameters' defaults, where the scene is compiled to
+/// the data form (`--form data`); an error where the target cannot bind storage buffers.
+fn data_form(
+    plan: &Plan,
+    scene: &sdfc_compiler::scene::Scene,
+    options: &sdfc_compiler::lower::tracer::Options,
+) -> Result<Option<sdfc_compiler::tape::data::Data>, Error> {
+    if options.form != sdfc_compiler::lower::tracer::Form::Data {
+        return Ok(None);
+    }
+    if plan.shadertoy {
+        return Err("error: `--form data` reads the scene's parts from storage buffers, and a Shadertoy tab has none of your own\nhelp: `--form inline` (the default) writes every part into the code".into());
+    }
+    if plan.target == Target::Glsl && !plan.settings.glsl_version.has_compute() {
+        return Err("error: `--form data` reads the scene's parts from storage buffers, which GLSL ES 3.00 (WebGL2) does not have\nhelp: `--form inline` (the default), or `--glsl-version 310es` or `450`".into());
+    }
+    crate::cli::tracer::tape_data(scene, scene).map(Some)
+}
+
+/// Where the data form's buffers are written (beside the shader, or beside the manifest when
+/// the shader goes to standard output: `NAME.nodes.u32`, `NAME.code.u32`, `NAME.ranges.u32`)
+/// with their bytes.
+fn data_paths(
+    args: &EmitArgs,
+    data: &sdfc_compiler::tape::data::Data,
+) -> Result<Vec<(std::path::PathBuf, Vec<u8>)>, Error> {
+    let Some(beside) = beside(args) else {
+        return Err("error: `--form data` writes the scene's parts into files beside the shader: give the shader a file with `-o FILE` (or a manifest with `--manifest FILE`)".into());
+    };
+    let stem = stem(&beside);
+    let names = sdfc_compiler::tape::data::BUFFERS.map(|(n, _)| n);
+    Ok(names
+        .iter()
+        .zip(data.buffers())
+        .map(|(n, bytes)| {
+            let name = sdfc_compiler::tape::data::file_name(&stem, n);
+            (beside.with_file_name(name), bytes)
+        })
+        .collect())
+}
+
+/// The file the files a shader reads are written beside: the shader's, else the manifest's.
+fn beside(args: &EmitArgs) -> Option<std::path::PathBuf> {
+    let file = |p: Option<&Path>| p.filter(|p| *p != Path::new("-")).map(Path::to_path_buf);
+    file(args.output.as_deref()).or_else(|| file(args.manifest.as_deref()))
+}
+
+/// A file's name without its extension (`scene` if it has none).
+fn stem(path: &Path) -> String {
+    path.file_stem()
+        .map_or("scene".into(), |s| s.to_string_lossy().into_owned())
 }
 
 /// Where each baked volume of the scene is written (beside the shader, or beside the manifest
@@ -111,14 +187,10 @@ fn volume_paths(
     if plan.shadertoy {
         return Err("error: this scene bakes a part (`bake`) into a 3D texture, and a Shadertoy tab has no input for one of your own\nhelp: emit WGSL or GLSL for a host that binds the texture (docs/bake.md)".into());
     }
-    let file = |p: Option<&Path>| p.filter(|p| *p != Path::new("-")).map(Path::to_path_buf);
-    let Some(beside) = file(args.output.as_deref()).or_else(|| file(args.manifest.as_deref()))
-    else {
+    let Some(beside) = beside(args) else {
         return Err("error: this scene bakes a part (`bake`), and its volume is written beside the shader: give the shader a file with `-o FILE` (or a manifest with `--manifest FILE`)".into());
     };
-    let stem = beside
-        .file_stem()
-        .map_or("scene".into(), |s| s.to_string_lossy().into_owned());
+    let stem = stem(&beside);
     Ok(volumes
         .iter()
         .enumerate()
@@ -176,7 +248,7 @@ fn compile(
     plan: &Plan,
     scene: &sdfc_compiler::scene::Scene,
     options: &sdfc_compiler::lower::tracer::Options,
-    (name, volume_files): (&str, &[String]),
+    (name, volume_files, data): (&str, &[String], Option<sdfc_compiler::manifest::DataFiles>),
 ) -> Result<(Output, Option<serde_json::Value>), emit::InternalError> {
     let (target, entry) = (plan.target, plan.entry);
     let prefix = args.prefix.as_deref();
@@ -192,6 +264,7 @@ fn compile(
     let described = args.manifest.is_some().then(|| {
         let origin = sdfc_compiler::manifest::Origin {
             volume_files,
+            data,
             scene: name,
             target: target.name(),
             entry,

@@ -11,12 +11,7 @@ impl Gpu {
     /// Sets the data form's buffers the modules prepared from now on read (`None`: none).
     pub fn set_tape(&self, data: Option<&Data>) {
         let buffers = data.map(|d| {
-            // (A binding cannot be empty: at least 16 bytes each.)
-            let bytes = |words: Vec<u32>| -> Vec<u8> {
-                let mut b: Vec<u8> = words.iter().flat_map(|w| w.to_le_bytes()).collect();
-                b.resize(b.len().max(16), 0);
-                b
-            };
+            let [nodes, code, ranges] = d.buffers();
             let make = |label: &str, contents: Vec<u8>| {
                 self.device
                     .create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -26,15 +21,9 @@ impl Gpu {
                     })
             };
             [
-                make(
-                    "tape nodes",
-                    bytes(d.nodes.iter().flatten().copied().collect()),
-                ),
-                make("tape code", bytes(d.code.clone())),
-                make(
-                    "tape ranges",
-                    bytes(d.ranges.iter().flatten().copied().collect()),
-                ),
+                make("tape nodes", nodes),
+                make("tape code", code),
+                make("tape ranges", ranges),
             ]
         });
         *lock(&self.tape) = buffers;
