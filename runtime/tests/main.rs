@@ -37,6 +37,7 @@ mod streams;
 mod textures;
 mod tracers;
 mod view;
+mod view_params;
 mod watch;
 mod web;
 mod webgl2;

@@ -11,7 +11,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 
-fn xvfb() -> bool {
+pub(crate) fn xvfb() -> bool {
     let ok = Command::new("xvfb-run").arg("--help").output().is_ok();
     if !ok {
         assert!(
@@ -68,7 +68,7 @@ fn titles(log: &Path) -> std::path::PathBuf {
 }
 
 /// Waits for `file` to appear (whole: a rename) or the child to end.
-fn wait_for(file: &Path, child: &mut Child, log: &Path) {
+pub(crate) fn wait_for(file: &Path, child: &mut Child, log: &Path) {
     let what = file.display().to_string();
     wait_until(&what, child, log, Duration::from_secs(90), || file.exists());
 }
@@ -100,16 +100,16 @@ pub(crate) fn wait_until(
 }
 
 /// A `sdfc view` under way: its process, scene file, screenshot directory and log.
-struct Viewer {
-    child: Child,
-    scene: PathBuf,
-    shots: PathBuf,
-    log: PathBuf,
+pub(crate) struct Viewer {
+    pub(crate) child: Child,
+    pub(crate) scene: PathBuf,
+    pub(crate) shots: PathBuf,
+    pub(crate) log: PathBuf,
 }
 
 /// `sdfc view` of `source` (written to `dir/scene.sdf`) at 128×96, screenshots in
 /// `dir/shots`, with `extra` arguments.
-fn start_view(dir: &Path, source: &str, extra: &[&str]) -> Viewer {
+pub(crate) fn start_view(dir: &Path, source: &str, extra: &[&str]) -> Viewer {
     let (scene, shots, log) = (
         dir.join("scene.sdf"),
         dir.join("shots"),
@@ -139,7 +139,7 @@ fn rendered(dir: &Path, scene: &str, name: &str) -> PathBuf {
 }
 
 /// [`rendered`] with more flags for `sdfc render`.
-fn rendered_with(dir: &Path, scene: &str, name: &str, extra: &[&str]) -> PathBuf {
+pub(crate) fn rendered_with(dir: &Path, scene: &str, name: &str, extra: &[&str]) -> PathBuf {
     let file = dir.join(format!("{name}.sdf"));
     std::fs::write(&file, scene).unwrap();
     let out = dir.join(format!("{name}.png"));
@@ -158,7 +158,7 @@ fn rendered_with(dir: &Path, scene: &str, name: &str, extra: &[&str]) -> PathBuf
 }
 
 /// The share of pixels within 2 levels per channel.
-fn agreement(a: &Path, b: &Path) -> f64 {
+pub(crate) fn agreement(a: &Path, b: &Path) -> f64 {
     let (a, b) = (
         image::open(a).unwrap().to_rgba8(),
         image::open(b).unwrap().to_rgba8(),
@@ -310,81 +310,6 @@ fn without_a_display_view_says_so() {
     );
 }
 
-/// The keys change a parameter live: `=` raises the selected one (the first) by a twentieth of
-/// its range, and the picture is `sdfc render --param` at that value — inline and as data.
-#[test]
-fn keys_change_a_parameter() {
-    if !xvfb() {
-        return;
-    }
-    // Inline, the uniform changes; as data (issue 33), the window makes the buffers again at
-    // the new value for the same shader.
-    for form in ["inline", "data"] {
-        let dir = scratch(&format!("view-param-{form}"));
-        let source = BASE
-            .replace("sphere(0.8)", "sphere(r)")
-            .replace("camera", "param r = 0.8 in 0.4..1.2\ncamera");
-        let extra = ["--script", "key =", "--quit-after", "2", "--form", form];
-        let Viewer {
-            mut child,
-            shots,
-            log,
-            ..
-        } = start_view(&dir, &source, &extra);
-        wait_for(&shots.join("001.png"), &mut child, &log);
-        assert!(child.wait().unwrap().success());
-        let want = rendered_with(
-            &dir,
-            &source,
-            "want",
-            &["--param", "r=0.84", "--form", form],
-        );
-        let share = agreement(&shots.join("001.png"), &want);
-        assert!(
-            share >= 0.995,
-            "{form}: {:.2}%\n{}",
-            share * 100.0,
-            std::fs::read_to_string(&log).unwrap()
-        );
-        assert!(
-            agreement(&shots.join("000.png"), &want) < 0.99,
-            "{form}: the key changed nothing"
-        );
-    }
-}
-
-/// The keys check annotations at the values they set: a bound right at the default (slope
-/// √(1 + a²) = 1.41 ≤ 1.5) and too small once `a` passes 1.14 is said when the second `=`
-/// takes it to 1.25, and not again at 1.375 (still too small).
-#[test]
-fn keys_check_annotations_at_the_values_they_set() {
-    if !xvfb() {
-        return;
-    }
-    let dir = scratch("view-annotation");
-    let source = "camera { eye (0, 1, -8) target (0, 0, 0) }\nparam a = 1 in 0.5..3\nimplicit { y - a * sin(x) } @lipschitz(1.5)\n";
-    let extra = ["--script", "key =; key =; key =", "--quit-after", "4"];
-    let Viewer {
-        mut child,
-        shots,
-        log,
-        ..
-    } = start_view(&dir, source, &extra);
-    wait_for(&shots.join("003.png"), &mut child, &log);
-    assert!(child.wait().unwrap().success());
-    let said = std::fs::read_to_string(&log).unwrap();
-    let warned: Vec<&str> = said
-        .lines()
-        .filter(|l| l.starts_with("warning: with a = "))
-        .collect();
-    assert_eq!(warned.len(), 1, "{said}");
-    assert!(
-        warned[0]
-            .starts_with("warning: with a = [1.25], the annotated Lipschitz bound is too small"),
-        "{said}"
-    );
-}
-
 /// `--quit-after` counts finished pictures whether or not they are saved: a still scene with a
 /// one-step script makes two and closes by itself at `--quit-after 2`; asked for three, it
 /// says it will wait for a save of the file to make the third.
@@ -462,26 +387,4 @@ fn the_window_shows_a_baked_part() {
         share * 100.0
     );
     assert!(share >= 0.995, "only {:.2}%", share * 100.0);
-}
-
-/// `--form data` in the window: the scene as data (issue 33), its buffers made for the window,
-/// draws what `sdfc render --form data` draws.
-#[test]
-fn the_window_draws_the_data_form() {
-    if !xvfb() {
-        return;
-    }
-    let dir = scratch("view-data");
-    let extra = ["--form", "data", "--quit-after", "1"];
-    let Viewer {
-        mut child,
-        shots,
-        log,
-        ..
-    } = start_view(&dir, BASE, &extra);
-    wait_for(&shots.join("000.png"), &mut child, &log);
-    assert!(child.wait().unwrap().success());
-    let want = rendered_with(&dir, BASE, "want", &["--form", "data"]);
-    let share = agreement(&shots.join("000.png"), &want);
-    assert!(share >= 0.999, "only {:.2}% within 2 levels", 100.0 * share);
 }

@@ -213,7 +213,8 @@ pub struct ViewArgs {
     /// directory as 000.png, 001.png, … (for tests and recordings).
     #[arg(long, value_name = "DIR")]
     pub screenshots: Option<PathBuf>,
-    /// Input to replay, one step per finished picture: `drag DX DY; pan DX DY; zoom N; key K`.
+    /// Input to replay, one step per finished picture: `drag DX DY; pan DX DY; zoom N; key K;
+    /// orbit S` (a steady drag for S seconds, then the frames shown and their rate).
     #[arg(long)]
     pub script: Option<String>,
     /// Close after this many finished pictures, saved or not (a still scene makes one, then one

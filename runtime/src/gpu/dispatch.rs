@@ -19,7 +19,7 @@ impl Prepared {
     /// Sets the scene parameters' values of the next frames
     /// (`sdfc_compiler::lower::params::bytes`); nothing for a module without parameters.
     pub fn set_params(&self, bytes: &[u8]) {
-        if let Some(buffer) = &self.params {
+        if let Some((buffer, _)) = &self.params {
             let mut bytes = bytes.to_vec();
             bytes.resize(buffer.size() as usize, 0);
             self.gpu.queue.write_buffer(buffer, 0, &bytes);

@@ -123,7 +123,7 @@ impl Gpu {
                 resource: buffer.as_entire_binding(),
             });
         }
-        let tape = self.tape_buffers(module);
+        let tape = self.tape_buffers(super::tape::reads_tape(module));
         for (binding, buffer) in &tape {
             entries.push(wgpu::BindGroupEntry {
                 binding: *binding,

@@ -60,6 +60,8 @@ pub struct Gpu {
     /// The data form's parts, programs and ranges the next prepared modules read
     /// ([`Gpu::set_tape`]).
     tape: Arc<Mutex<Option<[wgpu::Buffer; 3]>>>,
+    /// Compute pipelines made on this device: each is a shader the driver compiles.
+    pipelines: Arc<std::sync::atomic::AtomicU32>,
 }
 
 impl Gpu {
@@ -142,9 +144,17 @@ impl Gpu {
         self.features.contains(wgpu::Features::TIMESTAMP_QUERY)
     }
 
+    /// Compute pipelines made on this device so far (shaders the driver compiled; `view`'s
+    /// scripted orbit says it, to show that new parameter values compile nothing).
+    pub fn pipelines_made(&self) -> u32 {
+        self.pipelines.load(std::sync::atomic::Ordering::Relaxed)
+    }
+
     /// The compute pipeline of a compiled module (the driver compiles it here), through the
     /// pipeline cache where there is one.
     pub(crate) fn pipeline(&self, module: &naga::Module) -> wgpu::ComputePipeline {
+        self.pipelines
+            .fetch_add(1, std::sync::atomic::Ordering::Relaxed);
         let shader = self
             .device
             .create_shader_module(wgpu::ShaderModuleDescriptor {

@@ -93,6 +93,7 @@ impl Gpu {
             params: Arc::default(),
             volumes: Arc::default(),
             tape: Arc::default(),
+            pipelines: Arc::default(),
             adapter: adapter.clone(),
         })
     }

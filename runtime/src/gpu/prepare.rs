@@ -65,8 +65,12 @@ pub struct Prepared {
     /// Output buffers, in binding order.
     pub(super) outputs: Vec<Output>,
     pub(super) hand_over: Vec<wgpu::Buffer>,
-    /// The `Params` uniform, if the module reads one.
-    pub(super) params: Option<wgpu::Buffer>,
+    /// The `Params` uniform and its binding, if the module reads one.
+    pub(super) params: Option<(wgpu::Buffer, u32)>,
+    /// The baked volumes' views and bindings (kept for [`Prepared::retape`]).
+    volumes: Vec<(u32, wgpu::TextureView)>,
+    /// Whether the module reads the data form's buffers.
+    reads_tape: bool,
     /// Two timestamps per pass, resolved into a buffer.
     pub(super) queries: Option<(wgpu::QuerySet, wgpu::Buffer)>,
     pub(super) layout: Layout,
@@ -133,7 +137,8 @@ impl Gpu {
         let pipeline = self.pipeline(module);
         let params = self.params_buffer(module)?;
         let volumes = self.volume_views(module)?;
-        let tape = self.tape_buffers(module);
+        let reads_tape = super::tape::reads_tape(module);
+        let tape = self.tape_buffers(reads_tape);
         let outputs: Vec<Output> = layout
             .outputs()
             .iter()
@@ -185,7 +190,9 @@ impl Gpu {
             passes: runs,
             outputs,
             hand_over,
-            params: params.map(|(b, _)| b),
+            params,
+            volumes,
+            reads_tape,
             queries,
             layout,
             width: w,
@@ -320,5 +327,29 @@ impl Prepared {
     /// Dispatches how many tiles there are in all passes.
     pub fn dispatches(&self) -> u32 {
         self.passes.iter().map(|p| p.len() as u32).sum()
+    }
+
+    /// Binds the data form's buffers set since (`Gpu::set_tape`) in place of those it was
+    /// prepared with: the same pipeline — no new shader for the driver — reads the parts at new
+    /// parameter values. Nothing for a module that does not read them.
+    pub fn retape(&mut self) {
+        if !self.reads_tape {
+            return;
+        }
+        let tape = self.gpu.tape_buffers(true);
+        let layout = self.pipeline.get_bind_group_layout(layout::GROUP);
+        let bindings = Bindings {
+            layout: &layout,
+            outputs: &self.outputs,
+            params: self.params.as_ref(),
+            hand_over: &self.hand_over,
+            volumes: &self.volumes,
+            tape: &tape,
+        };
+        for (k, pass) in self.passes.iter_mut().enumerate() {
+            for d in pass {
+                d.bind = self.gpu.bind_group(&bindings, &d.uniform.0, k);
+            }
+        }
     }
 }

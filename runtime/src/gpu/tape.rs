@@ -29,15 +29,11 @@ impl Gpu {
         *lock(&self.tape) = buffers;
     }
 
-    /// The data form's buffers `module` reads, with their bindings (none where it declares
-    /// none; an empty list where it does and none were set, which the bind group then refuses
-    /// as an internal error).
-    pub(crate) fn tape_buffers(&self, module: &naga::Module) -> Vec<(u32, wgpu::Buffer)> {
-        let declared = module.global_variables.iter().any(|(_, g)| {
-            g.binding
-                .is_some_and(|b| b.group == GROUP && b.binding == TAPE_BINDINGS[0])
-        });
-        match (&*lock(&self.tape), declared) {
+    /// The data form's buffers with their bindings, for a module that reads them (`reads`,
+    /// [`reads_tape`]): none where it does not; an empty list where it does and none were set,
+    /// which the bind group then refuses as an internal error.
+    pub(crate) fn tape_buffers(&self, reads: bool) -> Vec<(u32, wgpu::Buffer)> {
+        match (&*lock(&self.tape), reads) {
             (Some(buffers), true) => TAPE_BINDINGS
                 .into_iter()
                 .zip(buffers.iter().cloned())
@@ -45,4 +41,12 @@ impl Gpu {
             _ => Vec::new(),
         }
     }
+}
+
+/// Whether `module` declares the data form's buffers (compiled with `Form::Data`).
+pub(crate) fn reads_tape(module: &naga::Module) -> bool {
+    module.global_variables.iter().any(|(_, g)| {
+        g.binding
+            .is_some_and(|b| b.group == GROUP && b.binding == TAPE_BINDINGS[0])
+    })
 }

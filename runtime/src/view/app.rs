@@ -39,9 +39,23 @@ pub struct App {
     /// When the title last changed: it follows the frame time while the picture moves.
     titled: std::cell::Cell<Option<Instant>>,
     watcher: SceneWatcher,
+    /// A scripted `orbit` under way.
+    orbiting: Option<Orbiting>,
     /// The window and what draws to it, once it is open.
     pub(super) started: Option<Started>,
 }
+
+/// A scripted `orbit S` (`Step::Orbit`): until when it turns the camera, when it began, and
+/// the frames shown and their GPU seconds since.
+pub(super) struct Orbiting {
+    until: Instant,
+    began: Instant,
+    frames: u32,
+    gpu_seconds: f64,
+}
+
+/// Pixels the scripted orbit turns the camera by each frame (a slow, steady drag).
+const ORBIT_STEP: f64 = 3.0;
 
 /// The open window and what draws to it.
 pub(super) struct Started {
@@ -105,6 +119,7 @@ impl App {
             missing: false,
             titled: std::cell::Cell::new(None),
             watcher,
+            orbiting: None,
             started: None,
         }
     }
@@ -235,6 +250,7 @@ impl App {
         if picture.finished || stale {
             self.title();
         }
+        self.orbit_on(picture.size);
         if picture.finished {
             self.screenshot(event_loop, &picture)?;
             if let Some(step) = self.script.pop_front() {
@@ -242,6 +258,33 @@ impl App {
             }
         }
         Ok(())
+    }
+
+    /// During a scripted orbit: counts the frame just shown and turns the camera on; at its
+    /// end, says the frames shown, the rate and the mean GPU time of a frame.
+    fn orbit_on(&mut self, size: (u32, u32)) {
+        let (Some(o), Some(started)) = (self.orbiting.as_mut(), self.started.as_mut()) else {
+            return;
+        };
+        let live = &mut started.live;
+        o.frames += 1;
+        o.gpu_seconds += live.stats.0;
+        if Instant::now() < o.until {
+            live.orbit.turn(ORBIT_STEP, 0.0);
+            live.touch();
+            return;
+        }
+        let seconds = o.began.elapsed().as_secs_f64();
+        say!(
+            "orbit: {} frames in {seconds:.2} s, {:.1} frames a second at {}×{} (GPU {:.1} ms a frame); {} shaders compiled since the window opened",
+            o.frames,
+            f64::from(o.frames) / seconds,
+            size.0,
+            size.1,
+            1000.0 * o.gpu_seconds / f64::from(o.frames),
+            live.gpu().pipelines_made()
+        );
+        self.orbiting = None;
     }
 
     pub(super) fn screenshot(
@@ -279,6 +322,16 @@ impl App {
             Step::Drag(dx, dy) => live.orbit.turn(dx, dy),
             Step::Pan(dx, dy) => live.orbit.pan(dx, dy, height),
             Step::Zoom(n) => live.orbit.zoom(n),
+            Step::Orbit(seconds) => {
+                let now = Instant::now();
+                self.orbiting = Some(Orbiting {
+                    until: now + std::time::Duration::from_secs_f64(seconds),
+                    began: now,
+                    frames: 0,
+                    gpu_seconds: 0.0,
+                });
+                live.orbit.turn(ORBIT_STEP, 0.0);
+            }
             Step::Key(k) => {
                 self.key(event_loop, &k);
                 return;

@@ -256,9 +256,13 @@ impl Live {
         if self.options.form == sdfc_compiler::lower::tracer::Form::Data
             && self.values != self.tape_values
         {
-            // The data form at new values: its buffers made again for the same shader.
-            let (scene, options) = (&self.scene, &self.options);
-            (self.full, self.coarse) = prepare(&self.gpu, scene, options, self.size, &self.values)?;
+            // The data form at new values: its buffers made again and bound to the same
+            // pipelines (no new shader for the driver).
+            let valued = self.scene.with_values(&self.values);
+            let data = crate::cli::tape_data(&self.scene, &valued)?;
+            self.gpu.set_tape(Some(&data));
+            self.full.retape();
+            self.coarse.retape();
             self.tape_values = self.values.clone();
         }
         let camera = self.orbit.camera();

@@ -15,6 +15,9 @@ pub enum Step {
     Zoom(f64),
     /// `key K`: a key press.
     Key(String),
+    /// `orbit S`: a steady drag for S seconds, a turn every frame as a held mouse gives, after
+    /// which the viewer says how many frames it showed (its own frame rate while moving).
+    Orbit(f64),
 }
 
 /// Parses `--script`: steps separated by `;`.
@@ -35,8 +38,12 @@ pub fn parse_script(text: &str) -> Result<VecDeque<Step>, Error> {
                 "pan" => Ok(Step::Pan(num(1)?, num(2)?)),
                 "zoom" => Ok(Step::Zoom(num(1)?)),
                 "key" if words.len() == 2 => Ok(Step::Key(words[1].to_string())),
+                "orbit" => match num(1)? {
+                    s if s > 0.0 && s <= 600.0 => Ok(Step::Orbit(s)),
+                    _ => Err(format!("error: `--script`: `{s}`: orbit for 0 to 600 seconds").into()),
+                },
                 _ => Err(format!(
-                    "error: `--script`: `{s}` is not `drag DX DY`, `pan DX DY`, `zoom N` or `key K`"
+                    "error: `--script`: `{s}` is not `drag DX DY`, `pan DX DY`, `zoom N`, `orbit S` or `key K`"
                 )
                 .into()),
             }
@@ -50,14 +57,15 @@ mod tests {
 
     #[test]
     fn scripts_parse_or_say_what_is_wrong() {
-        let s = parse_script("drag 180 0; zoom 2 ;key t;  pan -3 4.5").unwrap();
+        let s = parse_script("drag 180 0; zoom 2 ;key t;  pan -3 4.5; orbit 2.5").unwrap();
         assert_eq!(
             Vec::from(s),
             [
                 Step::Drag(180.0, 0.0),
                 Step::Zoom(2.0),
                 Step::Key("t".into()),
-                Step::Pan(-3.0, 4.5)
+                Step::Pan(-3.0, 4.5),
+                Step::Orbit(2.5)
             ]
         );
         assert!(
@@ -65,6 +73,12 @@ mod tests {
                 .unwrap_err()
                 .to_string()
                 .contains("`drag 1` needs a number")
+        );
+        assert!(
+            parse_script("orbit 0")
+                .unwrap_err()
+                .to_string()
+                .contains("orbit for 0 to 600 seconds")
         );
         assert!(
             parse_script("spin 3")
