@@ -486,3 +486,51 @@ fn the_data_s_programs_give_the_whole_field_in_every_cell() {
         said.join("; ")
     ));
 }
+
+/// Outside the grid the data form takes the distance to the grid's box plus its margin as a
+/// bound for the parts inside it: the whole field is never below it there — also where a
+/// parameter in a turn leaves the scene's own box unknown (the grid then holds the leaves'
+/// boxes, grown by every blend radius: two cubes blended with k = 0.8, one turned, bulge
+/// beyond their boxes by more than the twentieth the grid grows by — without the blend radii
+/// this test fails there).
+#[test]
+fn the_proxy_outside_the_grid_is_a_bound() {
+    use sdfc_compiler::tape::data;
+    use std::collections::HashMap;
+    let mut r = Rng::new(5);
+    let scenes = [
+        format!(
+            "param a = 45deg\nsmooth_union(0.05) {{\n{}\nbox((0.5, 0.1, 0.1)) |> rotate(z, a) at (0, 0, -0.9)\n}}",
+            balls(&mut r, 40)
+        ),
+        "param a = 0deg\nsmooth_union(0.8) { box((0.4, 0.4, 0.4)) |> rotate(z, a) at (-0.5, 0, 0)  box((0.4, 0.4, 0.4)) at (0.5, 0, 0) }".to_string(),
+    ];
+    let values = HashMap::from([("a".to_string(), vec![100f64.to_radians()])]);
+    let mut checked = 0;
+    for source in &scenes {
+        let s = scene("proxy.sdf", source).with_values(&values);
+        let (tree, layout) = data::layout(&s, None).expect("a data form");
+        assert!(data::outside(&s, &tree).is_none(), "{source}");
+        let margin = layout.proxy.expect("a proxy: every part is finite");
+        let n = layout.n.map(|k| k as f64);
+        let hi = layout.lo + DVec3::new(n[0], n[1], n[2]) * layout.size;
+        let (lo, extent) = (layout.lo, (hi - layout.lo).max_element());
+        for _ in 0..20_000 {
+            let p = point(&mut r, lo - DVec3::splat(extent), hi + DVec3::splat(extent));
+            let outside = (p - hi).max(lo - p).max(DVec3::ZERO).length();
+            if outside == 0.0 {
+                continue;
+            }
+            let whole = tape::eval::value(&s, &tree, p);
+            assert!(
+                whole >= outside + margin - 1e-9,
+                "at {p}: the field {whole} is below the proxy {}\n{source}",
+                outside + margin
+            );
+            checked += 1;
+        }
+    }
+    report(&format!(
+        "tape: the proxy outside the grid bounds the field at {checked} points (a turned part's parameter; cubes blended with k = 0.8)"
+    ));
+}

@@ -80,26 +80,36 @@ fn keys_check_annotations_at_the_values_they_set() {
     );
 }
 
-/// `--form data` in the window: the scene as data (issue 33), its buffers made for the window,
-/// draws what `sdfc render --form data` draws.
+/// `--form data` in the window: the scene as data (issue 33), its buffers made for the window
+/// at the moment `time` is held at (a bar turns with it), draws what `sdfc render --form data`
+/// draws at that time — and not what it draws at another.
 #[test]
 fn the_window_draws_the_data_form() {
     if !xvfb() {
         return;
     }
     let dir = scratch("view-data");
-    let extra = ["--form", "data", "--quit-after", "1"];
+    let source =
+        format!("{BASE}box((1.2, 0.15, 0.15)) |> rotate(z, time * 45deg) at (-1.4, 1.6, 0)\n");
+    let extra = ["--form", "data", "--quit-after", "1", "--time", "2"];
     let Viewer {
         mut child,
         shots,
         log,
         ..
-    } = start_view(&dir, BASE, &extra);
+    } = start_view(&dir, &source, &extra);
     wait_for(&shots.join("000.png"), &mut child, &log);
     assert!(child.wait().unwrap().success());
-    let want = rendered_with(&dir, BASE, "want", &["--form", "data"]);
+    let want = rendered_with(&dir, &source, "want", &["--form", "data", "--time", "2"]);
     let share = agreement(&shots.join("000.png"), &want);
     assert!(share >= 0.999, "only {:.2}% within 2 levels", 100.0 * share);
+    let other = rendered_with(&dir, &source, "other", &["--form", "data", "--time", "0"]);
+    let moved = agreement(&shots.join("000.png"), &other);
+    assert!(
+        moved < 0.99,
+        "time turned nothing: {:.2}% alike",
+        100.0 * moved
+    );
 }
 
 /// `--script "orbit S"` drags steadily and then says the frames the window showed (the

@@ -217,11 +217,12 @@ pub fn layout(scene: &Scene, cells: Option<usize>) -> Result<(Part, Layout), Why
 }
 
 /// What runs outside the grid besides the proxy: nothing where every surface is inside it
-/// (the scene's own box is finite), else a root union's children that have an unbounded part
-/// (a ground plane), else the whole tree.
+/// (every leaf is finite: the grid holds their boxes seen through their frames, even where
+/// a parameter in a turn leaves the scene's own box unknown), else a root union's children
+/// that have an unbounded part (a ground plane), else the whole tree.
 pub fn outside(scene: &Scene, tree: &Part) -> Option<Part> {
     let root = scene.root_node().bound;
-    if root.lo.is_finite() && root.hi.is_finite() {
+    if (root.lo.is_finite() && root.hi.is_finite()) || all_finite(scene, tree) {
         return None;
     }
     let super::PartKind::Fold {
@@ -286,11 +287,25 @@ fn finite_box(scene: &Scene, tree: &Part) -> Option<(DVec3, DVec3, f64)> {
                 }
             }
         });
-        (lo, hi)
+        // A smooth union's surface lies up to its blend radius beyond its parts (a chain of
+        // IQ's quadratic minimum stays above the smallest − k): every fold's radius added.
+        let slack = DVec3::splat(blend_slack(tree));
+        (lo - slack, hi + slack)
     };
     let grow = (hi - lo).max_element() / 20.0 + 1e-6;
     (lo.is_finite() && hi.is_finite() && lo.cmple(hi).all())
         .then(|| (lo - DVec3::splat(grow), hi + DVec3::splat(grow), grow))
+}
+
+/// The blend radii of every fold of `part`, summed: how far beyond its leaves' boxes its
+/// surface can reach at most.
+fn blend_slack(part: &Part) -> f64 {
+    match &part.kind {
+        super::PartKind::Leaf => 0.0,
+        super::PartKind::Fold { k, children, .. } => {
+            k + children.iter().map(|(c, _)| blend_slack(c)).sum::<f64>()
+        }
+    }
 }
 
 fn leaves(part: &Part, f: &mut impl FnMut(&Part)) {

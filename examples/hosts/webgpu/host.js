@@ -301,7 +301,8 @@ async function main() {
     window.sdfcLive = { frames: 0, eye: null };
     const frame = () => {
       const time = m.params.fields.find((f) => f.name === "time");
-      if (time) {
+      // (Parts of the data form that move with `time` are held where its buffers hold them.)
+      if (time && !m.data?.follows.includes("time")) {
         // Seconds since the page started, wrapped into `time`'s declared range if it has one.
         let t = (performance.now() - started) / 1000;
         if (time.min && time.max[0] > time.min[0]) t = time.min[0] + (t % (time.max[0] - time.min[0]));

@@ -135,24 +135,14 @@ impl TracerArgs {
     }
 }
 
-/// Refuses what the data form cannot do yet: several passes, shapes whose arguments follow
-/// `time` (an animation would need the buffers made again every frame), and nodes it has no
-/// data for (`tape::data::layout` says which). Other parameters are followed: the host makes
-/// the buffers at their values (`tape_data`), the shader stays.
+/// Refuses what the data form cannot do yet: several passes, and nodes it has no data for
+/// (`tape::data::layout` says which). Parameters and `time` in shapes' arguments are
+/// followed: the host makes the buffers at their values (`tape_data`; the window at every new
+/// moment while `time` runs), the shader stays.
 pub fn data_form_allowed(passes: u32, scene: &sdfc_compiler::scene::Scene) -> Result<(), Error> {
     if passes > 1 {
         return Err(Error::Usage(
             "error: `--form data` takes one pass (`--passes 1`) so far".into(),
-        ));
-    }
-    let follows = sdfc_compiler::tape::data::follows(scene)
-        .into_iter()
-        .any(|i| scene.params[i].name == sdfc_compiler::check::TIME);
-    if follows {
-        return Err(Error::Usage(
-            "error: `--form data` does not yet follow `time` in shapes' arguments: its \
-             buffers would have to be made again every frame"
-                .into(),
         ));
     }
     if let Err(why) = sdfc_compiler::tape::data::layout(scene, None) {

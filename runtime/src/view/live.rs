@@ -74,6 +74,17 @@ pub struct Live {
     /// The values the data form's buffers were made at (they are made again, the shader
     /// kept, when the keys change one).
     tape_values: HashMap<String, Vec<f64>>,
+    /// Whether the data form's parts follow `time` (their buffers are then made again for
+    /// every new moment).
+    tape_follows_time: bool,
+}
+
+/// Whether `scene`, drawn with `options`, is in the data form with parts that move with `time`.
+fn follows_time(scene: &Scene, options: &Options) -> bool {
+    options.form == sdfc_compiler::lower::tracer::Form::Data
+        && sdfc_compiler::tape::data::follows(scene)
+            .into_iter()
+            .any(|i| scene.params[i].name == TIME)
 }
 
 impl Live {
@@ -83,8 +94,6 @@ impl Live {
         let (full, coarse) = prepare(&gpu, &scene, &options, size, &HashMap::new())?;
         Ok(Live {
             gpu,
-            scene,
-            options,
             full,
             coarse,
             size,
@@ -101,6 +110,9 @@ impl Live {
             stats: (0.0, 0.0),
             last: Vec::new(),
             tape_values: HashMap::new(),
+            tape_follows_time: follows_time(&scene, &options),
+            scene,
+            options,
         })
     }
 
@@ -109,6 +121,7 @@ impl Live {
     pub fn replace(&mut self, scene: Scene, options: Options) -> Result<(), Error> {
         let (full, coarse) = prepare(&self.gpu, &scene, &options, self.size, &HashMap::new())?;
         self.tape_values.clear();
+        self.tape_follows_time = follows_time(&scene, &options);
         // Values set with the keys stay only where the new scene still has the parameter,
         // of the same size, and within its range.
         self.values.retain(|name, v| {
@@ -253,21 +266,28 @@ impl Live {
 
     /// Renders the next frame: coarse while moving, else the next sample of the full picture.
     pub fn step(&mut self) -> Result<Picture, Error> {
+        // (Asked before the data form's buffers are made again, which may take longer than a
+        // moment of motion: a moving camera gets a coarse frame.)
+        let moving = Instant::now() < self.moving_until;
+        let mut wanted = self.values.clone();
+        if self.tape_follows_time {
+            wanted.insert(TIME.to_string(), vec![self.time()]);
+        }
         if self.options.form == sdfc_compiler::lower::tracer::Form::Data
-            && self.values != self.tape_values
+            && wanted != self.tape_values
         {
-            // The data form at new values: its buffers made again and bound to the same
-            // pipelines (no new shader for the driver).
-            let valued = self.scene.with_values(&self.values);
+            // The data form at new values (or a new moment): its buffers made again and bound
+            // to the same pipelines (no new shader for the driver).
+            let valued = self.scene.with_values(&wanted);
             let data = crate::cli::tape_data(&self.scene, &valued)?;
             self.gpu.set_tape(Some(&data));
             self.full.retape();
             self.coarse.retape();
-            self.tape_values = self.values.clone();
+            self.tape_values = wanted;
         }
         let camera = self.orbit.camera();
         let params = self.params();
-        if Instant::now() < self.moving_until {
+        if moving {
             let size = coarse_size(self.size);
             let mut view = View::new(&camera, size.0, size.1);
             view.jitter = [0.5, 0.5];
