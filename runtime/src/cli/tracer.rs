@@ -222,11 +222,22 @@ pub fn tape_data(
     scene: &sdfc_compiler::scene::Scene,
     valued: &sdfc_compiler::scene::Scene,
 ) -> Result<sdfc_compiler::tape::data::Data, Error> {
+    tape_data_in(scene, valued, None)
+}
+
+/// [`tape_data`] on a grid of `cells` along its longest side (by default as many as the
+/// parts call for, `tape::data::cells_for`): the grid is data, so any count runs on the same
+/// shader — fewer cells make the buffers faster, the trace slower.
+pub fn tape_data_in(
+    scene: &sdfc_compiler::scene::Scene,
+    valued: &sdfc_compiler::scene::Scene,
+    cells: Option<usize>,
+) -> Result<sdfc_compiler::tape::data::Data, Error> {
     use sdfc_compiler::tape::data;
     let fail =
         |why: data::Why| Error::Usage(format!("error: `--form data`: {}", data::say(scene, &why)));
     let (_, compiled) = data::layout(scene, None).map_err(fail)?;
-    let (tree, layout) = data::layout(valued, None).map_err(fail)?;
+    let (tree, layout) = data::layout(valued, cells).map_err(fail)?;
     if !compiled.holds(&layout) {
         return Err(Error::Usage(
             "error: `--form data`: at these parameter values the scene's parts need another \

@@ -2,6 +2,7 @@
 //! at the window's size (and a quarter of it for moving), the orbit camera, the channel,
 //! parameters and anti-aliasing samples accumulated while nothing moves.
 
+use super::moments::{follows_time, full_cells, next_cells};
 use super::orbit::Orbit;
 use crate::cli::Error;
 use sdfc::gpu::{Gpu, Layout, MAX_SIDE, Prepared, Source};
@@ -77,14 +78,10 @@ pub struct Live {
     /// Whether the data form's parts follow `time` (their buffers are then made again for
     /// every new moment).
     tape_follows_time: bool,
-}
-
-/// Whether `scene`, drawn with `options`, is in the data form with parts that move with `time`.
-fn follows_time(scene: &Scene, options: &Options) -> bool {
-    options.form == sdfc_compiler::lower::tracer::Form::Data
-        && sdfc_compiler::tape::data::follows(scene)
-            .into_iter()
-            .any(|i| scene.params[i].name == TIME)
+    /// The grid's cells a side the buffers were made with (`None`: as many as the parts call
+    /// for), and those the next moment of a running `time` makes them with: fewer, where the
+    /// pre-pass takes longer than [`ANIMATED_PREPASS`].
+    tape_cells: (Option<usize>, Option<usize>),
 }
 
 impl Live {
@@ -111,6 +108,7 @@ impl Live {
             last: Vec::new(),
             tape_values: HashMap::new(),
             tape_follows_time: follows_time(&scene, &options),
+            tape_cells: (None, None),
             scene,
             options,
         })
@@ -122,6 +120,7 @@ impl Live {
         let (full, coarse) = prepare(&self.gpu, &scene, &options, self.size, &HashMap::new())?;
         self.tape_values.clear();
         self.tape_follows_time = follows_time(&scene, &options);
+        self.tape_cells = (None, None);
         // Values set with the keys stay only where the new scene still has the parameter,
         // of the same size, and within its range.
         self.values.retain(|name, v| {
@@ -270,20 +269,30 @@ impl Live {
         // moment of motion: a moving camera gets a coarse frame.)
         let moving = Instant::now() < self.moving_until;
         let mut wanted = self.values.clone();
+        let running = self.tape_follows_time && self.animated();
         if self.tape_follows_time {
             wanted.insert(TIME.to_string(), vec![self.time()]);
         }
+        // While `time` runs, a grid as fine as a moment's pre-pass allows; at rest, the parts'.
+        let cells = if running { self.tape_cells.1 } else { None };
         if self.options.form == sdfc_compiler::lower::tracer::Form::Data
-            && wanted != self.tape_values
+            && (wanted != self.tape_values || cells != self.tape_cells.0)
         {
             // The data form at new values (or a new moment): its buffers made again and bound
             // to the same pipelines (no new shader for the driver).
+            let clock = Instant::now();
             let valued = self.scene.with_values(&wanted);
-            let data = crate::cli::tape_data(&self.scene, &valued)?;
+            let data = crate::cli::tape_data_in(&self.scene, &valued, cells)?;
             self.gpu.set_tape(Some(&data));
             self.full.retape();
             self.coarse.retape();
             self.tape_values = wanted;
+            if running {
+                let full = full_cells(&valued);
+                self.tape_cells = (cells, next_cells(cells, full, clock.elapsed()));
+            } else {
+                self.tape_cells = (None, None);
+            }
         }
         let camera = self.orbit.camera();
         let params = self.params();
