@@ -1,7 +1,7 @@
 //! The data form (`--form data`, issue 33) draws what the inline form (without box trees)
 //! draws: hit masks, depths (within a hundredth) and materials equal on all but a few pixels
 //! in a thousand, colours within 2 levels on all but a few in a hundred —
-//! for many smoothly blended balls on a plane, a hard union with materials, and cuts.
+//! for many smoothly blended balls on a plane, a hard union with materials, materials blended through nested smooth unions, and cuts.
 
 use crate::common::{compile, gpu, report};
 use sdfc_compiler::emit;
@@ -11,7 +11,12 @@ use sdfc_compiler::view::View;
 
 /// `n` balls in the unit box (a fixed sequence), as lines of a union.
 pub(crate) fn balls(n: usize, materials: bool) -> String {
-    let mut x: u64 = 0x9e37_79b9;
+    balls_from(0x9e37_79b9, n, materials)
+}
+
+/// [`balls`] from another seed (another sequence).
+fn balls_from(seed: u64, n: usize, materials: bool) -> String {
+    let mut x: u64 = seed;
     let mut next = || {
         x ^= x << 13;
         x ^= x >> 7;
@@ -37,6 +42,9 @@ fn the_data_form_draws_what_the_inline_form_draws() {
     let scenes = [
         ("300 smooth balls on a plane", format!("camera {{ eye (0, 1, -4)  target (0, 0, 0) }}\nsmooth_union(0.03) {{\n{}\n}}\nplane(y, -1.2)", balls(300, false))),
         ("200 balls with materials", format!("material red {{ color #d04038 }}\nmaterial blue {{ color #3050d0 }}\ncamera {{ eye (0, 1, -4)  target (0, 0, 0) }}\nunion {{\n{}\n}}", balls(200, true))),
+        // Materials blended through nested smooth unions (the evaluator's stack, a group's own
+        // material for its untagged balls, the ground's): `map_blend` from the data.
+        ("nested blends of materials", format!("material red {{ color #d04038 }}\nmaterial blue {{ color #3050d0 }}\nmaterial gold {{ color #d0a038 }}\ncamera {{ eye (0, 1, -4)  target (0, 0, 0) }}\nsmooth_union(0.2) {{\nsmooth_union(0.15) {{\n{}\n}}\nsmooth_union(0.15) {{\n{}\n}} : gold\nplane(y, -1.1) : blue\n}}", balls_from(1, 60, true), balls_from(0x0123_4567, 60, true))),
         ("cuts", "material red { color #d04038 }\ncamera { eye (2, 2, -4)  target (0, 0, 0) }\nsubtract {\n  box((1.6, 1.2, 1.4)) : red\n  sphere(0.8) at (0.5, 0.4, 0)\n  smooth_intersect(0.1) { sphere(0.7) at (-0.6, 0, 0)  box((0.8, 0.8, 3)) |> rotate(y, 30deg) }\n}\nplane(y, -0.6)".to_string()),
     ];
     let gpu = gpu();

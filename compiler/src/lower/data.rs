@@ -3,23 +3,32 @@
 //! three storage buffers) with a running value in registers and a small stack for nested folds,
 //! one `switch` arm per primitive kind the scene uses, and returns vec2(value, tag bits): the
 //! material + 1 and the looseness bit (`program::LOOSE`); `map`, `map_material` and
-//! `map_loose` read it. The code does not grow with the number of parts.
+//! `map_loose` read it; where the scene blends materials, `tape_blend(p)` walks the same way
+//! and gives `map_blend` its blend (`data/blend.rs`). The code does not grow with the number of
+//! parts.
 
+mod blend;
+mod grid;
 mod join;
 
 use crate::ir::{Arm, Ex, FnBuilder, ModuleBuilder};
 use crate::layout;
 use crate::tape::data::Layout;
 use crate::tape::program::{END, FIRST, LOOSE, MATERIAL, MOVED, OFFSET, SPILL};
+use grid::{cell_range, proxy};
 use join::{end_tag, flag, fold_in, has_bit, start};
 use naga::{
     AddressSpace, ArraySize, Function, Handle, ScalarKind, StorageAccess, TypeInner, VectorSize,
 };
 
-/// Declares the buffers and adds `tape_eval`.
-pub(super) fn add(mb: &mut ModuleBuilder, layout: &Layout) -> Handle<Function> {
+/// Declares the buffers and adds `tape_eval`, and with `blends` `tape_blend` (see
+/// [`blend_at`]).
+pub(super) fn add(
+    mb: &mut ModuleBuilder,
+    layout: &Layout,
+    blends: bool,
+) -> (Handle<Function>, Option<Handle<Function>>) {
     let u32t = mb.u32();
-    let f32t = mb.f32();
     let uvec4 = mb.uvec(VectorSize::Quad);
     let uvec2 = mb.uvec(VectorSize::Bi);
     let read = AddressSpace::Storage {
@@ -41,6 +50,21 @@ pub(super) fn add(mb: &mut ModuleBuilder, layout: &Layout) -> Handle<Function> {
     let nodes = super::globals::global(mb, "tape_nodes", nodes_ty, read, n);
     let code = super::globals::global(mb, "tape_code", code_ty, read, c);
     let ranges = super::globals::global(mb, "tape_ranges", ranges_ty, read, r);
+    let buffers = [nodes, code, ranges];
+    let eval = evaluator(mb, layout, buffers, false);
+    (eval, blends.then(|| evaluator(mb, layout, buffers, true)))
+}
+
+/// The evaluator over the buffers: `tape_eval(p) -> vec2(value, tag bits)`, or with `blend`
+/// `tape_blend(p) -> vec3` (the blended materials at `p`: `blend::fold`'s rule on the same
+/// walk).
+fn evaluator(
+    mb: &mut ModuleBuilder,
+    layout: &Layout,
+    [nodes, code, ranges]: [Handle<naga::GlobalVariable>; 3],
+    blend: bool,
+) -> Handle<Function> {
+    let (u32t, f32t) = (mb.u32(), mb.f32());
     // (As deep as the scene's tree needs: none for one fold of leaves.)
     let stack_ty = |mb: &mut ModuleBuilder, base| {
         let size = ArraySize::Constant(std::num::NonZeroU32::new(layout.depth as u32)?);
@@ -50,12 +74,25 @@ pub(super) fn add(mb: &mut ModuleBuilder, layout: &Layout) -> Handle<Function> {
     let stack_tys = stack_ty(mb, f32t).zip(stack_ty(mb, u32t));
     let v3 = mb.vec3();
     let v2 = mb.vec(VectorSize::Bi);
+    let blend_stack_ty = (layout.depth > 0 && blend).then(|| {
+        let size = ArraySize::Constant(std::num::NonZeroU32::new(layout.depth as u32).unwrap());
+        mb.ty(TypeInner::Array {
+            base: v3,
+            size,
+            stride: 16,
+        })
+    });
+    let (name, ret) = if blend {
+        ("tape_blend", v3)
+    } else {
+        ("tape_eval", v2)
+    };
     let kinds: Vec<(Handle<Function>, &'static crate::catalog::Primitive)> = layout
         .kinds
         .iter()
         .map(|k| (mb.helper(&format!("sd_{}", k.name)), *k))
         .collect();
-    let mut b = FnBuilder::new(mb, "tape_eval", &[("p", v3)], Some(v2));
+    let mut b = FnBuilder::new(mb, name, &[("p", v3)], Some(ret));
     let p = b.arg(0);
     let nodes = b.expr(naga::Expression::GlobalVariable(nodes));
     let code = b.expr(naga::Expression::GlobalVariable(code));
@@ -78,13 +115,25 @@ pub(super) fn add(mb: &mut ModuleBuilder, layout: &Layout) -> Handle<Function> {
         tag: b.local("stack_tag", tags_ty, None),
         sp: b.local("sp", u32t, Some(zero)),
     });
+    let none = b.splat3(0.0);
+    let blends = blend.then(|| Blends {
+        running: b.local("blend", v3, Some(none)),
+        stack: blend_stack_ty.map(|ty| b.local("stack_blend", ty, None)),
+    });
     let pc = b.local("pc", u32t, Some(start));
     let at = Eval {
         nodes,
         running,
         stack,
+        blends,
     };
     b.loop_(|b| instruction(b, at, (code, pc, end), &kinds, p));
+    if let Some(blends) = blends {
+        let out = b.load(blends.running);
+        b.ret(Some(out));
+        let f = b.finish();
+        return mb.add_helper(name, f);
+    }
     let mut v0 = b.load(running[0]);
     let t0 = b.load(running[2]);
     let t0 = b.bitcast(t0, ScalarKind::Float);
@@ -97,6 +146,11 @@ pub(super) fn add(mb: &mut ModuleBuilder, layout: &Layout) -> Handle<Function> {
     b.ret(Some(out));
     let f = b.finish();
     mb.add_helper("tape_eval", f)
+}
+
+/// `map_blend`'s blended materials from `tape_blend` (`blend`) at `p`.
+pub(super) fn blend_at(b: &mut FnBuilder, blend: Handle<Function>, p: Ex) -> Ex {
+    b.call(blend, vec![p])
 }
 
 /// `map`'s value from `tape_eval` (`eval`) at `p`.
@@ -158,9 +212,16 @@ fn instruction(
             let [v, _, tag] = at.running.map(|r| b.load(r));
             let v = b.mul(v, factor);
             let tag = end_tag(b, tag, own, head);
+            let ended = at.blends.map(|bl| {
+                let r = b.load(bl.running);
+                (bl, blend::end(b, r, own))
+            });
             let started = |b: &mut FnBuilder| {
                 let x = start(b, (v, tag), head);
                 set(b, at.running, x);
+                if let Some((bl, cb)) = ended {
+                    b.store(bl.running, cb);
+                }
             };
             // (Without a stack every fold is a first part.)
             let Some(stack) = at.stack else {
@@ -173,11 +234,18 @@ fn instruction(
                 let below = stack.entry(b, sp).map(|e| b.load(e));
                 let x = fold_in(b, below, (v, tag), head);
                 set(b, at.running, x);
+                if let (Some((bl, cb)), Some(entries)) = (ended, at.blends.and_then(|x| x.stack)) {
+                    let ptr = b.index(entries, sp);
+                    let under = b.load(ptr);
+                    let nb = blend::fold(b, (below[0], v), head, (under, cb));
+                    b.store(bl.running, nb);
+                }
             });
         },
         |b| {
             let d = leaf(b, at.nodes, (offset, head), kinds, p);
             let v = b.mul(d, factor);
+            let own_blend = at.blends.map(|bl| (bl, blend::plain(b, own)));
             b.if_(
                 first,
                 |b| {
@@ -192,6 +260,15 @@ fn instruction(
                                     let x = b.load(from);
                                     b.store(to, x);
                                 }
+                                if let Some(Blends {
+                                    running,
+                                    stack: Some(entries),
+                                }) = at.blends
+                                {
+                                    let to = b.index(entries, sp);
+                                    let x = b.load(running);
+                                    b.store(to, x);
+                                }
                                 b.increment(stack.sp);
                             },
                             |_| {},
@@ -199,11 +276,19 @@ fn instruction(
                     }
                     let x = start(b, (v, own), head);
                     set(b, at.running, x);
+                    if let Some((bl, lb)) = own_blend {
+                        b.store(bl.running, lb);
+                    }
                 },
                 |b| {
                     let a = at.running.map(|r| b.load(r));
                     let x = fold_in(b, a, (v, own), head);
                     set(b, at.running, x);
+                    if let Some((bl, lb)) = own_blend {
+                        let run = b.load(bl.running);
+                        let nb = blend::fold(b, (a[0], v), head, (run, lb));
+                        b.store(bl.running, nb);
+                    }
                 },
             );
         },
@@ -217,6 +302,15 @@ struct Eval {
     nodes: Ex,
     running: [Ex; 3],
     stack: Option<Stack>,
+    /// The running blend and its stack, in `tape_blend`.
+    blends: Option<Blends>,
+}
+
+/// Pointers to the running blend (vec3) and to its stack (none without a stack).
+#[derive(Clone, Copy)]
+struct Blends {
+    running: Ex,
+    stack: Option<Ex>,
 }
 
 /// The evaluator's stack: pointers to its three arrays and its height.
@@ -327,101 +421,4 @@ fn leaf(
     }
     b.switch_(kind, cases, |_| {});
     b.load(d)
-}
-
-/// The grid as the ranges buffer's header gives it (`tape::data::HEADER`): its lowest corner,
-/// cell size, cells along x, y and z (as floats and as u32s) and the proxy's margin.
-struct Grid {
-    lo: Ex,
-    size: Ex,
-    n: Ex,
-    counts: [Ex; 3],
-    margin: Ex,
-}
-
-/// Reads the grid from the header of `ranges`.
-fn grid(b: &mut FnBuilder, ranges: Ex) -> Grid {
-    let mut h = Vec::with_capacity(4);
-    for k in 0..crate::tape::data::HEADER as u32 {
-        let i = b.u(k);
-        let ptr = b.index(ranges, i);
-        h.push(b.load(ptr));
-    }
-    let float = |b: &mut FnBuilder, v: Ex, c: u32| {
-        let x = b.at(v, c);
-        b.bitcast(x, ScalarKind::Float)
-    };
-    let (x, y, z) = (float(b, h[0], 0), float(b, h[0], 1), float(b, h[1], 0));
-    let lo = b.compose_vec3([x, y, z]);
-    let size = float(b, h[1], 1);
-    let counts = [b.at(h[2], 0), b.at(h[2], 1), b.at(h[3], 0)];
-    let n = counts.map(|c| b.cast(c, ScalarKind::Float));
-    let n = b.compose_vec3(n);
-    let margin = float(b, h[3], 1);
-    Grid {
-        lo,
-        size,
-        n,
-        counts,
-        margin,
-    }
-}
-
-/// The distance from `p` to the grid's box plus its margin: outside it, a distance bound for
-/// the parts the grid holds (they lie the margin inside it: `tape::data::Layout::proxy`).
-fn proxy(b: &mut FnBuilder, g: &Grid, p: Ex) -> Ex {
-    let half = b.f(0.5);
-    let extent = b.mul(g.n, g.size);
-    let half = b.mul(extent, half);
-    let center = b.add(g.lo, half);
-    let rel = b.sub(p, center);
-    let d = crate::catalog::gpu::prims::box_half(b, rel, half);
-    b.add(d, g.margin)
-}
-
-/// The range (first instruction, count) of the cell holding `p`, the last range where the
-/// grid does not; and whether it does (none where the scene has no grid), with the grid.
-fn cell_range(b: &mut FnBuilder, layout: &Layout, ranges: Ex, p: Ex) -> (Ex, Option<(Ex, Grid)>) {
-    let header = crate::tape::data::HEADER as u32;
-    if layout.n.iter().product::<usize>() == 0 {
-        let at = b.u(header);
-        let ptr = b.index(ranges, at);
-        return (b.load(ptr), None);
-    }
-    let g = grid(b, ranges);
-    let rel = b.sub(p, g.lo);
-    let size = b.splat(g.size, naga::VectorSize::Tri);
-    let rel = b.div(rel, size);
-    let c = b.math(naga::MathFunction::Floor, &[rel]);
-    let zero = b.splat3(0.0);
-    let above = b.bin(naga::BinaryOperator::GreaterEqual, c, zero);
-    let below = b.bin(naga::BinaryOperator::Less, c, g.n);
-    let above = b.expr(naga::Expression::Relational {
-        fun: naga::RelationalFunction::All,
-        argument: above,
-    });
-    let below = b.expr(naga::Expression::Relational {
-        fun: naga::RelationalFunction::All,
-        argument: below,
-    });
-    let inside = b.bin(naga::BinaryOperator::LogicalAnd, above, below);
-    // (Clamped before the conversion: a point far outside would not fit a u32.)
-    let one = b.splat3(1.0);
-    let top = b.sub(g.n, one);
-    let c = b.clamp(c, zero, top);
-    let c = b.cast(c, ScalarKind::Uint);
-    let [x, y, z] = b.xyz(c);
-    let [nx, ny, nz] = g.counts;
-    let zy = b.mul(z, ny);
-    let zy = b.add(zy, y);
-    let zyx = b.mul(zy, nx);
-    let index = b.add(zyx, x);
-    let first = b.u(header);
-    let index = b.add(index, first);
-    let cells = b.mul(nx, ny);
-    let cells = b.mul(cells, nz);
-    let total = b.add(cells, first);
-    let index = b.select(inside, index, total);
-    let ptr = b.index(ranges, index);
-    (b.load(ptr), Some((inside, g)))
 }

@@ -77,10 +77,12 @@ pub fn lower(scene: &Scene, entry: Entry, options: &tracer::Options) -> naga::Mo
     };
     let f32t = mb.f32();
     // The data form's evaluator, where asked for and the scene has one.
-    let data = (options.form == tracer::Form::Data)
+    let blends = crate::reference::blend::has_blends(scene);
+    let (data, data_blend) = (options.form == tracer::Form::Data)
         .then(|| crate::tape::data::layout(scene, None).ok())
         .flatten()
-        .map(|(_, layout)| data::add(&mut mb, &layout));
+        .map(|(_, layout)| data::add(&mut mb, &layout, blends))
+        .map_or((None, None), |(eval, blend)| (Some(eval), blend));
     let map = point_function(&mut mb, "map", f32t, |b, p| match data {
         Some(eval) => data::value(b, eval, p),
         None => {
@@ -111,7 +113,7 @@ pub fn lower(scene: &Scene, entry: Entry, options: &tracer::Options) -> naga::Mo
             }
         })
     });
-    let [texture, blend] = add_surface_maps(&mut mb, &walk, scene);
+    let [texture, blend] = add_surface_maps(&mut mb, &walk, scene, data_blend);
     assemble::add(
         &mut mb,
         scene,
@@ -130,6 +132,7 @@ fn add_surface_maps(
     mb: &mut ModuleBuilder,
     walk: &Walk,
     scene: &Scene,
+    data_blend: Option<Handle<Function>>,
 ) -> [Option<Handle<Function>>; 2] {
     let v3 = mb.vec3();
     // Where a material has a pattern: `map_texture(p)`, the point in the own coordinates of
@@ -151,11 +154,15 @@ fn add_surface_maps(
         })
     });
     // Where a smooth operator or `mix` blends materials: `map_blend(p)`, vec3(first id, second
-    // id, weight of the second) (`crate::reference::blend`, `eval::blend`).
+    // id, weight of the second) (`crate::reference::blend`, `eval::blend`); in the data form,
+    // the evaluator's `tape_blend`.
     let blend = crate::reference::blend::has_blends(scene).then(|| {
-        point_function(mb, "map_blend", v3, |b, p| {
-            let bl = walk.with_blend(b, scene.root, p);
-            bl.unwrap_or_else(|| b.splat3(0.0))
+        point_function(mb, "map_blend", v3, |b, p| match data_blend {
+            Some(f) => data::blend_at(b, f, p),
+            None => {
+                let bl = walk.with_blend(b, scene.root, p);
+                bl.unwrap_or_else(|| b.splat3(0.0))
+            }
         })
     });
     [texture, blend]

@@ -1,0 +1,82 @@
+//! Materials blended through the data form's smooth folds (`tape_blend`, `map_blend`'s body
+//! for a scene drawn as data): the rule of `crate::reference::blend::pick`, run on the running
+//! value of each fold as the evaluator walks a cell's program. A blend is vec3(first material
+//! id, second id, weight of the second) with ids as the tag's (material + 1, 0 for none).
+//!
+//! Pruning keeps it exact: a dropped child stays `k` beyond the running value (the running
+//! blend stays), a child `k` below replaces what came before (its own blend starts the fold),
+//! as the reference rule gives for |x − y| ≥ k.
+
+use super::join::flag;
+use crate::ir::{Ex, FnBuilder};
+use crate::tape::program::{LARGEST, MATERIAL, NEGATED};
+use naga::ScalarKind;
+
+/// A part's own material as a blend of one: vec3(m, m, 0) from its tag word `own`.
+pub(super) fn plain(b: &mut FnBuilder, own: Ex) -> Ex {
+    let bits = b.u(MATERIAL);
+    let m = b.bin(naga::BinaryOperator::And, own, bits);
+    let m = b.cast(m, ScalarKind::Float);
+    let zero = b.f(0.0);
+    b.compose_vec3([m, m, zero])
+}
+
+/// A fold's blend at its end, under its own material (`Blend::under`): an id of 0 (none)
+/// takes the fold's.
+pub(super) fn end(b: &mut FnBuilder, blend: Ex, own: Ex) -> Ex {
+    let given = plain(b, own);
+    let m = b.at(given, 0);
+    let zero = b.f(0.0);
+    let [x, y, t] = b.xyz(blend);
+    let none_x = b.bin(naga::BinaryOperator::Equal, x, zero);
+    let none_y = b.bin(naga::BinaryOperator::Equal, y, zero);
+    let x = b.select(none_x, m, x);
+    let y = b.select(none_y, m, y);
+    b.compose_vec3([x, y, t])
+}
+
+/// The material of a blend with weight above ½ (the first at ½): `Blend::dominant`.
+fn dominant(b: &mut FnBuilder, blend: Ex) -> Ex {
+    let [x, y, t] = b.xyz(blend);
+    let half = b.f(0.5);
+    let first = b.le(t, half);
+    b.select(first, x, y)
+}
+
+/// The running blend `run` of a fold whose running value is `a`, after a later part of value
+/// `v` (not yet negated) and blend `child`, as its head says (its parent's way, radius and
+/// whether it is negated): `crate::reference::blend::pick`'s step, with x, y = a, v for a
+/// minimum and −a, −v for a maximum (an intersection's, and a subtraction's with the cutter
+/// already negated).
+pub(super) fn fold(b: &mut FnBuilder, (a, v): (Ex, Ex), head: Ex, (run, child): (Ex, Ex)) -> Ex {
+    let negated = flag(b, head, NEGATED);
+    let minus = b.neg(v);
+    let v = b.select(negated, minus, v);
+    let largest = flag(b, head, LARGEST);
+    let k = b.at(head, 1);
+    let k = b.bitcast(k, ScalarKind::Float);
+    let (na, nv) = (b.neg(a), b.neg(v));
+    let x = b.select(largest, na, a);
+    let y = b.select(largest, nv, v);
+    let gap = b.sub(x, y);
+    let gap = b.abs(gap);
+    let first_nearer = b.le(x, y);
+    // Outside the seam one side is whole, its blend included.
+    let whole = b.ge(gap, k);
+    let side = b.select(first_nearer, run, child);
+    // In it, IQ's mix factor (`smin_weight`): h = (k − |x − y|)/k, t = h²/2 where the first
+    // is nearer, 1 − h²/2 where the second is (k > 0 here: the gap is below it).
+    let tiny = b.f(f64::from(f32::MIN_POSITIVE));
+    let kk = b.max(k, tiny);
+    let h = b.sub(k, gap);
+    let h = b.div(h, kk);
+    let half = b.f(0.5);
+    let hh = b.mul(h, h);
+    let m = b.mul(hh, half);
+    let one = b.f(1.0);
+    let other = b.sub(one, m);
+    let t = b.select(first_nearer, m, other);
+    let (da, dc) = (dominant(b, run), dominant(b, child));
+    let mixed = b.compose_vec3([da, dc, t]);
+    b.select(whole, side, mixed)
+}
