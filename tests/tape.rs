@@ -534,3 +534,68 @@ fn the_proxy_outside_the_grid_is_a_bound() {
         "tape: the proxy outside the grid bounds the field at {checked} points (a turned part's parameter; cubes blended with k = 0.8)"
     ));
 }
+
+/// A blend as shading sees it: one material where both are the same or the weight is 0 or 1.
+fn shown(b: sdfc_compiler::reference::blend::Blend) -> sdfc_compiler::reference::blend::Blend {
+    use sdfc_compiler::reference::blend::Blend;
+    match b {
+        Blend { a, b, .. } if a == b => Blend::plain(a),
+        Blend { a, t, .. } if t <= 0.0 => Blend::plain(a),
+        Blend { b, t, .. } if t >= 1.0 => Blend::plain(b),
+        b => b,
+    }
+}
+
+/// Materials blended through smooth folds (`tape::eval::blend`, the f64 twin of the shader's
+/// `tape_blend`) are the reference's (`reference::eval::blend`: two ids, a weight) for the
+/// whole tree at random points of random trees, and a cell's pruned tree gives the whole
+/// tree's blend bit for bit inside the cell — material propagation through pruning, blends
+/// included.
+#[test]
+fn blended_materials_survive_pruning() {
+    let seed = fuzz_seed(34);
+    let cases = fuzz_cases(120);
+    let mut r = Rng::new(seed);
+    let (mut points, mut seams) = (0usize, 0usize);
+    for case in 0..cases {
+        let source = random_scene(&mut r);
+        let s = scene("blend.sdf", &source);
+        let tree = tape::build(&s).expect("a tree");
+        let (lo, hi) = region(&s);
+        for _ in 0..40 {
+            let p = point(&mut r, lo, hi);
+            if near_tie(&s, p) {
+                continue;
+            }
+            let (_, ours) = tape::eval::blend(&s, &tree, p);
+            let (ours, want) = (shown(ours), shown(eval::blend(&s, p)));
+            assert!(
+                ours.a == want.a && ours.b == want.b && (ours.t - want.t).abs() <= 1e-9,
+                "seed {seed} case {case}: at {p}: tree {ours:?}, reference {want:?}\n{source}"
+            );
+            seams += usize::from(ours.t > 0.0 && ours.t < 1.0 && ours.a != ours.b);
+        }
+        for _ in 0..6 {
+            let size = (hi - lo).max_element() * r.range(0.01, 0.4);
+            let center = point(&mut r, lo, hi);
+            let pruned = cells::prune(&s, &tree, center, size * 3f64.sqrt() / 2.0);
+            for _ in 0..30 {
+                let half = DVec3::splat(size / 2.0);
+                let p = point(&mut r, center - half, center + half);
+                let (_, whole) = tape::eval::blend(&s, &tree, p);
+                let (_, part) = tape::eval::blend(&s, &pruned, p);
+                assert!(
+                    whole.a == part.a && whole.b == part.b && whole.t.to_bits() == part.t.to_bits(),
+                    "seed {seed} case {case}: at {p} in the cell at {center}: whole {whole:?}, \
+                     pruned {part:?}\n{source}"
+                );
+                points += 1;
+            }
+        }
+    }
+    assert!(seams > 0, "no point fell in a seam: the test saw no blend");
+    report(&format!(
+        "tape: {cases} random trees (seed {seed}): blended materials equal the reference's \
+         ({seams} points in a seam of two materials) and the pruned trees' at {points} points in cells"
+    ));
+}

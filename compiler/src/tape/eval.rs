@@ -1,8 +1,10 @@
-//! Running a part tree at a point in f64: its value and material, as the reference evaluator
-//! gives them for the scene it came from (`reference::eval::sample`).
+//! Running a part tree at a point in f64: its value, material and blended materials, as the
+//! reference evaluator gives them for the scene it came from (`reference::eval::sample`,
+//! `reference::eval::blend`).
 
 use super::{Part, PartKind, Way};
 use crate::catalog::operators::{smax, smin};
+use crate::reference::blend::{Blend, smin_weight};
 use crate::scene::{NodeKind, Scene};
 use glam::DVec3;
 
@@ -66,4 +68,43 @@ pub fn combine(way: Way, k: f64, a: f64, b: f64) -> f64 {
         (Way::Min, true) => smin(a, b, k),
         (Way::Max, true) => smax(a, b, k),
     }
+}
+
+/// The value and blended materials (`reference::blend::Blend`: ids as material + 1, 0 for
+/// none) of `part` at `p`, by `reference::blend::pick`'s rule on each fold's running value: the
+/// f64 twin of the shader's `tape_blend` (`lower/data/blend.rs`).
+pub fn blend(scene: &Scene, part: &Part, p: DVec3) -> (f64, Blend) {
+    let own = part.material.map_or(0, |m| m + 1);
+    let (raw, inner) = match &part.kind {
+        PartKind::Leaf => return (value(scene, part, p), Blend::plain(own)),
+        PartKind::Fold { way, k, children } => {
+            let signed = |(c, negate): &(Part, bool)| {
+                let (v, b) = blend(scene, c, p);
+                (if *negate { -v } else { v }, b)
+            };
+            let Some(first) = children.first() else {
+                return (f64::NAN, Blend::plain(own));
+            };
+            let (mut acc, mut running) = signed(first);
+            for child in &children[1..] {
+                let (v, b) = signed(child);
+                let (x, y) = match way {
+                    Way::Min => (acc, v),
+                    Way::Max => (-acc, -v),
+                };
+                running = if (x - y).abs() >= *k {
+                    if x <= y { running } else { b }
+                } else {
+                    Blend {
+                        a: running.dominant(),
+                        b: b.dominant(),
+                        t: smin_weight(x, y, *k),
+                    }
+                };
+                acc = combine(*way, *k, acc, v);
+            }
+            (acc, running.under(own))
+        }
+    };
+    (raw * part.factor, inner)
 }
