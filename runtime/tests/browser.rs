@@ -212,9 +212,9 @@ fn render_data(gpu: &sdfc::gpu::Gpu, scene: &Scene, view: &View) -> sdfc::gpu::F
     let (tree, layout) = sdfc_compiler::tape::data::layout(scene, None).expect("a data form");
     let data = sdfc_compiler::tape::data::data(scene, &tree, &layout).expect("its buffers");
     gpu.set_scene(scene);
-    gpu.set_tape(Some(&data));
+    gpu.set_tape(Some(&data)).unwrap();
     let frame = gpu.render(&module, view, None, |_, _| {}).unwrap();
-    gpu.set_tape(None);
+    gpu.set_tape(None).unwrap();
     frame
 }
 

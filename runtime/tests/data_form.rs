@@ -68,12 +68,12 @@ fn the_data_form_draws_what_the_inline_form_draws() {
                     sdfc_compiler::tape::data::layout(&scene, None).expect("a data form");
                 sdfc_compiler::tape::data::data(&scene, &tree, &layout).expect("its buffers")
             });
-            gpu.set_tape(data.as_ref());
+            gpu.set_tape(data.as_ref()).unwrap();
             (gpu.render(&module, &view, None, |_, _| {}).unwrap(), data)
         };
         let (inline, _) = draw(Form::Inline);
         let (data, buffers) = draw(Form::Data);
-        gpu.set_tape(None);
+        gpu.set_tape(None).unwrap();
         let pixels = inline.color.len();
         let mut masks = 0;
         let mut deep = 0;

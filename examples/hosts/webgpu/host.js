@@ -121,6 +121,10 @@ async function dataEntries(device, manifest, manifestUrl) {
       if (!r.ok) throw new Error(`${b.file}: ${r.status}`);
       const bytes = await r.arrayBuffer();
       if (bytes.byteLength !== b.bytes) throw new Error(`${b.file}: ${bytes.byteLength} bytes, the manifest says ${b.bytes}`);
+      const limit = Math.min(device.limits.maxStorageBufferBindingSize, device.limits.maxBufferSize);
+      if (bytes.byteLength > limit) {
+        throw new Error(`${b.file}: ${bytes.byteLength} bytes, and this device binds at most ${limit} per buffer: emit with --form inline, or fewer parts`);
+      }
       const buffer = device.createBuffer({ size: bytes.byteLength, usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_DST });
       device.queue.writeBuffer(buffer, 0, bytes);
       return { binding: b.binding.binding, resource: { buffer } };

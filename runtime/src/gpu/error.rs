@@ -44,6 +44,16 @@ pub enum Error {
         /// Most pixels.
         max_pixels: u64,
     },
+    /// The data form's buffers are larger than the device binds.
+    #[error(
+        "the scene's data form takes a buffer of {bytes} bytes, and this device binds at most {limit} bytes per buffer\nhelp: `--form inline`, or fewer parts"
+    )]
+    TapeTooLarge {
+        /// The largest buffer's bytes.
+        bytes: u64,
+        /// The device's limit.
+        limit: u64,
+    },
     /// The driver rejected a module sdfc compiled (a bug in sdfc).
     #[error("internal error: the GPU rejected the compiled shader: {0}")]
     InvalidModule(String),

@@ -2,16 +2,25 @@
 //! and their ranges (`sdfc_compiler::tape::data`), bound at `layout::TAPE_BINDINGS` in every module that
 //! declares them (compiled with `Form::Data`).
 
-use super::{Gpu, lock};
+use super::{Error, Gpu, lock};
 use sdfc_compiler::layout::{GROUP, TAPE_BINDINGS};
 use sdfc_compiler::tape::data::Data;
 use wgpu::util::DeviceExt;
 
 impl Gpu {
-    /// Sets the data form's buffers the modules prepared from now on read (`None`: none).
-    pub fn set_tape(&self, data: Option<&Data>) {
-        let buffers = data.map(|d| {
-            let [nodes, code, ranges] = d.buffers();
+    /// Sets the data form's buffers the modules prepared from now on read (`None`: none); an
+    /// error where one is larger than the device binds.
+    pub fn set_tape(&self, data: Option<&Data>) -> Result<(), Error> {
+        let limit = self
+            .limits
+            .max_storage_buffer_binding_size
+            .min(self.limits.max_buffer_size);
+        let made = data.map(Data::buffers);
+        let largest = made.iter().flatten().map(|b| b.len() as u64).max();
+        if let Some(bytes) = largest.filter(|&b| b > limit) {
+            return Err(Error::TapeTooLarge { bytes, limit });
+        }
+        let buffers = made.map(|[nodes, code, ranges]| {
             let make = |label: &str, contents: Vec<u8>| {
                 self.device
                     .create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -27,6 +36,7 @@ impl Gpu {
             ]
         });
         *lock(&self.tape) = buffers;
+        Ok(())
     }
 
     /// The data form's buffers with their bindings, for a module that reads them (`reads`,

@@ -283,7 +283,7 @@ impl Live {
             let clock = Instant::now();
             let valued = self.scene.with_values(&wanted);
             let data = crate::cli::tape_data_in(&self.scene, &valued, cells)?;
-            self.gpu.set_tape(Some(&data));
+            self.gpu.set_tape(Some(&data))?;
             self.full.retape();
             self.coarse.retape();
             self.tape_values = wanted;
@@ -403,7 +403,7 @@ fn prepare(
         data.then(|| crate::cli::tape_data(scene, &scene.with_values(values)))
             .transpose()?
             .as_ref(),
-    );
+    )?;
     let layout = Layout::Full { passes: false };
     let full = View::new(&scene.camera, size.0, size.1);
     let c = coarse_size(size);

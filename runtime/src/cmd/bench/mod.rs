@@ -64,7 +64,7 @@ fn prepass(gpu: &Gpu, scene: &Scene) -> Result<Prepass, Error> {
     let clock = std::time::Instant::now();
     let tape = crate::cli::tape_data(scene, scene)?;
     let seconds = clock.elapsed().as_secs_f64();
-    gpu.set_tape(Some(&tape));
+    gpu.set_tape(Some(&tape))?;
     Ok(Prepass {
         seconds,
         bytes: tape.bytes(),
