@@ -345,3 +345,27 @@ fn emit_writes_the_data_form_for_a_host() {
         made.buffers().iter().map(Vec::len).sum::<usize>()
     ));
 }
+
+/// Buffers larger than the device binds (lavapipe: 128 MiB a buffer) are a clear error before
+/// anything is drawn, not the device's: 1000 balls blended over 0.6 — wide enough that every
+/// cell keeps hundreds of them — make a program buffer of about 300 MB.
+#[test]
+fn buffers_beyond_the_device_are_refused() {
+    use crate::common::{refused, scratch, write};
+    let dir = scratch("data-large");
+    let text = format!(
+        "camera {{ eye (0, 1, -4)  target (0, 0, 0) }}\nsmooth_union(0.6) {{\n{}\n}}",
+        balls(1000, false)
+    );
+    let file = write(&dir, "wide.sdf", &text);
+    let out = dir.join("wide.png");
+    let args = [
+        "render",
+        &file,
+        "--size",
+        "64x36",
+        "-o",
+        out.to_str().unwrap(),
+    ];
+    refused(&args, "this device binds at most", &out);
+}
