@@ -369,3 +369,60 @@ fn buffers_beyond_the_device_are_refused() {
     ];
     refused(&args, "this device binds at most", &out);
 }
+
+/// `--cells N` sets the data form's grid (the grid is data: the same shader draws any): 150
+/// balls drawn on 8 cells a side are the picture drawn on the parts' own grid (a pruned program
+/// is the whole field inside its cell, whatever the cell); a count out of range, or for a
+/// scene drawn inline, is refused.
+#[test]
+fn the_grid_s_cells_change_the_work_not_the_picture() {
+    use crate::common::{refused, scratch, succeeded, write};
+    let dir = scratch("data-cells");
+    let text = format!(
+        "material red {{ color #d04038 }}\nmaterial blue {{ color #3050d0 }}\ncamera {{ eye (0, 1, -4)  target (0, 0, 0) }}\nsmooth_union(0.05) {{\n{}\n}}\nplane(y, -1.2)",
+        balls(150, true)
+    );
+    let file = write(&dir, "cells.sdf", &text);
+    let draw = |cells: &[&str], name: &str| {
+        let out = dir.join(name);
+        let mut args = vec![
+            "render",
+            &file,
+            "--size",
+            "96x54",
+            "--samples",
+            "1",
+            "--form",
+            "data",
+            "-q",
+            "-o",
+        ];
+        args.push(out.to_str().unwrap());
+        args.extend_from_slice(cells);
+        succeeded(&args);
+        image::open(&out).unwrap().to_rgba8()
+    };
+    let (coarse, own) = (draw(&["--cells", "8"], "8.png"), draw(&[], "own.png"));
+    let differ = coarse
+        .pixels()
+        .zip(own.pixels())
+        .filter(|(p, q)| (0..3).any(|k| p[k].abs_diff(q[k]) > 2))
+        .count();
+    assert!(differ <= 96 * 54 / 1000, "{differ} pixels differ");
+    let out = dir.join("no.png");
+    let no = out.to_str().unwrap();
+    refused(
+        &["render", &file, "--cells", "0", "-o", no],
+        "1 to 128 cells",
+        &out,
+    );
+    refused(
+        &["render", &file, "--cells", "129", "-o", no],
+        "1 to 128 cells",
+        &out,
+    );
+    let inline = [
+        "render", &file, "--form", "inline", "--cells", "8", "-o", no,
+    ];
+    refused(&inline, "is for the data form", &out);
+}

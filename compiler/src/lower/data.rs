@@ -251,28 +251,7 @@ fn instruction(
                 |b| {
                     if let Some(stack) = at.stack {
                         let spill = has_bit(b, ins, SPILL);
-                        b.if_(
-                            spill,
-                            |b| {
-                                let sp = b.load(stack.sp);
-                                let to = stack.entry(b, sp);
-                                for (to, from) in to.into_iter().zip(at.running) {
-                                    let x = b.load(from);
-                                    b.store(to, x);
-                                }
-                                if let Some(Blends {
-                                    running,
-                                    stack: Some(entries),
-                                }) = at.blends
-                                {
-                                    let to = b.index(entries, sp);
-                                    let x = b.load(running);
-                                    b.store(to, x);
-                                }
-                                b.increment(stack.sp);
-                            },
-                            |_| {},
-                        );
+                        b.if_(spill, |b| push(b, at, stack), |_| {});
                     }
                     let x = start(b, (v, own), head);
                     set(b, at.running, x);
@@ -293,6 +272,27 @@ fn instruction(
             );
         },
     );
+}
+
+/// Pushes the running value (and blend) onto the stack: a first part whose fold's running
+/// value below must be kept for a later fold (`program::SPILL`).
+fn push(b: &mut FnBuilder, at: Eval, stack: Stack) {
+    let sp = b.load(stack.sp);
+    let to = stack.entry(b, sp);
+    for (to, from) in to.into_iter().zip(at.running) {
+        let x = b.load(from);
+        b.store(to, x);
+    }
+    if let Some(Blends {
+        running,
+        stack: Some(entries),
+    }) = at.blends
+    {
+        let to = b.index(entries, sp);
+        let x = b.load(running);
+        b.store(to, x);
+    }
+    b.increment(stack.sp);
 }
 
 /// What the evaluator's loop works on: the table, the running value (value, best, tag) and

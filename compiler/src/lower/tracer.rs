@@ -61,6 +61,9 @@ pub struct Options {
     /// --count-primitives`): the trace-only entry writes the camera ray's where it writes its
     /// steps, the compute entry's shading count (binding 8) is shading's.
     pub count_primitives: bool,
+    /// The data form's grid: cells along its longest side (`None`: as many as the parts call
+    /// for, `tape::data::cells_for`). Data only: the shader reads the grid from its buffers.
+    pub cells: Option<usize>,
 }
 
 /// How `map` holds the scene.
@@ -112,6 +115,7 @@ impl Options {
             params_binding: crate::layout::PARAMS_BINDING,
             form: Form::Inline,
             count_primitives: false,
+            cells: None,
         }
     }
 }

@@ -304,6 +304,9 @@ pub struct BenchArgs {
     /// pruned per cell, and reports the CPU's pre-pass time.
     #[arg(long, value_enum, default_value = "auto")]
     pub form: super::tracer::FormArg,
+    /// The data form's grid: cells along its longest side, 1 to 128 (as `render --cells`).
+    #[arg(long, value_name = "N")]
+    pub cells: Option<usize>,
     /// Also count primitive evaluations per pixel, of the trace and of shading (compiles the
     /// trace and the frame once more with a counter in every primitive's function; not timed).
     #[arg(long)]

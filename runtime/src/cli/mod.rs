@@ -12,4 +12,4 @@ pub mod values;
 
 pub use args::*;
 pub use error::{Error, write_file};
-pub use tracer::{tape_data, tape_data_in};
+pub use tracer::tape_data;

@@ -69,6 +69,11 @@ pub struct TracerArgs {
     /// shader, for the host to bind (the manifest's `data`).
     #[arg(long, value_enum, default_value = "auto")]
     pub form: FormArg,
+    /// The data form's grid: cells along its longest side, 1 to 128 (by default about 256
+    /// cells a part, 8 to 128). Fewer make smaller buffers and a faster pre-pass, more keep
+    /// fewer parts a cell and trace faster.
+    #[arg(long, value_name = "N")]
+    pub cells: Option<usize>,
     /// Start shadow, reflected and refracted rays a fixed 2·ε_floor off the surface instead of
     /// Keinert's ε_dynamic = 2·max(ε, |f(p)|): only to see and measure what ε_dynamic prevents
     /// (shadow acne, self-intersecting refraction).
@@ -131,6 +136,7 @@ impl TracerArgs {
         options.bounding_volumes = bounding_volumes(self.bvh, self.no_bvh);
         options.fixed_offset = self.fixed_offset;
         options.form = self.form.choose(self.passes, scene)?;
+        options.cells = check_cells(self.cells, options.form)?;
         Ok(options)
     }
 }
@@ -192,6 +198,28 @@ impl FormArg {
     }
 }
 
+/// `--cells` checked: within 1 to `tape::data::CELLS`' most, and only for the data form.
+pub fn check_cells(
+    cells: Option<usize>,
+    form: sdfc_compiler::lower::tracer::Form,
+) -> Result<Option<usize>, Error> {
+    let Some(n) = cells else {
+        return Ok(None);
+    };
+    let most = sdfc_compiler::tape::data::CELLS.1;
+    if !(1..=most).contains(&n) {
+        return Err(Error::Usage(format!(
+            "error: `--cells {n}`: the grid has 1 to {most} cells along its longest side"
+        )));
+    }
+    if form != sdfc_compiler::lower::tracer::Form::Data {
+        return Err(Error::Usage(format!(
+            "error: `--cells {n}` is for the data form, and this scene is drawn inline\nhelp: `--form data`"
+        )));
+    }
+    Ok(Some(n))
+}
+
 /// `--passes N` of `render`, `emit` and `bench`: a number of passes there is a schedule for.
 pub fn check_passes(passes: u32) -> Result<(), Error> {
     let counts = sdfc_compiler::passes::counts();
@@ -218,17 +246,10 @@ pub fn bounding_volumes(bvh: bool, no_bvh: bool) -> BoundingVolumes {
 /// The data form's buffers for a scene compiled at its defaults (`scene`: the kinds, the
 /// stack's depth and whether there is a grid and a proxy are compiled into the shader) drawn
 /// at other values (`valued`: the grid, the cells' programs and the parts' arguments).
+/// The grid has `cells` along its longest side (by default as many as the parts call for,
+/// `tape::data::cells_for`): the grid is data, so any count runs on the same shader — fewer
+/// cells make the buffers faster, the trace slower.
 pub fn tape_data(
-    scene: &sdfc_compiler::scene::Scene,
-    valued: &sdfc_compiler::scene::Scene,
-) -> Result<sdfc_compiler::tape::data::Data, Error> {
-    tape_data_in(scene, valued, None)
-}
-
-/// [`tape_data`] on a grid of `cells` along its longest side (by default as many as the
-/// parts call for, `tape::data::cells_for`): the grid is data, so any count runs on the same
-/// shader — fewer cells make the buffers faster, the trace slower.
-pub fn tape_data_in(
     scene: &sdfc_compiler::scene::Scene,
     valued: &sdfc_compiler::scene::Scene,
     cells: Option<usize>,

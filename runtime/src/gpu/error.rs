@@ -46,7 +46,7 @@ pub enum Error {
     },
     /// The data form's buffers are larger than the device binds.
     #[error(
-        "the scene's data form takes a buffer of {bytes} bytes, and this device binds at most {limit} bytes per buffer\nhelp: each cell keeps every part that can blend in it: smaller blend radii or fewer parts make the buffers smaller, and `--form inline` has none"
+        "the scene's data form takes a buffer of {bytes} bytes, and this device binds at most {limit} bytes per buffer\nhelp: each cell keeps every part that can blend in it: fewer cells (`--cells`), smaller blend radii or fewer parts make the buffers smaller, and `--form inline` has none"
     )]
     TapeTooLarge {
         /// The largest buffer's bytes.

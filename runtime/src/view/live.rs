@@ -108,7 +108,7 @@ impl Live {
             last: Vec::new(),
             tape_values: HashMap::new(),
             tape_follows_time: follows_time(&scene, &options),
-            tape_cells: (None, None),
+            tape_cells: (options.cells, None),
             scene,
             options,
         })
@@ -120,7 +120,7 @@ impl Live {
         let (full, coarse) = prepare(&self.gpu, &scene, &options, self.size, &HashMap::new())?;
         self.tape_values.clear();
         self.tape_follows_time = follows_time(&scene, &options);
-        self.tape_cells = (None, None);
+        self.tape_cells = (options.cells, None);
         // Values set with the keys stay only where the new scene still has the parameter,
         // of the same size, and within its range.
         self.values.retain(|name, v| {
@@ -274,7 +274,11 @@ impl Live {
             wanted.insert(TIME.to_string(), vec![self.time()]);
         }
         // While `time` runs, a grid as fine as a moment's pre-pass allows; at rest, the parts'.
-        let cells = if running { self.tape_cells.1 } else { None };
+        let cells = if running {
+            self.tape_cells.1.or(self.options.cells)
+        } else {
+            self.options.cells
+        };
         if self.options.form == sdfc_compiler::lower::tracer::Form::Data
             && (wanted != self.tape_values || cells != self.tape_cells.0)
         {
@@ -282,16 +286,16 @@ impl Live {
             // to the same pipelines (no new shader for the driver).
             let clock = Instant::now();
             let valued = self.scene.with_values(&wanted);
-            let data = crate::cli::tape_data_in(&self.scene, &valued, cells)?;
+            let data = crate::cli::tape_data(&self.scene, &valued, cells)?;
             self.gpu.set_tape(Some(&data))?;
             self.full.retape();
             self.coarse.retape();
             self.tape_values = wanted;
             if running {
-                let full = full_cells(&valued);
+                let full = self.options.cells.unwrap_or_else(|| full_cells(&valued));
                 self.tape_cells = (cells, next_cells(cells, full, clock.elapsed()));
             } else {
-                self.tape_cells = (None, None);
+                self.tape_cells = (cells, None);
             }
         }
         let camera = self.orbit.camera();
@@ -400,7 +404,7 @@ fn prepare(
     gpu.set_volumes(&scene.volumes());
     let data = options.form == sdfc_compiler::lower::tracer::Form::Data;
     gpu.set_tape(
-        data.then(|| crate::cli::tape_data(scene, &scene.with_values(values)))
+        data.then(|| crate::cli::tape_data(scene, &scene.with_values(values), options.cells))
             .transpose()?
             .as_ref(),
     )?;

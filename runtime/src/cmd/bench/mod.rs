@@ -59,10 +59,11 @@ struct Prepass {
     mean_leaves: f64,
 }
 
-/// The data form's buffers made on the CPU, timed, and set on `gpu`.
-fn prepass(gpu: &Gpu, scene: &Scene) -> Result<Prepass, Error> {
+/// The data form's buffers made on the CPU (on `cells` a side, by default the parts'), timed,
+/// and set on `gpu`.
+fn prepass(gpu: &Gpu, scene: &Scene, cells: Option<usize>) -> Result<Prepass, Error> {
     let clock = std::time::Instant::now();
-    let tape = crate::cli::tape_data(scene, scene)?;
+    let tape = crate::cli::tape_data(scene, scene, cells)?;
     let seconds = clock.elapsed().as_secs_f64();
     gpu.set_tape(Some(&tape))?;
     Ok(Prepass {
@@ -129,6 +130,7 @@ fn bench(args: &BenchArgs) -> Result<(), Error> {
     options.bounding_volumes = bvh(args);
     options.fixed_offset = args.fixed_offset;
     options.form = args.form.choose(args.passes, &scene)?;
+    options.cells = crate::cli::tracer::check_cells(args.cells, options.form)?;
     let data = options.form == Form::Data;
     driver_module(&scene, &sources, &mut options, args.allow_slow_compile)?;
     let cells = plan(args, &scene)?;
@@ -144,7 +146,7 @@ fn bench(args: &BenchArgs) -> Result<(), Error> {
     let mut measured = Vec::new();
     let mut swept = Vec::new();
     let prepass = match data {
-        true => Some(prepass(&gpu, &scene)?),
+        true => Some(prepass(&gpu, &scene, options.cells)?),
         false => None,
     };
     if sweep.is_empty() {
