@@ -194,7 +194,7 @@ export async function createHostFrom(device, library, manifest, format, manifest
     for (const name of manifest.data?.follows ?? []) {
       const f = manifest.params.fields.find((f) => f.name === name);
       if (values[name] && values[name].some((x, i) => x !== f.default[i])) {
-        throw new Error(`${name} moves parts of the data form, whose buffers hold them at its default: emit again to draw other values`);
+        throw new Error(`${name} moves parts of the data form, whose buffers hold them at its default: give it that default in the scene and emit again`);
       }
     }
     device.queue.writeBuffer(cameraBuffer, 0, cameraBytes(eye, c.target, c.up, c.fov_degrees, width, height));
@@ -276,7 +276,7 @@ async function main() {
           type: "range", min: lo, max: hi, step: (hi - lo) / 1000, value: f.default[i],
         });
         // A parameter that moves the data form's parts: its buffers hold them at the
-        // default, so the slider stays there (emit again for other values).
+        // default, so the slider stays there (another default in the scene, emitted again, moves them).
         if (m.data?.follows.includes(f.name)) {
           input.disabled = true;
           label.title = "moves parts held in the data buffers, made at the default";
