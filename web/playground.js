@@ -79,13 +79,13 @@ async function makeRenderer() {
     const here = new URL("scene.json", location.href);
     return {
       kind: "webgpu", target: "wgsl", entry: "library", format,
-      make: (r, f) => createHostFrom(device, r.code, r.manifest, f, here, r.volumes),
+      make: (r, f) => createHostFrom(device, r.code, r.manifest, f, here, r.volumes, r.data),
       draw(host, eye, values) {
         const encoder = host.draw(context.getCurrentTexture().createView(), canvas.width, canvas.height, eye, values);
         device.queue.submit([encoder.finish()]);
       },
       pixels: async (r, w, h, values, eye) =>
-        hostPixels(await createHostFrom(device, r.code, r.manifest, "rgba8unorm", here, r.volumes), w, h, values, eye ?? r.manifest.camera.eye),
+        hostPixels(await createHostFrom(device, r.code, r.manifest, "rgba8unorm", here, r.volumes, r.data), w, h, values, eye ?? r.manifest.camera.eye),
     };
   }
   const gl = canvas.getContext("webgl2");
@@ -158,6 +158,9 @@ async function main() {
     // (`compiles` and `compiledText` change last, once the answer is in use: the test waits on them.)
     // The baked volumes' bytes, made by the compile (the files `sdfc emit` would write).
     if (r.ok) r.volumes = (r.manifest.volumes ?? []).map((_, i) => sdfc.volume(i));
+    // A scene of many parts compiles to the data form (WebGPU): its buffers are made by the
+    // compiler in the page at the sliders' values, again when a slider moves its parts.
+    if (r.ok && r.manifest.data) r.data = (v) => sdfc.data(v);
     if (!r.ok || !renderer.make) {
       state.compiles += 1;
       state.compiledText = text;
@@ -185,7 +188,11 @@ async function main() {
     box.textContent = "";
     for (const f of manifest.params.fields) {
       if (f.name === "time" && f.builtin) continue;
-      values[f.name] = values[f.name]?.length === f.default.length ? values[f.name] : [...f.default];
+      // A value set before stays where the new scene still has the parameter, of the same
+      // size and within its range (as `sdfc view` keeps its keys' values); else the default.
+      const kept = values[f.name];
+      const fits = kept?.length === f.default.length && (!f.min || kept.every((x, i) => x >= f.min[i] && x <= f.max[i]));
+      values[f.name] = fits ? kept : [...f.default];
       // A parameter is the uniform's: changing it draws again, no compile.
       if (f.kind === "color") {
         const label = Object.assign(document.createElement("label"), { textContent: f.name });

@@ -1,7 +1,7 @@
 // sdfc's compiler as WebAssembly, for pages and for Node: `const sdfc = await load(bytes)`,
 // then `sdfc.compile({ source, name, target, entry })` returns `{ ok, code, manifest,
 // diagnostics, summary }` (see web/src/lib.rs), `sdfc.volume(i)` the bytes of its baked
-// volume i. The module's five exports are used directly:
+// volume i, `sdfc.data(values)` its data form's buffers at parameter values. The module's five exports are used directly:
 // a request is written into memory from `sdfc_alloc`, `sdfc_compile` returns the response's
 // length and text, both are given back with `sdfc_free`.
 
@@ -35,6 +35,27 @@ export async function load(bytes) {
       const bytes = new Uint8Array(wasm.memory.buffer, out + 4, len).slice();
       wasm.sdfc_free(out, 4 + len);
       return bytes;
+    },
+    // The data form's buffers (nodes, code, ranges) of the last scene that compiled as data
+    // (its manifest has `data`), at parameter `values` ({name: [numbers]}): three Uint8Arrays,
+    // or null where these values need another shader.
+    data(values) {
+      const input = encoder.encode(JSON.stringify(values ?? {}));
+      const at = wasm.sdfc_alloc(input.length);
+      new Uint8Array(wasm.memory.buffer, at, input.length).set(input);
+      const out = wasm.sdfc_data(at, input.length);
+      wasm.sdfc_free(at, input.length);
+      if (!out) return null;
+      const len = new DataView(wasm.memory.buffer).getUint32(out, true);
+      const all = new Uint8Array(wasm.memory.buffer, out + 4, len).slice();
+      wasm.sdfc_free(out, 4 + len);
+      const parts = [];
+      for (let k = 0, i = 0; k < 3; k++) {
+        const n = new DataView(all.buffer).getUint32(i, true);
+        parts.push(all.slice(i + 4, i + 4 + n));
+        i += 4 + n;
+      }
+      return parts;
     },
   };
   return api;

@@ -200,7 +200,7 @@ fn data_scene(dir: &std::path::Path) -> std::path::PathBuf {
 
 /// `scene` rendered on `gpu` by the compute entry in the data form, its buffers made at the
 /// scene's values.
-fn render_data(gpu: &sdfc::gpu::Gpu, scene: &Scene, view: &View) -> sdfc::gpu::Frame {
+pub(crate) fn render_data(gpu: &sdfc::gpu::Gpu, scene: &Scene, view: &View) -> sdfc::gpu::Frame {
     use sdfc_compiler::lower::tracer::{Form, Options};
     let options = Options {
         form: Form::Data,

@@ -49,6 +49,47 @@ fn the_playground_compiles_as_you_type_and_draws_what_sdfc_renders() {
     }
 }
 
+/// 150 balls of three materials blended over a plane whose height is a parameter: drawn as
+/// data in the page (WebGPU), its buffers made by the page's compiler.
+fn data_scene() -> String {
+    format!(
+        "param lift = -1.2 in -1.5..0\nmaterial red {{ color #d04038 }}\nmaterial blue {{ color #3050d0 }}\ncamera {{ eye (0, 1, -4)  target (0, 0, 0) }}\nsmooth_union(0.1) {{\n{}\nplane(y, lift)\n}}",
+        crate::data_form::balls(150, true)
+    )
+}
+
+/// The page drew the data scene as data — at its defaults and with the plane's slider at its
+/// maximum, the buffers made again by the page's compiler without a new compile — as `sdfc
+/// render --form data` draws it there.
+fn data_form(got: &serde_json::Value, dir: &std::path::Path, (w, h): (u32, u32), text: &str) {
+    let data = &got["data"];
+    assert_eq!(data["form"], true, "drawn as data: {got}");
+    assert_eq!(data["follows"], serde_json::json!(["lift"]), "{got}");
+    assert_eq!(data["compiled"], 0, "the slider compiled: {got}");
+    let gpu = gpu();
+    let mut said = Vec::new();
+    for (name, lift) in [("data0", -1.2), ("data1", 0.0)] {
+        let values = HashMap::from([("lift".to_string(), vec![lift])]);
+        let here = compile(text).with_values(&values);
+        let frame = crate::browser::render_data(&gpu, &here, &View::new(&here.camera, w, h));
+        let page = std::fs::read(dir.join(format!("{name}.rgba"))).unwrap();
+        let (share, worst) = within_levels(&frame.color, &page, 2);
+        assert!(
+            share >= 0.995,
+            "{name} (lift {lift}): only {:.2}% within 2 levels",
+            100.0 * share
+        );
+        said.push(format!(
+            "lift {lift}: {:.2}% (worst {worst})",
+            100.0 * share
+        ));
+    }
+    report(&format!(
+        "playground in Chrome (webgpu): 150 blended balls over a plane drawn as data, its buffers made by the page's compiler at the slider's values (no compile), within 2 levels of sdfc render --form data: {}",
+        said.join(", ")
+    ));
+}
+
 /// The playground's session in Chromium (`mode`: `no-webgpu` takes WebGPU away), which must
 /// draw with `renderer`.
 fn playground(chrome: &str, driver: &std::path::Path, mode: &str, renderer: &str) {
@@ -64,6 +105,9 @@ fn playground(chrome: &str, driver: &std::path::Path, mode: &str, renderer: &str
     std::fs::write(&tint, TINT).unwrap();
     std::fs::write(&scene, SCENE).unwrap();
     std::fs::write(&typo, &typo_text).unwrap();
+    // A scene of many parts (the page draws it as data where it has WebGPU).
+    let data_text = data_scene();
+    std::fs::write(dir.join("data.sdf"), &data_text).unwrap();
     let (w, h) = (160u32, 90u32);
     let server = Serve::start();
     let run = Command::new("node")
@@ -268,6 +312,9 @@ fn playground(chrome: &str, driver: &std::path::Path, mode: &str, renderer: &str
         "the baked example: only {:.2}% within 2 levels",
         100.0 * baked
     );
+    if renderer == "webgpu" {
+        data_form(&got, &dir, (w, h), &data_text);
+    }
     report(&format!(
         "playground in Chrome ({renderer}): a scene typed key by key ({} compiles, {} ms) drawn within 2 \
          levels of sdfc render on {:.2}% of pixels (worst {worst}); its slider redrew without a \

@@ -1,7 +1,9 @@
 //! sdfc's compiler in the browser: `compile(request)` takes a scene's source and returns the
 //! shader, its manifest and the diagnostics as `sdfc emit` and `sdfc check --message-format json`
-//! give them, as JSON, through four plain WebAssembly exports (`sdfc_alloc`, `sdfc_compile`,
-//! `sdfc_free`, and the memory) that `web/sdfc.mjs` wraps. No wasm-bindgen: a string in and
+//! give them, as JSON, through plain WebAssembly exports (`sdfc_alloc`, `sdfc_compile`,
+//! `sdfc_free`, `sdfc_volume`, `sdfc_data` and the memory) that `web/sdfc.mjs` wraps; a scene of
+//! many parts compiles to the data form for WebGPU, its buffers made at the page's values by
+//! `sdfc_data`. No wasm-bindgen: a string in and
 //! a string out need no generated glue, and the build needs no tool beyond cargo (our choice;
 //! issue 36 suggested wasm-bindgen).
 //!
@@ -88,6 +90,39 @@ pub fn compile(request: &str) -> String {
 thread_local! {
     /// The baked volumes of the last scene that compiled, for [`volume`].
     static LAST_VOLUMES: std::cell::RefCell<Vec<Arc<Volume>>> = const { std::cell::RefCell::new(Vec::new()) };
+}
+
+thread_local! {
+    /// The last scene that compiled to the data form, for [`data_at`].
+    static LAST_DATA: std::cell::RefCell<Option<Scene>> = const { std::cell::RefCell::new(None) };
+}
+
+/// The data form's three buffers (nodes, code, ranges: as `sdfc emit --form data` writes
+/// them) for the last scene [`compile`] compiled as data, at the parameter values of
+/// `request` (JSON `{"name": [numbers], …}`; others at their defaults), each after its length
+/// (4 bytes, little-endian); `None` where the last scene is not drawn as data, or where these
+/// values need another shader (the parts' kinds, nesting or bounds changed).
+pub fn data_at(request: &str) -> Option<Vec<u8>> {
+    use sdfc_compiler::tape::data;
+    let values: std::collections::HashMap<String, Vec<f64>> =
+        serde_json::from_str(request).unwrap_or_default();
+    LAST_DATA.with(|d| {
+        let d = d.borrow();
+        let scene = d.as_ref()?;
+        let valued = scene.with_values(&values);
+        let (_, compiled) = data::layout(scene, None).ok()?;
+        let (tree, layout) = data::layout(&valued, None).ok()?;
+        if !compiled.holds(&layout) {
+            return None;
+        }
+        let made = data::data(&valued, &tree, &layout).ok()?;
+        let mut out = Vec::new();
+        for b in made.buffers() {
+            out.extend_from_slice(&(b.len() as u32).to_le_bytes());
+            out.extend_from_slice(&b);
+        }
+        Some(out)
+    })
 }
 
 /// Baked volume `index` of the last scene [`compile`] compiled, as the file `sdfc emit` writes
@@ -184,7 +219,17 @@ fn emitted(
     target: Target,
     entry: Entry,
 ) -> Result<(String, Value), String> {
-    let options = Options::from_scene(scene);
+    let mut options = Options::from_scene(scene);
+    // WebGPU draws a scene of many parts as data, as `sdfc render` does (`--form auto`): the
+    // page asks for its buffers at the sliders' values (`data_at`). WebGL2 has no storage
+    // buffers: inline there.
+    let data = target == Target::Wgsl
+        && sdfc_compiler::tape::data::prefer(scene)
+        && sdfc_compiler::tape::data::layout(scene, None).is_ok();
+    if data {
+        options.form = sdfc_compiler::lower::tracer::Form::Data;
+    }
+    LAST_DATA.with(|d| *d.borrow_mut() = data.then(|| scene.clone()));
     let (module, info) = emit::module(scene, entry, &options).map_err(|e| e.0)?;
     let settings = emit::Settings {
         glsl_version: GlslVersion::Es300,
@@ -257,6 +302,21 @@ pub unsafe extern "C" fn sdfc_compile(at: *const u8, len: usize) -> *mut u8 {
 #[unsafe(no_mangle)]
 pub extern "C" fn sdfc_volume(index: usize) -> *mut u8 {
     match volume(index) {
+        Some(bytes) => handed_over(&bytes),
+        None => std::ptr::null_mut(),
+    }
+}
+
+/// [`data_at`] for the values of the request of `len` bytes at `at` (UTF-8 JSON), handed over
+/// as [`sdfc_compile`] hands over its response; null where there are none.
+///
+/// # Safety
+/// `at` must point at `len` readable bytes.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sdfc_data(at: *const u8, len: usize) -> *mut u8 {
+    // SAFETY: the caller wrote `len` bytes at `at`.
+    let request = unsafe { std::slice::from_raw_parts(at, len) };
+    match data_at(&String::from_utf8_lossy(request)) {
         Some(bytes) => handed_over(&bytes),
         None => std::ptr::null_mut(),
     }

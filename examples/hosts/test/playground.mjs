@@ -221,6 +221,30 @@ try {
   fs.writeFileSync(`${outDir}/tinted.rgba`, Buffer.from(await page.evaluate((w, h) => window.sdfcPlayground.pixels(w, h), w, h)));
   const tint = { pickers, compiled: (await page.evaluate(() => window.sdfcPlayground.compiles)) - tintCompiles };
 
+  // A scene of many parts (OUT_DIR/data.sdf, WebGPU only): compiled to the data form, its
+  // buffers made by the compiler in the page, and made again when its slider moves a part.
+  let data = null;
+  if (mode === "webgpu" && fs.existsSync(`${outDir}/data.sdf`)) {
+    const many = fs.readFileSync(`${outDir}/data.sdf`, "utf8");
+    await page.evaluate((t) => window.sdfcPlayground.editor.setText(t), many);
+    await compiled(page, many);
+    const dataCompiles = await page.evaluate(() => window.sdfcPlayground.compiles);
+    fs.writeFileSync(`${outDir}/data0.rgba`, Buffer.from(await page.evaluate((w, h) => window.sdfcPlayground.pixels(w, h), w, h)));
+    const framesBefore = await page.evaluate(() => window.sdfcPlayground.frames);
+    await page.$$eval("#sliders input[type=range]", (all) => {
+      all[0].value = all[0].max;
+      all[0].dispatchEvent(new Event("input"));
+    });
+    await page.waitForFunction((n) => window.sdfcPlayground.frames > n, { timeout: 60000 }, framesBefore);
+    fs.writeFileSync(`${outDir}/data1.rgba`, Buffer.from(await page.evaluate((w, h) => window.sdfcPlayground.pixels(w, h), w, h)));
+    data = {
+      form: await page.evaluate(() => Boolean(window.sdfcPlayground.response.manifest.data)),
+      follows: await page.evaluate(() => window.sdfcPlayground.response.manifest.data?.follows ?? []),
+      compiled: (await page.evaluate(() => window.sdfcPlayground.compiles)) - dataCompiles,
+      ok: await page.evaluate(() => window.sdfcPlayground.ok),
+    };
+  }
+
   // Compile time in the page for every example (the picture's compile, as each keystroke
   // makes it; the claims' check is the worker's): measured, not asserted.
   const examples = await page.evaluate(async () => {
@@ -241,7 +265,7 @@ try {
 
   console.log(JSON.stringify({
     claimed, examples, tint,
-    baked,
+    baked, data,
     first, typed, typedMs, indented: typedText === scene, latencies, orbitFps, whileMoving, refined,
     fullOrbitFps: fullOrbit.fps, fullOrbitScale: fullOrbit.whileMoving.scale,
     sliders, compilesBefore, compilesAfter, tracer, refused, downloaded,

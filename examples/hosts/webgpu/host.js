@@ -110,25 +110,42 @@ async function volumeEntries(device, manifest, manifestUrl, given = null) {
 
 /**
  * The data form's buffers (the manifest's `data`, docs/data-form.md: `sdfc emit --form data`
- * writes them beside the shader): each file uploaded whole as a read-only storage buffer at
- * its binding. The bind group entries for them (none for the inline form).
+ * writes them beside the shader; the playground's compiler makes them in the page): each
+ * uploaded whole as a read-only storage buffer at its binding — the three `given` byte arrays,
+ * else the files the manifest names. The bind group entries for them (none for the inline form).
  */
-async function dataEntries(device, manifest, manifestUrl) {
-  return Promise.all(
-    (manifest.data?.buffers ?? []).map(async (b) => {
+async function dataEntries(device, manifest, manifestUrl, given = null) {
+  const buffers = manifest.data?.buffers ?? [];
+  const bytes = given ?? (await Promise.all(
+    buffers.map(async (b) => {
       if (!b.file) throw new Error(`the data buffer ${b.name} has no file: emit with -o FILE`);
       const r = await fetch(new URL(b.file, manifestUrl));
       if (!r.ok) throw new Error(`${b.file}: ${r.status}`);
       const bytes = await r.arrayBuffer();
       if (bytes.byteLength !== b.bytes) throw new Error(`${b.file}: ${bytes.byteLength} bytes, the manifest says ${b.bytes}`);
-      const limit = Math.min(device.limits.maxStorageBufferBindingSize, device.limits.maxBufferSize);
-      if (bytes.byteLength > limit) {
-        throw new Error(`${b.file}: ${bytes.byteLength} bytes, and this device binds at most ${limit} per buffer: emit with --form inline, or fewer parts`);
-      }
-      const buffer = device.createBuffer({ size: bytes.byteLength, usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_DST });
-      device.queue.writeBuffer(buffer, 0, bytes);
-      return { binding: b.binding.binding, resource: { buffer } };
+      return bytes;
     }),
+  ));
+  return uploaded(device, manifest, bytes);
+}
+
+/** The data form's buffers from their `bytes` (one per manifest buffer), as bind group entries. */
+function uploaded(device, manifest, bytes) {
+  const limit = Math.min(device.limits.maxStorageBufferBindingSize, device.limits.maxBufferSize);
+  return (manifest.data?.buffers ?? []).map((b, i) => {
+    if (bytes[i].byteLength > limit) {
+      throw new Error(`${b.name}: ${bytes[i].byteLength} bytes, and this device binds at most ${limit} per buffer: emit with --form inline, or fewer parts`);
+    }
+    const buffer = device.createBuffer({ size: bytes[i].byteLength, usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_DST });
+    device.queue.writeBuffer(buffer, 0, bytes[i]);
+    return { binding: b.binding.binding, resource: { buffer } };
+  });
+}
+
+/** The values of the parameters the data form's buffers follow, as a key (defaults where unset). */
+function followed(manifest, values) {
+  return JSON.stringify(
+    (manifest.data?.follows ?? []).map((name) => values[name] ?? manifest.params.fields.find((f) => f.name === name).default),
   );
 }
 
@@ -148,9 +165,12 @@ export async function createHost(base, format) {
 /**
  * [createHost] from a library's WGSL and manifest already in hand (the playground compiles them
  * in the page) on `device`; baked maps' bytes are `volumes` (one per manifest volume) or fetched
- * beside `manifestUrl`.
+ * beside `manifestUrl`. A data form's buffers come from `makeData(values)` (three byte arrays
+ * at those parameter values: the playground's compiler) where given, made again whenever a
+ * parameter they follow changes; else from the files, and those parameters stay at their
+ * defaults.
  */
-export async function createHostFrom(device, library, manifest, format, manifestUrl, volumes = null) {
+export async function createHostFrom(device, library, manifest, format, manifestUrl, volumes = null, makeData = null) {
   if (manifest.format !== "sdfc-manifest 1") throw new Error(`unknown manifest format ${manifest.format}`);
   const color = manifest.functions.find((f) => f.name === (manifest.prefix ? `${manifest.prefix}_color` : "color"));
   if (!color) throw new Error("the manifest lists no `color`: emit with --entry library");
@@ -171,10 +191,7 @@ export async function createHostFrom(device, library, manifest, format, manifest
   });
   // The scene's parameters, where the manifest gives their binding (docs/interface.md), and
   // its baked maps: the library's group 0.
-  const entries = [
-    ...(await volumeEntries(device, manifest, manifestUrl, volumes)),
-    ...(await dataEntries(device, manifest, manifestUrl)),
-  ];
+  const entries = await volumeEntries(device, manifest, manifestUrl, volumes);
   let paramsBuffer = null;
   if (manifest.params.binding) {
     paramsBuffer = device.createBuffer({
@@ -183,19 +200,28 @@ export async function createHostFrom(device, library, manifest, format, manifest
     });
     entries.push({ binding: manifest.params.binding.binding, resource: { buffer: paramsBuffer } });
   }
-  const paramsGroup = entries.length
-    ? device.createBindGroup({ layout: pipeline.getBindGroupLayout(0), entries })
-    : null;
+  // The data form's buffers, at the values of the parameters they follow (`madeAt`).
+  let madeAt = followed(manifest, {});
+  let data = await dataEntries(device, manifest, manifestUrl, makeData && manifest.data ? makeData({}) : null);
+  const group = () => device.createBindGroup({ layout: pipeline.getBindGroupLayout(0), entries: [...entries, ...data] });
+  let paramsGroup = entries.length + data.length ? group() : null;
   /** Draws into `view` (a texture view of `width`×`height`) from `eye` with `values`. */
   function draw(view, width, height, eye, values) {
     const c = manifest.camera;
-    // The data form's parts were placed at these parameters' defaults: another value would
-    // draw them where they are not (a wrong picture), so it is refused.
-    for (const name of manifest.data?.follows ?? []) {
-      const f = manifest.params.fields.find((f) => f.name === name);
-      if (values[name] && values[name].some((x, i) => x !== f.default[i])) {
+    // The data form's parts were placed at `madeAt`: at other values of the parameters they
+    // follow the buffers are made again, or — without a maker — the drawing is refused (it
+    // would put the parts where they are not).
+    const now = followed(manifest, values);
+    if (now !== madeAt) {
+      const name = manifest.data.follows.find((n, i) => JSON.stringify(JSON.parse(now)[i]) !== JSON.stringify(JSON.parse(madeAt)[i]));
+      if (!makeData) {
         throw new Error(`${name} moves parts of the data form, whose buffers hold them at its default: give it that default in the scene and emit again`);
       }
+      const given = makeData(values);
+      if (!given) throw new Error(`at this value of ${name} the scene's parts need another shader: compile it again`);
+      data = uploaded(device, manifest, given);
+      madeAt = now;
+      paramsGroup = group();
     }
     device.queue.writeBuffer(cameraBuffer, 0, cameraBytes(eye, c.target, c.up, c.fov_degrees, width, height));
     if (paramsBuffer) device.queue.writeBuffer(paramsBuffer, 0, paramsBytes(manifest, values));
