@@ -284,7 +284,8 @@ async function main() {
     ["get-wgsl", "wgsl", "scene.wgsl", "code"], ["get-glsl", "glsl", "scene.frag", "code"], ["get-manifest", "wgsl", "scene.json", "manifest"],
   ]) {
     $(id).onclick = () => {
-      const r = ask(editor.text(), target, "fragment");
+      // (Inline, as `sdfc emit` writes it: a data form's buffers are not among the downloads.)
+      const r = sdfc.compile({ ...request(editor.text(), target, "fragment"), form: "inline" });
       if (!r.ok) return (status.textContent = `${name}: the scene does not compile`);
       const text = part === "code" ? r.code : JSON.stringify(r.manifest, null, 2);
       save(new Blob([text], { type: "text/plain" }), name);

@@ -24,7 +24,8 @@ use std::sync::Arc;
 /// "fragment"|"compute"|"library", "tracer": {"name", "settings": {"steps": "64", …}}}` (GLSL
 /// is ES 3.00 for WebGL2: fragment or library only; the tracer overrides the scene's as
 /// `sdfc emit --tracer NAME --steps 64` does, values as those flags take them). Missing fields
-/// take those defaults: `scene.sdf`, WGSL, the fragment entry, the scene's tracer;
+/// take those defaults: `scene.sdf`, WGSL, the fragment entry, the scene's tracer, `"form":
+/// "auto"` (a scene of many parts as data for WGSL; `"inline"` keeps every part in the code);
 /// `"annotations": "later"` skips sampling the `@lipschitz` claims (see [`checked`]). The answer
 /// also says the tracer used (`"tracer": {"name", "settings": [[name, value], …]}`) and every
 /// tracer's parameters (`"tracers"`), for the page's panel.
@@ -75,7 +76,9 @@ pub fn compile(request: &str) -> String {
     }
     let (method, settings) = check::tracer::settings(&scene.trace);
     response["tracer"] = json!({ "name": method, "settings": settings });
-    match emitted(&scene, &name, target, entry) {
+    // `"form": "inline"` (the downloads: what `sdfc emit` writes) keeps every part in the code.
+    let inline = text("form", "auto") == "inline";
+    match emitted(&scene, &name, target, entry, inline) {
         Ok((code, manifest)) => {
             LAST_VOLUMES.with(|v| *v.borrow_mut() = scene.volumes());
             response["ok"] = json!(true);
@@ -218,18 +221,22 @@ fn emitted(
     name: &str,
     target: Target,
     entry: Entry,
+    inline: bool,
 ) -> Result<(String, Value), String> {
     let mut options = Options::from_scene(scene);
     // WebGPU draws a scene of many parts as data, as `sdfc render` does (`--form auto`): the
     // page asks for its buffers at the sliders' values (`data_at`). WebGL2 has no storage
     // buffers: inline there.
-    let data = target == Target::Wgsl
+    let data = !inline
+        && target == Target::Wgsl
         && sdfc_compiler::tape::data::prefer(scene)
         && sdfc_compiler::tape::data::layout(scene, None).is_ok();
     if data {
         options.form = sdfc_compiler::lower::tracer::Form::Data;
+        // (Only a data form replaces it: an inline compile between, a download's, leaves the
+        // drawn scene's buffers to be made.)
+        LAST_DATA.with(|d| *d.borrow_mut() = Some(scene.clone()));
     }
-    LAST_DATA.with(|d| *d.borrow_mut() = data.then(|| scene.clone()));
     let (module, info) = emit::module(scene, entry, &options).map_err(|e| e.0)?;
     let settings = emit::Settings {
         glsl_version: GlslVersion::Es300,

@@ -230,6 +230,8 @@ try {
     await compiled(page, many);
     const dataCompiles = await page.evaluate(() => window.sdfcPlayground.compiles);
     fs.writeFileSync(`${outDir}/data0.rgba`, Buffer.from(await page.evaluate((w, h) => window.sdfcPlayground.pixels(w, h), w, h)));
+    // (A download's compile in between, inline GLSL, must leave the drawn scene's buffers.)
+    await page.evaluate((t) => window.sdfcPlayground.sdfc.compile({ source: t, name: "scene.sdf", target: "glsl", entry: "fragment", form: "inline" }), many);
     const framesBefore = await page.evaluate(() => window.sdfcPlayground.frames);
     await page.$$eval("#sliders input[type=range]", (all) => {
       all[0].value = all[0].max;
