@@ -109,13 +109,6 @@ pub(super) fn pick_blend(
     if seen.iter().all(|(_, m)| m.is_none()) {
         return None;
     }
-    // The dominant material of a blend: the first up to weight ½.
-    let dominant = |b: &mut FnBuilder, v: Ex| {
-        let [x, y, t] = b.xyz(v);
-        let half = b.f(0.5);
-        let first = b.bin(naga::BinaryOperator::LessEqual, t, half);
-        b.select(first, x, y)
-    };
     let tag = |b: &mut FnBuilder, i: usize| match seen[i].1 {
         None => b.f(0.0),
         Some(v) => dominant(b, v),
@@ -137,19 +130,9 @@ pub(super) fn pick_blend(
             MatRule::SmoothFarthest => (b.neg(d), b.neg(di)),
             _ => (b.neg(d), di),
         };
-        let t = smin_weight(b, x, y, k);
-        let first = dominant(b, blend);
-        let second = tag(b, i);
-        let mixed = b.compose(v3, vec![first, second, t]);
-        // Outside the seam (|x − y| ≥ k) one side is whole, blend included
-        // (`crate::reference::blend::pick`).
-        let whole = seen[i].1.unwrap_or_else(|| b.splat3(0.0));
-        let gap = b.sub(x, y);
-        let gap = b.abs(gap);
-        let outside = b.ge(gap, k.ex);
-        let first_side = b.bin(naga::BinaryOperator::LessEqual, x, y);
-        let side = b.select(first_side, blend, whole);
-        blend = b.select(outside, side, mixed);
+        let second = |b: &mut FnBuilder| tag(b, i);
+        let whole = |b: &mut FnBuilder| seen[i].1.unwrap_or_else(|| b.splat3(0.0));
+        blend = blend_step(b, (x, y), k, blend, (second, whole));
         let m = smin(b, x, y, k);
         d = match rule {
             MatRule::SmoothNearest => m,
@@ -159,15 +142,58 @@ pub(super) fn pick_blend(
     Some(blend)
 }
 
+/// The dominant material of a blend vec3(first, second, weight): the first up to weight ½
+/// (`crate::reference::blend::Blend::dominant`).
+pub(super) fn dominant(b: &mut FnBuilder, v: Ex) -> Ex {
+    let [x, y, t] = b.xyz(v);
+    let half = b.f(0.5);
+    let first = b.bin(naga::BinaryOperator::LessEqual, t, half);
+    b.select(first, x, y)
+}
+
+/// One step of `crate::reference::blend::pick`: the running blend `blend` of a fold whose
+/// running value is `x`, after a child of value `y` (both already negated as the rule says)
+/// with dominant material `second` and whole blend `whole` (made when needed): outside the
+/// seam (|x − y| ≥ k) one side whole, blend included; in it, the two dominants and IQ's mix
+/// factor. Shared by the inline walk and the data form's `tape_blend`.
+pub(super) fn blend_step(
+    b: &mut FnBuilder,
+    (x, y): (Ex, Ex),
+    k: Radius,
+    blend: Ex,
+    (second, whole): (
+        impl FnOnce(&mut FnBuilder) -> Ex,
+        impl FnOnce(&mut FnBuilder) -> Ex,
+    ),
+) -> Ex {
+    let v3 = b.m.vec3();
+    let t = smin_weight(b, x, y, k);
+    let first = dominant(b, blend);
+    let second = second(b);
+    let mixed = b.compose(v3, vec![first, second, t]);
+    let whole = whole(b);
+    let gap = b.sub(x, y);
+    let gap = b.abs(gap);
+    let outside = b.ge(gap, k.ex);
+    let first_side = b.bin(naga::BinaryOperator::LessEqual, x, y);
+    let side = b.select(first_side, blend, whole);
+    b.select(outside, side, mixed)
+}
+
 /// A smooth operator's radius: its value if fixed, and the expression (a parameter's may be
 /// 0 at run time: divisions by it use max(k, 1e-30), which gives the sharp result there).
 #[derive(Clone, Copy)]
-struct Radius {
+pub(super) struct Radius {
     ex: Ex,
     fixed: Option<f64>,
 }
 
 impl Radius {
+    /// A radius known only at run time (read from a buffer).
+    pub(super) fn at_run_time(ex: Ex) -> Radius {
+        Radius { ex, fixed: None }
+    }
+
     fn of(b: &mut FnBuilder, ctx: &crate::catalog::Ctx, any: Ex) -> Radius {
         if crate::catalog::gpu::args::varies(ctx, 0) {
             Radius {

@@ -35,14 +35,6 @@ pub(super) fn end(b: &mut FnBuilder, blend: Ex, own: Ex) -> Ex {
     b.compose_vec3([x, y, t])
 }
 
-/// The material of a blend with weight above ½ (the first at ½): `Blend::dominant`.
-fn dominant(b: &mut FnBuilder, blend: Ex) -> Ex {
-    let [x, y, t] = b.xyz(blend);
-    let half = b.f(0.5);
-    let first = b.le(t, half);
-    b.select(first, x, y)
-}
-
 /// The running blend `run` of a fold whose running value is `a`, after a later part of value
 /// `v` (not yet negated) and blend `child`, as its head says (its parent's way, radius and
 /// whether it is negated): `crate::reference::blend::pick`'s step, with x, y = a, v for a
@@ -58,25 +50,7 @@ pub(super) fn fold(b: &mut FnBuilder, (a, v): (Ex, Ex), head: Ex, (run, child): 
     let (na, nv) = (b.neg(a), b.neg(v));
     let x = b.select(largest, na, a);
     let y = b.select(largest, nv, v);
-    let gap = b.sub(x, y);
-    let gap = b.abs(gap);
-    let first_nearer = b.le(x, y);
-    // Outside the seam one side is whole, its blend included.
-    let whole = b.ge(gap, k);
-    let side = b.select(first_nearer, run, child);
-    // In it, IQ's mix factor (`smin_weight`): h = (k − |x − y|)/k, t = h²/2 where the first
-    // is nearer, 1 − h²/2 where the second is (k > 0 here: the gap is below it).
-    let tiny = b.f(f64::from(f32::MIN_POSITIVE));
-    let kk = b.max(k, tiny);
-    let h = b.sub(k, gap);
-    let h = b.div(h, kk);
-    let half = b.f(0.5);
-    let hh = b.mul(h, h);
-    let m = b.mul(hh, half);
-    let one = b.f(1.0);
-    let other = b.sub(one, m);
-    let t = b.select(first_nearer, m, other);
-    let (da, dc) = (dominant(b, run), dominant(b, child));
-    let mixed = b.compose_vec3([da, dc, t]);
-    b.select(whole, side, mixed)
+    let k = crate::lower::pick::Radius::at_run_time(k);
+    let second = |b: &mut FnBuilder| crate::lower::pick::dominant(b, child);
+    crate::lower::pick::blend_step(b, (x, y), k, run, (second, |_: &mut FnBuilder| child))
 }
