@@ -2,7 +2,7 @@
 //! at the window's size (and a quarter of it for moving), the orbit camera, the channel,
 //! parameters and anti-aliasing samples accumulated while nothing moves.
 
-use super::moments::{follows_time, full_cells, next_cells};
+use super::moments::{animated_cells, follows_time, next_cells};
 use super::orbit::Orbit;
 use crate::cli::Error;
 use sdfc::gpu::{Gpu, Layout, MAX_SIDE, Prepared, Source};
@@ -82,6 +82,9 @@ pub struct Live {
     /// for), and those the next moment of a running `time` makes them with: fewer, where the
     /// pre-pass takes longer than [`ANIMATED_PREPASS`].
     tape_cells: (Option<usize>, Option<usize>),
+    /// The most cells a running `time`'s grid takes: `--cells`, else the parts' own count
+    /// (the parts' number does not change with values; 0 where `time` moves no part).
+    tape_full_cells: usize,
 }
 
 impl Live {
@@ -109,6 +112,7 @@ impl Live {
             tape_values: HashMap::new(),
             tape_follows_time: follows_time(&scene, &options),
             tape_cells: (options.cells, None),
+            tape_full_cells: animated_cells(&scene, &options),
             scene,
             options,
         })
@@ -121,6 +125,7 @@ impl Live {
         self.tape_values.clear();
         self.tape_follows_time = follows_time(&scene, &options);
         self.tape_cells = (options.cells, None);
+        self.tape_full_cells = animated_cells(&scene, &options);
         // Values set with the keys stay only where the new scene still has the parameter,
         // of the same size, and within its range.
         self.values.retain(|name, v| {
@@ -292,7 +297,7 @@ impl Live {
             self.coarse.retape();
             self.tape_values = wanted;
             if running {
-                let full = self.options.cells.unwrap_or_else(|| full_cells(&valued));
+                let full = self.tape_full_cells;
                 self.tape_cells = (cells, next_cells(cells, full, clock.elapsed()));
             } else {
                 self.tape_cells = (cells, None);

@@ -25,13 +25,21 @@ pub(super) fn next_cells(used: Option<usize>, full: usize, took: Duration) -> Op
     let side = used.unwrap_or(full) as f64;
     let ratio = ANIMATED_PREPASS.as_secs_f64() / took.as_secs_f64().max(1e-6);
     let next = (side * ratio.cbrt()).round() as usize;
-    Some(next.clamp(sdfc_compiler::tape::data::CELLS.0, full))
+    // (`--cells` may be below the usual least: then it is the least too.)
+    Some(next.clamp(sdfc_compiler::tape::data::CELLS.0.min(full), full))
 }
 
-/// The cells a side the parts of `scene` call for (`tape::data::cells_for`).
-pub(super) fn full_cells(scene: &Scene) -> usize {
-    sdfc_compiler::tape::build(scene).map_or(1, |tree| {
-        sdfc_compiler::tape::data::cells_for(tree.leaves())
+/// The most cells a side a running `time`'s grid takes for `scene` drawn with `options`:
+/// `--cells`, else those its parts call for (`tape::data::cells_for`); 0 where `time` moves
+/// none of its parts (no grid is made again).
+pub(super) fn animated_cells(scene: &Scene, options: &Options) -> usize {
+    if !follows_time(scene, options) {
+        return 0;
+    }
+    options.cells.unwrap_or_else(|| {
+        sdfc_compiler::tape::build(scene).map_or(1, |tree| {
+            sdfc_compiler::tape::data::cells_for(tree.leaves())
+        })
     })
 }
 
@@ -47,5 +55,8 @@ mod tests {
         assert_eq!(next_cells(Some(30), 64, Duration::from_millis(5)), Some(60));
         assert_eq!(next_cells(Some(60), 64, Duration::from_millis(1)), Some(64));
         assert_eq!(next_cells(Some(8), 64, Duration::from_secs(10)), Some(8));
+        // `--cells 4`: never more than 4, and no panic for a least above the most.
+        assert_eq!(next_cells(Some(4), 4, Duration::from_secs(10)), Some(4));
+        assert_eq!(next_cells(Some(4), 4, Duration::from_millis(1)), Some(4));
     }
 }
