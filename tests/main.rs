@@ -21,4 +21,5 @@ mod lipschitz_sampler;
 mod literals;
 mod mesh;
 mod tape;
+mod tape_data;
 mod tidy;
