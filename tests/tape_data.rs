@@ -8,7 +8,7 @@ use sdfc_compiler::reference::eval;
 use sdfc_compiler::tape::{self, cells};
 use sdfc_tests::{Rng, fuzz_cases, fuzz_seed, report, scene};
 
-/// The data form's modules pass naga's validator for every entry and target, and their code
+/// The data form's modules (and its pre-pass's) pass naga's validator for every entry and target, and their code
 /// does not grow with the parts: 10 spheres and 1000 give the same WGSL but for the grid's
 /// numbers.
 #[test]
@@ -32,6 +32,11 @@ fn data_form_modules_validate_and_stay_the_same_size() {
             form: Form::Data,
             ..Options::from_scene(&s)
         };
+        // The pre-pass on the GPU (`lower/data/prune.rs`) validates too, and writes as WGSL.
+        let (module, info, _) = emit::prune_module(&s)
+            .unwrap_or_else(|e| panic!("{}\n{source}", e.0))
+            .expect("a pre-pass module");
+        emit::write(&module, &info, Target::Wgsl, Entry::Compute).expect("the pre-pass's WGSL");
         for entry in [Entry::Compute, Entry::Fragment, Entry::Library] {
             let (module, info) =
                 emit::module(&s, entry, &options).unwrap_or_else(|e| panic!("{}\n{source}", e.0));

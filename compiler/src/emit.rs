@@ -63,6 +63,19 @@ pub fn module(
     Ok((module, info))
 }
 
+/// The data form's pre-pass module for `scene` (`lower::prune`), compacted and validated, with
+/// the fold nesting its arrays hold; none where the scene has no data form.
+pub fn prune_module(
+    scene: &Scene,
+) -> Result<Option<(naga::Module, ModuleInfo, usize)>, InternalError> {
+    let Some((mut module, height)) = lower::prune(scene) else {
+        return Ok(None);
+    };
+    naga::compact::compact(&mut module, naga::compact::KeepUnused::No);
+    let info = validate(&module)?;
+    Ok(Some((module, info, height)))
+}
+
 /// Runs naga's validator with every check on.
 pub fn validate(module: &naga::Module) -> Result<ModuleInfo, InternalError> {
     Validator::new(ValidationFlags::all(), Capabilities::empty())

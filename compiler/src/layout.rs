@@ -78,6 +78,43 @@ pub const VOLUME_BINDING: u32 = 16;
 /// range in them (`array<vec2<u32>>`).
 pub const TAPE_BINDINGS: [u32; 3] = [12, 13, 14];
 
+/// The data form's pre-pass on the GPU (`lower/data/prune.rs`): the table (read only), what
+/// the pre-pass knows of each part (`tape::program::Table::meta`, read only), the programs and
+/// the ranges (read and written), the level's uniform (`PRUNE_LEVEL_FIELDS`) and the counter
+/// (`PRUNE_COUNTER_FIELDS`, atomic u32s).
+pub const PRUNE_BINDINGS: [u32; 6] = [0, 1, 2, 3, 4, 5];
+
+/// The pre-pass's level uniform, in order, with byte offsets: the grid's lowest corner
+/// (vec3<f32>), cells' edge (f32), cells along x, y, z (vec3<u32>), their count, the coarser
+/// grid's cells along x, y, z (vec3<u32>), fine cells a side of a coarse one (`tape::cells::SPLIT`,
+/// or more than the grid has for the coarsest level, whose parent is the whole program), the
+/// ranges' entry of the coarser grid's first cell, that of this grid's first cell, the words
+/// the programs buffer holds, the scene's size for f32's margin (f32), and 1 where the cells'
+/// leaves are counted.
+pub const PRUNE_LEVEL_FIELDS: [(&str, u32); 11] = [
+    ("lo", 0),
+    ("size", 12),
+    ("n", 16),
+    ("total", 28),
+    ("up", 32),
+    ("split", 44),
+    ("in_base", 48),
+    ("out_base", 52),
+    ("capacity", 56),
+    ("scale", 60),
+    ("count_leaves", 64),
+];
+
+/// The pre-pass's level uniform's size in bytes.
+pub const PRUNE_LEVEL_BYTES: u32 = 80;
+
+/// The pre-pass's counter: the next free word of the programs buffer, how many cells found no
+/// room, and the leaves the counted cells' programs evaluate.
+pub const PRUNE_COUNTER_FIELDS: [&str; 3] = ["next", "overflow", "leaves"];
+
+/// Cells a workgroup of the pre-pass prunes.
+pub const PRUNE_WORKGROUP: u32 = 64;
+
 /// Most baked volumes a scene may have: each is a texture every entry reads (WebGPU promises
 /// 16 sampled textures per shader stage).
 pub const MAX_VOLUMES: usize = 8;

@@ -30,6 +30,7 @@ mod options;
 mod outputs;
 mod params;
 mod playground;
+mod prepass;
 mod render;
 mod shading;
 mod shadows;

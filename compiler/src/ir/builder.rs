@@ -162,18 +162,18 @@ impl<'m> FnBuilder<'m> {
     }
 
     /// Ends the current `Emit` range into the current block (the emitter stops).
-    fn pause(&mut self) {
+    pub(super) fn pause(&mut self) {
         if let Some((stmt, span)) = self.emitter.finish(&self.func.expressions) {
             self.current().push(stmt, span);
         }
     }
 
     /// Starts a new `Emit` range at the end of the arena.
-    fn resume(&mut self) {
+    pub(super) fn resume(&mut self) {
         self.emitter.start(&self.func.expressions);
     }
 
-    fn current(&mut self) -> &mut Block {
+    pub(super) fn current(&mut self) -> &mut Block {
         self.blocks.last_mut().expect("a block is open")
     }
 

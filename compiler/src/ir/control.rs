@@ -1,8 +1,8 @@
 //! Control flow and memory the generic evaluators need beyond `if` and `loop`: a `switch` on a
-//! u32, indexing by a run-time value, and reinterpreting bits.
+//! u32, indexing by a run-time value, reinterpreting bits, and atomic additions.
 
 use super::builder::{Ex, FnBuilder};
-use naga::{Expression, ScalarKind, Statement, SwitchCase, SwitchValue};
+use naga::{Expression, ScalarKind, Span, Statement, SwitchCase, SwitchValue};
 
 /// One arm of a [`FnBuilder::switch_`]: the case's value and what builds its body.
 pub type Arm<'f, 'a> = (u32, Box<dyn FnOnce(&mut FnBuilder<'a>) + 'f>);
@@ -49,5 +49,29 @@ impl<'a> FnBuilder<'a> {
             kind,
             convert: None,
         })
+    }
+
+    /// `atomicAdd(pointer, value)` on an `atomic<u32>`: the value it held before.
+    pub fn atomic_add(&mut self, pointer: Ex, value: Ex) -> Ex {
+        let ty = self.m.u32();
+        self.pause();
+        let result = self.func.expressions.append(
+            Expression::AtomicResult {
+                ty,
+                comparison: false,
+            },
+            Span::UNDEFINED,
+        );
+        self.current().push(
+            Statement::Atomic {
+                pointer,
+                fun: naga::AtomicFunction::Add,
+                value,
+                result: Some(result),
+            },
+            Span::UNDEFINED,
+        );
+        self.resume();
+        result
     }
 }

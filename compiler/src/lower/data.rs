@@ -10,6 +10,7 @@
 mod blend;
 mod grid;
 mod join;
+pub(super) mod prune;
 
 use crate::ir::{Arm, Ex, FnBuilder, ModuleBuilder};
 use crate::layout;

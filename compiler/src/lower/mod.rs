@@ -126,6 +126,18 @@ pub fn lower(scene: &Scene, entry: Entry, options: &tracer::Options) -> naga::Mo
     mb.module
 }
 
+/// The data form's pre-pass on the GPU for `scene` (`data/prune.rs`): `main` prunes one grid's
+/// cells from the coarser grid's programs; with how many folds deep its arrays hold (the
+/// scene's tree's nesting at its defaults). None where the scene has no data form.
+pub fn prune(scene: &Scene) -> Option<(naga::Module, usize)> {
+    let (tree, layout) = crate::tape::data::layout(scene, None).ok()?;
+    let height = crate::tape::program::height(&tree);
+    let mut mb = ModuleBuilder::default();
+    add_primitive_functions(&mut mb, scene, &scene.reachable());
+    data::prune::add(&mut mb, &layout.kinds, height);
+    Some((mb.module, height))
+}
+
 /// `map_texture` where a material has a pattern and `map_blend` where an operator blends
 /// materials (each `None` where the scene has none).
 fn add_surface_maps(

@@ -110,7 +110,7 @@ pub fn keep(way: Way, k: f64, bounds: &[(f64, f64)]) -> Vec<usize> {
 /// Cells a side of the coarser grid a fine one is pruned from (see [`map_grid`]). Measured on
 /// 1000 blended spheres at 64 cells a side: 298 ms for the whole pre-pass with 2 (levels of
 /// 64, 32, 16, 8, 4), 326 ms with 4 (64, 16, 4).
-const SPLIT: usize = 2;
+pub const SPLIT: usize = 2;
 
 /// `made` of each cell's tree for the grid from `lo` of `n` cells of edge `size`, x fastest
 /// (the fine cells' trees are not kept: a grid of millions of cells holds only what `made`
@@ -130,12 +130,11 @@ pub fn map_grid<R: Send>(
     let at = |i: usize| [i % n[0], (i / n[0]) % n[1], i / (n[0] * n[1])];
     let center =
         |[x, y, z]: [usize; 3]| lo + (DVec3::new(x as f64, y as f64, z as f64) + 0.5) * size;
-    if n.iter().all(|&k| k <= 2 * SPLIT) {
+    let Some(up) = coarser(n) else {
         return crate::parallel::par_map(&cells, |&i| {
             made(prune(scene, part, center(at(i)), radius))
         });
-    }
-    let up = n.map(|k| k.div_ceil(SPLIT));
+    };
     let coarse = map_grid(
         scene,
         part,
@@ -147,6 +146,24 @@ pub fn map_grid<R: Send>(
         let parent = &coarse[x / SPLIT + up[0] * (y / SPLIT + up[1] * (z / SPLIT))];
         made(prune(scene, parent, center([x, y, z]), radius))
     })
+}
+
+/// The coarser grid a grid of `n` cells a side is pruned from ([`map_grid`]): `SPLIT` times
+/// fewer cells a side, rounded up; none where the grid is pruned from the whole tree.
+pub fn coarser(n: [usize; 3]) -> Option<[usize; 3]> {
+    (!n.iter().all(|&k| k <= 2 * SPLIT)).then(|| n.map(|k| k.div_ceil(SPLIT)))
+}
+
+/// The grids [`map_grid`] prunes for a grid of `n` cells a side, coarsest first (it last), each
+/// from the one before and the first from the whole tree; grid `i` of `m` has cells
+/// `SPLIT^(m − 1 − i)` times as large, from the same lowest corner.
+pub fn levels(n: [usize; 3]) -> Vec<[usize; 3]> {
+    let mut levels = vec![n];
+    while let Some(up) = coarser(levels[levels.len() - 1]) {
+        levels.push(up);
+    }
+    levels.reverse();
+    levels
 }
 
 /// A grid of cells over a box, each with its pruned tree.

@@ -65,6 +65,14 @@ pub const OUT_LOOSE: u32 = 1 << 29;
 /// form decides it — over the children its cell kept.
 pub const MATERIAL: u32 = !(LOOSE | ALL_LOOSE | OUT_LOOSE);
 
+/// The rounding [`Table::meta`] allows each part of a subtree, relative to the magnitudes its
+/// value is made of: 2⁻²⁰, sixteen times f32's 2⁻²⁴ (an argument rounded to f32, a few
+/// operations, and a fold's step each round at about that).
+pub const ROUNDING_PER_PART: f64 = 1.0 / 1_048_576.0;
+
+/// A part's parent in [`Table::meta`] where it has none (the root).
+pub const NO_PARENT: u32 = u32::MAX;
+
 /// Every part of a tree, stored once.
 #[derive(Clone, Debug)]
 pub struct Table {
@@ -195,6 +203,28 @@ impl Table {
         Ok(())
     }
 
+    /// What the pre-pass on the GPU (`lower/data/prune.rs`) knows of each part besides its
+    /// entry, at the entry's word offset (other words zero): `[parent, proven, zoom, rounding]`
+    /// — the word offset of the fold it is a child of ([`NO_PARENT`] for the root), 1 where its
+    /// value is proven 1-Lipschitz (`Part::proven`: only those are pruned), the parent fold's
+    /// zoom as f32 bits (how far the parent's point moves when the world point moves by 1), and
+    /// as f32 bits how far f32's rounding may move the part's value, relative to the magnitudes
+    /// it is made of: [`ROUNDING_PER_PART`] for each part in it and a few more.
+    pub fn meta(&self, tree: &Part) -> Vec<[u32; 4]> {
+        let mut meta = vec![[0; 4]; self.words.len()];
+        let mut walk = vec![(tree, NO_PARENT, 1.0)];
+        while let Some((part, parent, zoom)) = walk.pop() {
+            let at = self.at[part.id];
+            let rounding = (part.size() + 8) as f64 * ROUNDING_PER_PART;
+            let f = |x: f64| (x as f32).to_bits();
+            meta[at as usize] = [parent, u32::from(part.proven), f(zoom), f(rounding)];
+            if let PartKind::Fold { children, .. } = &part.kind {
+                walk.extend(children.iter().map(|(c, _)| (c, at, part.zoom)));
+            }
+        }
+        meta
+    }
+
     /// The words as the shader's buffer holds them: every number as the bits of an f32 (a
     /// field that is a u32 is one already: see [`bits`]), read with `bitcast` — loads of u32
     /// are exact, where a float load might flush the small kinds' bits (denormals) to zero.
@@ -251,6 +281,17 @@ fn emit(
             if !first {
                 *height -= 1;
             }
+        }
+    }
+}
+
+/// How many folds deep `part` nests (0: a leaf): the open folds a walk of its program holds
+/// at once at most.
+pub fn height(part: &Part) -> usize {
+    match &part.kind {
+        PartKind::Leaf => 0,
+        PartKind::Fold { children, .. } => {
+            1 + children.iter().map(|(c, _)| height(c)).max().unwrap_or(0)
         }
     }
 }

@@ -12,6 +12,7 @@ mod error;
 mod lists;
 mod open;
 mod prepare;
+mod prune;
 mod readback;
 mod render;
 mod tape;
@@ -21,6 +22,7 @@ pub use dispatch::Timing;
 pub use error::{Consumed, Error};
 pub use lists::ListProgram;
 pub use prepare::{Layout, MAX_SIDE, Prepared, Source, TILE};
+pub use prune::{Pruned, Pruner};
 pub use readback::{Frame, Ray};
 
 /// Which graphics API to use.

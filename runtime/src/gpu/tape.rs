@@ -26,7 +26,7 @@ impl Gpu {
                     .create_buffer_init(&wgpu::util::BufferInitDescriptor {
                         label: Some(label),
                         contents: &contents,
-                        usage: wgpu::BufferUsages::STORAGE,
+                        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
                     })
             };
             [
@@ -37,6 +37,16 @@ impl Gpu {
         });
         *lock(&self.tape) = buffers;
         Ok(())
+    }
+
+    /// The data form's buffers as set (on the CPU or by the pre-pass on the device), read back
+    /// whole: table, programs, ranges (for tests).
+    pub fn tape_bytes(&self) -> Result<Option<[Vec<u8>; 3]>, Error> {
+        let Some(buffers) = lock(&self.tape).clone() else {
+            return Ok(None);
+        };
+        let [a, b, c] = buffers.map(|buffer| self.read(&buffer, buffer.size()));
+        Ok(Some([a?, b?, c?]))
     }
 
     /// The data form's buffers with their bindings, for a module that reads them (`reads`,

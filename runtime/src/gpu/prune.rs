@@ -1,0 +1,262 @@
+//! The data form's pre-pass on the device (issue 33 §2): the compiler's pruning entry
+//! (`lower::prune`) run grid by grid, coarsest first, each cell's program written into the
+//! buffers the tracer then reads — nothing comes back to the host but a counter. The CPU's
+//! `tape::data::data` is the reference it is tested against (`tests/prepass.rs`).
+
+use super::{Error, Gpu, lock};
+use sdfc_compiler::layout::{PRUNE_BINDINGS, PRUNE_LEVEL_BYTES, PRUNE_WORKGROUP};
+use sdfc_compiler::scene::Scene;
+use sdfc_compiler::tape::data::{HEADER, Seed};
+use wgpu::util::DeviceExt;
+
+/// The pre-pass's pipeline for a scene, compiled once for every new set of parameters.
+pub struct Pruner {
+    pipeline: wgpu::ComputePipeline,
+    /// How many folds deep its arrays hold.
+    height: usize,
+}
+
+/// What a pre-pass on the device made.
+#[derive(Clone, Copy, Debug)]
+pub struct Pruned {
+    /// The grid's cells.
+    pub cells: usize,
+    /// The mean leaves a cell's program evaluates.
+    pub mean_leaves: f64,
+    /// The bytes of the three buffers the tracer reads (the programs' as used, not as held).
+    pub bytes: usize,
+    /// How many times the programs' buffer was made larger and the pass run again.
+    pub retries: u32,
+}
+
+/// Words of room for programs a cell is given at first (more where the counter says so).
+const FIRST_ROOM_PER_CELL: u64 = 32;
+
+impl Gpu {
+    /// The pre-pass's pipeline for `scene` compiled at its defaults; none where the scene has
+    /// no data form.
+    pub fn pruner(&self, scene: &Scene) -> Result<Option<Pruner>, Error> {
+        let made =
+            sdfc_compiler::emit::prune_module(scene).map_err(|e| Error::InvalidModule(e.0))?;
+        Ok(made.map(|(module, _, height)| Pruner {
+            pipeline: self.pipeline(&module),
+            height,
+        }))
+    }
+
+    /// Prunes `seed`'s grid on the device and sets the buffers the modules prepared from now on
+    /// read, as [`Gpu::set_tape`] does with buffers made on the CPU. None where the device
+    /// cannot hold the programs (or the tree nests deeper than `pruner` holds): make them on
+    /// the CPU then.
+    pub fn prune(&self, pruner: &Pruner, seed: &Seed) -> Result<Option<Pruned>, Error> {
+        if seed.height > pruner.height {
+            return Ok(None);
+        }
+        let limit = self
+            .limits
+            .max_storage_buffer_binding_size
+            .min(self.limits.max_buffer_size)
+            / 4;
+        let table = seed.nodes.len() as u64 * 16;
+        if table > limit * 4 {
+            return Err(Error::TapeTooLarge {
+                bytes: table,
+                limit: limit * 4,
+            });
+        }
+        let cells: u64 = seed.levels.iter().map(|(n, _)| cells_of(*n) as u64).sum();
+        let mut room = (seed.code.len() as u64 + FIRST_ROOM_PER_CELL * cells).min(limit);
+        let mut retries = 0;
+        loop {
+            let run = self.run_levels(pruner, seed, room as u32)?;
+            if run.overflow == 0 {
+                let (nodes, code, ranges) = run.buffers;
+                let bytes = seed.nodes.len() * 16 + run.used as usize * 4 + ranges_bytes(seed);
+                *lock(&self.tape) = Some([nodes, code, ranges]);
+                return Ok(Some(Pruned {
+                    cells: seed.cells(),
+                    mean_leaves: run.leaves as f64 / seed.cells().max(1) as f64,
+                    bytes,
+                    retries,
+                }));
+            }
+            if room >= limit {
+                return Ok(None);
+            }
+            // The counter took what every cell asked for, those that found no room included.
+            room = (run.used.max(room) * 2).min(limit);
+            retries += 1;
+        }
+    }
+
+    /// One pre-pass with `room` words for programs.
+    fn run_levels(&self, pruner: &Pruner, seed: &Seed, room: u32) -> Result<Run, Error> {
+        let device = &self.device;
+        let storage = |label: &str, words: &[u32], extra: wgpu::BufferUsages| {
+            let mut bytes: Vec<u8> = words.iter().flat_map(|w| w.to_le_bytes()).collect();
+            bytes.resize(bytes.len().max(16), 0);
+            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(label),
+                contents: &bytes,
+                usage: wgpu::BufferUsages::STORAGE | extra,
+            })
+        };
+        let flat = |v: &[[u32; 4]]| v.iter().flatten().copied().collect::<Vec<u32>>();
+        let copy = wgpu::BufferUsages::COPY_SRC;
+        let nodes = storage("tape nodes", &flat(&seed.nodes), copy);
+        let meta = storage("tape meta", &flat(&seed.meta), wgpu::BufferUsages::empty());
+        let code = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("tape code"),
+            size: u64::from(room.max(4)) * 4,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST | copy,
+            mapped_at_creation: false,
+        });
+        self.queue.write_buffer(&code, 0, &le_bytes(&seed.code));
+        let (ranges_words, bases) = ranges(seed);
+        let ranges = storage("tape ranges", &ranges_words, copy);
+        let start = [seed.code.len() as u32, 0, 0, 0];
+        let counter = storage("prune counter", &start, wgpu::BufferUsages::COPY_SRC);
+        let layout = pruner
+            .pipeline
+            .get_bind_group_layout(sdfc_compiler::layout::GROUP);
+        let validation = device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let mut enc = device.create_command_encoder(&Default::default());
+        let uniforms: Vec<wgpu::Buffer> = (0..seed.levels.len())
+            .map(|l| {
+                device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some("prune level"),
+                    contents: &level_bytes(seed, l, &bases, room),
+                    usage: wgpu::BufferUsages::UNIFORM,
+                })
+            })
+            .collect();
+        {
+            let mut pass = enc.begin_compute_pass(&Default::default());
+            pass.set_pipeline(&pruner.pipeline);
+            for (l, uniform) in uniforms.iter().enumerate() {
+                let buffers = [&nodes, &meta, &code, &ranges, uniform, &counter];
+                let entries: Vec<wgpu::BindGroupEntry> = PRUNE_BINDINGS
+                    .iter()
+                    .zip(buffers)
+                    .map(|(&binding, b)| wgpu::BindGroupEntry {
+                        binding,
+                        resource: b.as_entire_binding(),
+                    })
+                    .collect();
+                let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
+                    label: Some("prune"),
+                    layout: &layout,
+                    entries: &entries,
+                });
+                pass.set_bind_group(sdfc_compiler::layout::GROUP, &bind, &[]);
+                let total = cells_of(seed.levels[l].0) as u32;
+                pass.dispatch_workgroups(total.div_ceil(PRUNE_WORKGROUP), 1, 1);
+            }
+        }
+        self.queue.submit([enc.finish()]);
+        self.wait()?;
+        if let Some(e) = pollster::block_on(validation.pop()) {
+            return Err(Error::InvalidModule(e.to_string()));
+        }
+        let c = self.read(&counter, 16)?;
+        let word = |i: usize| u32::from_le_bytes(c[4 * i..4 * i + 4].try_into().unwrap());
+        Ok(Run {
+            buffers: (nodes, code, ranges),
+            used: u64::from(word(0)),
+            overflow: word(1),
+            leaves: u64::from(word(2)),
+        })
+    }
+}
+
+/// One pre-pass's buffers and counter.
+struct Run {
+    buffers: (wgpu::Buffer, wgpu::Buffer, wgpu::Buffer),
+    /// The words the cells asked for (more than were written where some found no room).
+    used: u64,
+    /// Cells that found no room.
+    overflow: u32,
+    /// The leaves of the last grid's programs.
+    leaves: u64,
+}
+
+/// Cells of a grid of `n` a side.
+fn cells_of(n: [usize; 3]) -> usize {
+    n.iter().product()
+}
+
+/// The words as little-endian bytes.
+fn le_bytes(words: &[u32]) -> Vec<u8> {
+    words.iter().flat_map(|w| w.to_le_bytes()).collect()
+}
+
+/// The bytes of the ranges the tracer reads: the header, the grid's cells, the outside one.
+fn ranges_bytes(seed: &Seed) -> usize {
+    (HEADER + seed.cells() + 1) * 8
+}
+
+/// The ranges buffer's first contents and each level's first entry: the header, the grid's
+/// cells (the last level's, as the tracer reads them), the outside program's range, the whole
+/// program's (the first level's parent), then every coarser level's cells.
+fn ranges(seed: &Seed) -> (Vec<u32>, Vec<u32>) {
+    let cells = seed.cells();
+    let mut words: Vec<u32> = seed.header.iter().flatten().copied().collect();
+    words.resize(2 * (HEADER + cells), 0);
+    words.extend(seed.outside);
+    words.extend(seed.whole);
+    let mut bases = Vec::with_capacity(seed.levels.len());
+    let mut next = HEADER + cells + 2;
+    for (l, (n, _)) in seed.levels.iter().enumerate() {
+        if l + 1 == seed.levels.len() {
+            bases.push(HEADER as u32);
+        } else {
+            bases.push(next as u32);
+            next += cells_of(*n);
+        }
+    }
+    words.resize(2 * next, 0);
+    (words, bases)
+}
+
+/// Level `l`'s uniform (`layout::PRUNE_LEVEL_FIELDS`).
+fn level_bytes(seed: &Seed, l: usize, bases: &[u32], room: u32) -> Vec<u8> {
+    let (n, size) = seed.levels[l];
+    let whole = (HEADER + seed.cells() + 1) as u32;
+    let (up, split, in_base) = match l {
+        // The coarsest grid's cells all prune the whole program.
+        0 => ([1, 1, 1], u32::MAX, whole),
+        _ => {
+            let up = seed.levels[l - 1].0;
+            let split = sdfc_compiler::tape::cells::SPLIT as u32;
+            (up.map(|k| k as u32), split, bases[l - 1])
+        }
+    };
+    let hi = seed.lo + glam::DVec3::from(n.map(|k| k as f64)) * size;
+    let scale = seed.lo.abs().max(hi.abs()).max_element() + (hi - seed.lo).length();
+    let f = |x: f64| (x as f32).to_bits();
+    let last = l + 1 == seed.levels.len();
+    let words: [u32; 20] = [
+        f(seed.lo.x),
+        f(seed.lo.y),
+        f(seed.lo.z),
+        f(size),
+        n[0] as u32,
+        n[1] as u32,
+        n[2] as u32,
+        cells_of(n) as u32,
+        up[0],
+        up[1],
+        up[2],
+        split,
+        in_base,
+        bases[l],
+        room,
+        f(scale),
+        u32::from(last),
+        0,
+        0,
+        0,
+    ];
+    debug_assert_eq!(words.len() * 4, PRUNE_LEVEL_BYTES as usize);
+    le_bytes(&words)
+}

@@ -1,0 +1,158 @@
+//! The data form's pre-pass on the GPU (issue 33 §2, `lower/data/prune.rs`) against the CPU's
+//! (`tape::data::data`, the reference): cell by cell, its programs are the CPU's — or, where
+//! f32's wider margin keeps a part more, give the whole tree's value bit for bit at points of
+//! the cell — and the pictures drawn from them are the same, pixel for pixel.
+
+use crate::common::{compile, gpu, report};
+use crate::data_form::balls;
+use glam::DVec3;
+use sdfc_compiler::emit;
+use sdfc_compiler::lower::Entry;
+use sdfc_compiler::lower::tracer::{Form, Options};
+use sdfc_compiler::tape::program::{self, Code, Table};
+use sdfc_compiler::tape::{cells, data};
+use sdfc_compiler::view::View;
+
+/// The scenes: blended balls on a plane (a proxy, nesting), balls of materials blended in
+/// nested groups (a stack), a hard union, and cuts (largest folds, negated children).
+fn scenes() -> Vec<(&'static str, String)> {
+    let camera = "camera { eye (0, 1, -4)  target (0, 0, 0) }";
+    let mats = "material red { color #d04038 }\nmaterial blue { color #3050d0 }\nmaterial gold { color #d0a038 }";
+    vec![
+        (
+            "300 blended balls on a plane",
+            format!(
+                "{camera}\nsmooth_union(0.03) {{\n{}\n}}\nplane(y, -1.2)",
+                balls(300, false)
+            ),
+        ),
+        (
+            "nested blends of materials",
+            format!(
+                "{mats}\n{camera}\nsmooth_union(0.2) {{\nsmooth_union(0.15) {{\n{}\n}}\nsmooth_union(0.15) {{\n{}\n}} : gold\nplane(y, -1.1) : blue\n}}",
+                balls(60, true),
+                balls(90, true)
+            ),
+        ),
+        (
+            "200 balls, hard",
+            format!("{mats}\n{camera}\nunion {{\n{}\n}}", balls(200, true)),
+        ),
+        (
+            "cuts",
+            format!(
+                "{mats}\ncamera {{ eye (2, 2, -4)  target (0, 0, 0) }}\nsubtract {{\n  box((1.6, 1.2, 1.4)) : red\n  smooth_union(0.05) {{\n{}\n}}\n  smooth_intersect(0.1) {{ sphere(0.7) at (-0.6, 0, 0)  box((0.8, 0.8, 3)) |> rotate(y, 30deg) }}\n}}\nplane(y, -0.6)",
+                balls(120, false)
+            ),
+        ),
+    ]
+}
+
+/// Little-endian u32 words.
+fn words(bytes: &[u8]) -> Vec<u32> {
+    bytes
+        .chunks_exact(4)
+        .map(|c| u32::from_le_bytes(c.try_into().unwrap()))
+        .collect()
+}
+
+#[test]
+fn the_gpu_prepass_prunes_as_the_cpu_does() {
+    let gpu = gpu();
+    let mut said = Vec::new();
+    for (name, source) in scenes() {
+        let scene = compile(&source);
+        let (tree, layout) = data::layout(&scene, None).expect("a data form");
+        let seed = data::seed(&scene, &tree, &layout)
+            .expect("a seed")
+            .expect("a grid");
+        let pruner = gpu.pruner(&scene).unwrap().expect("a pre-pass");
+        gpu.set_scene(&scene);
+        let made = gpu.prune(&pruner, &seed).unwrap().expect("room");
+        let [_, code, ranges] = gpu.tape_bytes().unwrap().expect("buffers");
+        let (code, ranges) = (words(&code), words(&ranges));
+        // The CPU's programs, cell by cell, in the same order.
+        let table = Table::new(&scene, &tree).unwrap();
+        let grid = (layout.lo, layout.size, layout.n);
+        let cpu = cells::map_grid(&scene, &tree, grid, |p| {
+            program::encode(&table, &p).unwrap().words
+        });
+        let whole = program::encode(&table, &tree).unwrap();
+        assert_eq!(made.cells, cpu.len(), "{name}: cells");
+        let (mut same, mut checked) = (0, 0);
+        let mut x: u64 = 0x2545_f491;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            (x % 1_000_000) as f64 / 1_000_000.0
+        };
+        let [nx, ny, _] = layout.n;
+        for (i, want) in cpu.iter().enumerate() {
+            let at = 2 * (data::HEADER + i);
+            let (start, len) = (ranges[at] as usize, ranges[at + 1] as usize);
+            let got = &code[start..start + len];
+            if got == want.as_slice() {
+                same += 1;
+                continue;
+            }
+            // Kept more than the CPU: still the whole field inside the cell.
+            let c = DVec3::new(
+                (i % nx) as f64,
+                ((i / nx) % ny) as f64,
+                (i / (nx * ny)) as f64,
+            );
+            let ours = Code {
+                words: got.to_vec(),
+                leaves: 0,
+                depth: 0,
+            };
+            for _ in 0..20 {
+                let p = layout.lo + (c + DVec3::new(next(), next(), next())) * layout.size;
+                let (a, b) = (
+                    program::run(&table, &ours, p),
+                    program::run(&table, &whole, p),
+                );
+                assert!(
+                    a.0.to_bits() == b.0.to_bits() && a.1 == b.1,
+                    "{name}: cell {i} at {p}: {a:?} against the whole program's {b:?}\nGPU {got:?}\nCPU {want:?}"
+                );
+                checked += 1;
+            }
+        }
+        // The pictures drawn from either are the same.
+        let view = View::new(&scene.camera, 160, 90);
+        let options = Options {
+            form: Form::Data,
+            ..Options::from_scene(&scene)
+        };
+        let (module, _) = emit::module(&scene, Entry::Compute, &options).unwrap();
+        let on_gpu = gpu.render(&module, &view, None, |_, _| {}).unwrap();
+        let cpu_data = data::data(&scene, &tree, &layout).unwrap();
+        gpu.set_tape(Some(&cpu_data)).unwrap();
+        let on_cpu = gpu.render(&module, &view, None, |_, _| {}).unwrap();
+        gpu.set_tape(None).unwrap();
+        let apart = (0..on_cpu.color.len())
+            .filter(|&i| {
+                on_cpu.color[i] != on_gpu.color[i]
+                    || on_cpu.depth[i].to_bits() != on_gpu.depth[i].to_bits()
+                    || on_cpu.material[i] != on_gpu.material[i]
+            })
+            .count();
+        assert_eq!(apart, 0, "{name}: pixels apart");
+        assert!(
+            (made.mean_leaves - cpu_data.mean_leaves).abs() <= 0.05 * cpu_data.mean_leaves,
+            "{name}: {} leaves a cell on the GPU, {} on the CPU",
+            made.mean_leaves,
+            cpu_data.mean_leaves
+        );
+        said.push(format!(
+            "{name}: {same} of {} cells' programs equal, {checked} points checked in the rest, 0 pixels apart",
+            cpu.len()
+        ));
+    }
+    report(&format!(
+        "GPU pre-pass against the CPU's: {}",
+        said.join("; ")
+    ));
+}
