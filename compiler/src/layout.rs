@@ -80,18 +80,19 @@ pub const TAPE_BINDINGS: [u32; 3] = [12, 13, 14];
 
 /// The data form's pre-pass on the GPU (`lower/data/prune.rs`): the table (read only), what
 /// the pre-pass knows of each part (`tape::program::Table::meta`, read only), the programs and
-/// the ranges (read and written), the level's uniform (`PRUNE_LEVEL_FIELDS`) and the counter
-/// (`PRUNE_COUNTER_FIELDS`, atomic u32s).
-pub const PRUNE_BINDINGS: [u32; 6] = [0, 1, 2, 3, 4, 5];
+/// the ranges (read and written), the level's uniform (`PRUNE_LEVEL_FIELDS`), the counter
+/// (`PRUNE_COUNTER_FIELDS`, atomic u32s) and the cells' scratch (u32s).
+pub const PRUNE_BINDINGS: [u32; 7] = [0, 1, 2, 3, 4, 5, 6];
 
 /// The pre-pass's level uniform, in order, with byte offsets: the grid's lowest corner
 /// (vec3<f32>), cells' edge (f32), cells along x, y, z (vec3<u32>), their count, the coarser
-/// grid's cells along x, y, z (vec3<u32>), fine cells a side of a coarse one (`tape::cells::SPLIT`,
-/// or more than the grid has for the coarsest level, whose parent is the whole program), the
-/// ranges' entry of the coarser grid's first cell, that of this grid's first cell, the words
-/// the programs buffer holds, the scene's size for f32's margin (f32), and 1 where the cells'
-/// leaves are counted.
-pub const PRUNE_LEVEL_FIELDS: [(&str, u32); 11] = [
+/// grid's cells along x, y, z (vec3<u32>), fine cells a side of a coarse one
+/// (`tape::cells::SPLIT`, or more than the grid has for the coarsest level, whose parent is the
+/// whole program), the ranges' entry of the coarser grid's first cell, that of this grid's
+/// first cell, the words the programs buffer holds, the scene's size for f32's margin (f32), 1
+/// where the cells' leaves are counted, the words of the scratch, and the first cell of this
+/// dispatch (a grid is pruned in several, the scratch emptied between them).
+pub const PRUNE_LEVEL_FIELDS: [(&str, u32); 13] = [
     ("lo", 0),
     ("size", 12),
     ("n", 16),
@@ -103,14 +104,21 @@ pub const PRUNE_LEVEL_FIELDS: [(&str, u32); 11] = [
     ("capacity", 56),
     ("scale", 60),
     ("count_leaves", 64),
+    ("scratch_capacity", 68),
+    ("first_cell", 72),
 ];
 
 /// The pre-pass's level uniform's size in bytes.
 pub const PRUNE_LEVEL_BYTES: u32 = 80;
 
 /// The pre-pass's counter: the next free word of the programs buffer, how many cells found no
-/// room, and the leaves the counted cells' programs evaluate.
-pub const PRUNE_COUNTER_FIELDS: [&str; 3] = ["next", "overflow", "leaves"];
+/// room, the leaves the counted cells' programs evaluate, and the next free word of the
+/// scratch.
+pub const PRUNE_COUNTER_FIELDS: [&str; 4] = ["next", "overflow", "leaves", "scratch"];
+
+/// What the counter's overflow adds for a cell that found no room in the scratch (1 where the
+/// programs' buffer had none).
+pub const PRUNE_SCRATCH_MISSED: u32 = 1 << 16;
 
 /// Cells a workgroup of the pre-pass prunes.
 pub const PRUNE_WORKGROUP: u32 = 64;

@@ -64,6 +64,20 @@ pub struct Options {
     /// The data form's grid: cells along its longest side (`None`: as many as the parts call
     /// for, `tape::data::cells_for`). Data only: the shader reads the grid from its buffers.
     pub cells: Option<usize>,
+    /// Where the data form's cells are pruned: on the device by the pre-pass entry
+    /// (`lower::prune`), or on the CPU (`tape::data::data`, the reference). Data only: the
+    /// shader is the same.
+    pub prepass: Prepass,
+}
+
+/// Where the data form's pre-pass runs (`--prepass`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Prepass {
+    /// On the device, where it can (else on the CPU).
+    #[default]
+    Gpu,
+    /// On the CPU.
+    Cpu,
 }
 
 /// How `map` holds the scene.
@@ -116,6 +130,7 @@ impl Options {
             form: Form::Inline,
             count_primitives: false,
             cells: None,
+            prepass: Prepass::Gpu,
         }
     }
 }

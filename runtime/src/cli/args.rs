@@ -301,12 +301,16 @@ pub struct BenchArgs {
     #[arg(long)]
     pub allow_slow_compile: bool,
     /// How `map` holds the scene (as `render --form`): `data` measures the scene as data,
-    /// pruned per cell, and reports the CPU's pre-pass time.
+    /// pruned per cell, and reports the pre-pass's time.
     #[arg(long, value_enum, default_value = "auto")]
     pub form: super::tracer::FormArg,
     /// The data form's grid: cells along its longest side, 1 to 128 (as `render --cells`).
     #[arg(long, value_name = "N")]
     pub cells: Option<usize>,
+    /// Where the data form's cells are pruned (as `render --prepass`): `gpu` (the default) or
+    /// `cpu`.
+    #[arg(long, value_enum, value_name = "WHERE")]
+    pub prepass: Option<super::tracer::PrepassArg>,
     /// Also count primitive evaluations per pixel, of the trace and of shading (compiles the
     /// trace and the frame once more with a counter in every primitive's function; not timed).
     #[arg(long)]

@@ -7,9 +7,10 @@ pub mod driver;
 mod error;
 pub mod input;
 pub mod messages;
+mod tape;
 pub mod tracer;
 pub mod values;
 
 pub use args::*;
 pub use error::{Error, write_file};
-pub use tracer::tape_data;
+pub use tape::{pruner, set_tape, tape_data};

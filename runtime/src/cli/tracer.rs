@@ -74,6 +74,11 @@ pub struct TracerArgs {
     /// fewer parts a cell and trace faster.
     #[arg(long, value_name = "N")]
     pub cells: Option<usize>,
+    /// Where the data form's cells are pruned: `gpu` (the default) by a compute pre-pass on
+    /// the device (on the CPU where the device cannot hold the programs), or `cpu`. The same
+    /// programs either way (docs/data-form.md); `emit` makes its buffer files on the CPU.
+    #[arg(long, value_enum, value_name = "WHERE")]
+    pub prepass: Option<PrepassArg>,
     /// Start shadow, reflected and refracted rays a fixed 2·ε_floor off the surface instead of
     /// Keinert's ε_dynamic = 2·max(ε, |f(p)|): only to see and measure what ε_dynamic prevents
     /// (shadow acne, self-intersecting refraction).
@@ -137,6 +142,7 @@ impl TracerArgs {
         options.fixed_offset = self.fixed_offset;
         options.form = self.form.choose(self.passes, scene)?;
         options.cells = check_cells(self.cells, options.form)?;
+        options.prepass = check_prepass(self.prepass, options.form)?;
         Ok(options)
     }
 }
@@ -220,6 +226,34 @@ pub fn check_cells(
     Ok(Some(n))
 }
 
+/// `--prepass`: where the data form's cells are pruned.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PrepassArg {
+    /// On the device (the default).
+    Gpu,
+    /// On the CPU.
+    Cpu,
+}
+
+/// `--prepass` checked: only for the data form; by default on the device.
+pub fn check_prepass(
+    prepass: Option<PrepassArg>,
+    form: sdfc_compiler::lower::tracer::Form,
+) -> Result<sdfc_compiler::lower::tracer::Prepass, Error> {
+    use sdfc_compiler::lower::tracer::{Form, Prepass};
+    match (prepass, form) {
+        (Some(p), Form::Inline) => Err(Error::Usage(format!(
+            "error: `--prepass {}` is for the data form, and this scene is drawn inline\nhelp: `--form data`",
+            match p {
+                PrepassArg::Gpu => "gpu",
+                PrepassArg::Cpu => "cpu",
+            }
+        ))),
+        (Some(PrepassArg::Cpu), _) => Ok(Prepass::Cpu),
+        _ => Ok(Prepass::Gpu),
+    }
+}
+
 /// `--passes N` of `render`, `emit` and `bench`: a number of passes there is a schedule for.
 pub fn check_passes(passes: u32) -> Result<(), Error> {
     let counts = sdfc_compiler::passes::counts();
@@ -241,30 +275,4 @@ pub fn bounding_volumes(bvh: bool, no_bvh: bool) -> BoundingVolumes {
         (_, true) => BoundingVolumes::Off,
         _ => BoundingVolumes::Large,
     }
-}
-
-/// The data form's buffers for a scene compiled at its defaults (`scene`: the kinds, the
-/// stack's depth and whether there is a grid and a proxy are compiled into the shader) drawn
-/// at other values (`valued`: the grid, the cells' programs and the parts' arguments).
-/// The grid has `cells` along its longest side (by default as many as the parts call for,
-/// `tape::data::cells_for`): the grid is data, so any count runs on the same shader — fewer
-/// cells make the buffers faster, the trace slower.
-pub fn tape_data(
-    scene: &sdfc_compiler::scene::Scene,
-    valued: &sdfc_compiler::scene::Scene,
-    cells: Option<usize>,
-) -> Result<sdfc_compiler::tape::data::Data, Error> {
-    use sdfc_compiler::tape::data;
-    let fail =
-        |why: data::Why| Error::Usage(format!("error: `--form data`: {}", data::say(scene, &why)));
-    let (_, compiled) = data::layout(scene, None).map_err(fail)?;
-    let (tree, layout) = data::layout(valued, cells).map_err(fail)?;
-    if !compiled.holds(&layout) {
-        return Err(Error::Usage(
-            "error: `--form data`: at these parameter values the scene's parts need another \
-             shader (their kinds, nesting or bounds changed): draw it with `--form inline`"
-                .into(),
-        ));
-    }
-    data::data(valued, &tree, &layout).map_err(fail)
 }

@@ -135,7 +135,7 @@ fn data_form(
     if plan.target == Target::Glsl && !plan.settings.glsl_version.has_compute() {
         return Err("error: `--form data` reads the scene's parts from storage buffers, which GLSL ES 3.00 (WebGL2) does not have\nhelp: `--form inline` (the default), or `--glsl-version 310es` or `450`".into());
     }
-    crate::cli::tracer::tape_data(scene, scene, options.cells).map(Some)
+    crate::cli::tape_data(scene, scene, options.cells).map(Some)
 }
 
 /// Where the data form's buffers are written (beside the shader, or beside the manifest when

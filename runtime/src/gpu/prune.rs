@@ -4,7 +4,9 @@
 //! `tape::data::data` is the reference it is tested against (`tests/prepass.rs`).
 
 use super::{Error, Gpu, lock};
-use sdfc_compiler::layout::{PRUNE_BINDINGS, PRUNE_LEVEL_BYTES, PRUNE_WORKGROUP};
+use sdfc_compiler::layout::{
+    PRUNE_BINDINGS, PRUNE_LEVEL_BYTES, PRUNE_SCRATCH_MISSED, PRUNE_WORKGROUP,
+};
 use sdfc_compiler::scene::Scene;
 use sdfc_compiler::tape::data::{HEADER, Seed};
 use wgpu::util::DeviceExt;
@@ -30,7 +32,16 @@ pub struct Pruned {
 }
 
 /// Words of room for programs a cell is given at first (more where the counter says so).
-const FIRST_ROOM_PER_CELL: u64 = 32;
+const FIRST_ROOM_PER_CELL: u64 = 12;
+
+/// Cells a dispatch prunes at first (fewer where the scratch runs out).
+const CHUNK: usize = 1 << 16;
+
+/// The fewest cells a dispatch prunes.
+const FEWEST: usize = 1024;
+
+/// Words of scratch a cell of a dispatch is given at first: its parent's program.
+const SCRATCH_PER_CELL: u64 = 32;
 
 impl Gpu {
     /// The pre-pass's pipeline for `scene` compiled at its defaults; none where the scene has
@@ -65,11 +76,19 @@ impl Gpu {
             });
         }
         let cells: u64 = seed.levels.iter().map(|(n, _)| cells_of(*n) as u64).sum();
-        let mut room = (seed.code.len() as u64 + FIRST_ROOM_PER_CELL * cells).min(limit);
+        let mut room = Room {
+            code: (seed.code.len() as u64 + FIRST_ROOM_PER_CELL * cells).min(limit),
+            scratch: (CHUNK as u64 * SCRATCH_PER_CELL).min(limit),
+            chunk: CHUNK,
+        };
         let mut retries = 0;
         loop {
-            let run = self.run_levels(pruner, seed, room as u32)?;
-            if run.overflow == 0 {
+            let run = self.run_levels(pruner, seed, room)?;
+            let (scratch, code) = (
+                run.overflow / PRUNE_SCRATCH_MISSED,
+                run.overflow % PRUNE_SCRATCH_MISSED,
+            );
+            if scratch == 0 && code == 0 {
                 let (nodes, code, ranges) = run.buffers;
                 let bytes = seed.nodes.len() * 16 + run.used as usize * 4 + ranges_bytes(seed);
                 *lock(&self.tape) = Some([nodes, code, ranges]);
@@ -80,17 +99,26 @@ impl Gpu {
                     retries,
                 }));
             }
-            if room >= limit {
+            let stuck = (code > 0 && room.code >= limit)
+                || (scratch > 0 && room.scratch >= limit && room.chunk <= FEWEST);
+            if stuck {
                 return Ok(None);
             }
-            // The counter took what every cell asked for, those that found no room included.
-            room = (run.used.max(room) * 2).min(limit);
+            if code > 0 {
+                // The counter took what every cell asked for, those that found no room too.
+                room.code = (run.used.max(room.code) * 2).min(limit);
+            }
+            if scratch > 0 {
+                // Fewer cells a dispatch share the scratch, and a larger one.
+                room.chunk = (room.chunk / 4).max(FEWEST);
+                room.scratch = (room.scratch * 2).min(limit);
+            }
             retries += 1;
         }
     }
 
-    /// One pre-pass with `room` words for programs.
-    fn run_levels(&self, pruner: &Pruner, seed: &Seed, room: u32) -> Result<Run, Error> {
+    /// One pre-pass with the room `room` gives.
+    fn run_levels(&self, pruner: &Pruner, seed: &Seed, room: Room) -> Result<Run, Error> {
         let device = &self.device;
         let storage = |label: &str, words: &[u32], extra: wgpu::BufferUsages| {
             let mut bytes: Vec<u8> = words.iter().flat_map(|w| w.to_le_bytes()).collect();
@@ -101,40 +129,39 @@ impl Gpu {
                 usage: wgpu::BufferUsages::STORAGE | extra,
             })
         };
+        let empty = |label: &str, words: u64, usage: wgpu::BufferUsages| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size: words.max(4) * 4,
+                usage: wgpu::BufferUsages::STORAGE | usage,
+                mapped_at_creation: false,
+            })
+        };
         let flat = |v: &[[u32; 4]]| v.iter().flatten().copied().collect::<Vec<u32>>();
         let copy = wgpu::BufferUsages::COPY_SRC;
         let nodes = storage("tape nodes", &flat(&seed.nodes), copy);
-        let meta = storage("tape meta", &flat(&seed.meta), wgpu::BufferUsages::empty());
-        let code = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("tape code"),
-            size: u64::from(room.max(4)) * 4,
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST | copy,
-            mapped_at_creation: false,
-        });
+        let meta = storage("tape meta", &flat(&seed.meta), copy);
+        let code = empty("tape code", room.code, wgpu::BufferUsages::COPY_DST | copy);
         self.queue.write_buffer(&code, 0, &le_bytes(&seed.code));
+        let scratch = empty("prune scratch", room.scratch, wgpu::BufferUsages::empty());
         let (ranges_words, bases) = ranges(seed);
         let ranges = storage("tape ranges", &ranges_words, copy);
         let start = [seed.code.len() as u32, 0, 0, 0];
-        let counter = storage("prune counter", &start, wgpu::BufferUsages::COPY_SRC);
+        let counter = storage("prune counter", &start, copy | wgpu::BufferUsages::COPY_DST);
         let layout = pruner
             .pipeline
             .get_bind_group_layout(sdfc_compiler::layout::GROUP);
         let validation = device.push_error_scope(wgpu::ErrorFilter::Validation);
         let mut enc = device.create_command_encoder(&Default::default());
-        let uniforms: Vec<wgpu::Buffer> = (0..seed.levels.len())
-            .map(|l| {
-                device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        for l in 0..seed.levels.len() {
+            let total = cells_of(seed.levels[l].0);
+            for first in (0..total).step_by(room.chunk) {
+                let uniform = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                     label: Some("prune level"),
-                    contents: &level_bytes(seed, l, &bases, room),
+                    contents: &level_bytes(seed, (l, first as u32), &bases, room),
                     usage: wgpu::BufferUsages::UNIFORM,
-                })
-            })
-            .collect();
-        {
-            let mut pass = enc.begin_compute_pass(&Default::default());
-            pass.set_pipeline(&pruner.pipeline);
-            for (l, uniform) in uniforms.iter().enumerate() {
-                let buffers = [&nodes, &meta, &code, &ranges, uniform, &counter];
+                });
+                let buffers = [&nodes, &meta, &code, &ranges, &uniform, &counter, &scratch];
                 let entries: Vec<wgpu::BindGroupEntry> = PRUNE_BINDINGS
                     .iter()
                     .zip(buffers)
@@ -148,9 +175,14 @@ impl Gpu {
                     layout: &layout,
                     entries: &entries,
                 });
+                let cells = room.chunk.min(total - first) as u32;
+                let mut pass = enc.begin_compute_pass(&Default::default());
+                pass.set_pipeline(&pruner.pipeline);
                 pass.set_bind_group(sdfc_compiler::layout::GROUP, &bind, &[]);
-                let total = cells_of(seed.levels[l].0) as u32;
-                pass.dispatch_workgroups(total.div_ceil(PRUNE_WORKGROUP), 1, 1);
+                pass.dispatch_workgroups(cells.div_ceil(PRUNE_WORKGROUP), 1, 1);
+                drop(pass);
+                // The scratch is empty again for the next dispatch.
+                enc.clear_buffer(&counter, 12, Some(4));
             }
         }
         self.queue.submit([enc.finish()]);
@@ -167,6 +199,15 @@ impl Gpu {
             leaves: u64::from(word(2)),
         })
     }
+}
+
+/// The room a pre-pass has: words of the programs' buffer and of the scratch, and cells a
+/// dispatch (which share the scratch).
+#[derive(Clone, Copy, Debug)]
+struct Room {
+    code: u64,
+    scratch: u64,
+    chunk: usize,
 }
 
 /// One pre-pass's buffers and counter.
@@ -218,8 +259,8 @@ fn ranges(seed: &Seed) -> (Vec<u32>, Vec<u32>) {
     (words, bases)
 }
 
-/// Level `l`'s uniform (`layout::PRUNE_LEVEL_FIELDS`).
-fn level_bytes(seed: &Seed, l: usize, bases: &[u32], room: u32) -> Vec<u8> {
+/// Level `l`'s uniform (`layout::PRUNE_LEVEL_FIELDS`) for the dispatch from cell `first`.
+fn level_bytes(seed: &Seed, (l, first): (usize, u32), bases: &[u32], room: Room) -> Vec<u8> {
     let (n, size) = seed.levels[l];
     let whole = (HEADER + seed.cells() + 1) as u32;
     let (up, split, in_base) = match l {
@@ -250,11 +291,11 @@ fn level_bytes(seed: &Seed, l: usize, bases: &[u32], room: u32) -> Vec<u8> {
         split,
         in_base,
         bases[l],
-        room,
+        room.code as u32,
         f(scale),
         u32::from(last),
-        0,
-        0,
+        room.scratch as u32,
+        first,
         0,
     ];
     debug_assert_eq!(words.len() * 4, PRUNE_LEVEL_BYTES as usize);

@@ -5,7 +5,7 @@
 use super::moments::{animated_cells, follows_time, next_cells};
 use super::orbit::Orbit;
 use crate::cli::Error;
-use sdfc::gpu::{Gpu, Layout, MAX_SIDE, Prepared, Source};
+use sdfc::gpu::{Gpu, Layout, MAX_SIDE, Prepared, Pruner, Source};
 use sdfc::images::{self, Accumulator, Channel};
 use sdfc_compiler::check::TIME;
 use sdfc_compiler::emit;
@@ -47,6 +47,8 @@ pub struct Live {
     options: Options,
     full: Prepared,
     coarse: Prepared,
+    /// The data form's pre-pass on the device (none: on the CPU, or inline).
+    pruner: Option<Pruner>,
     size: (u32, u32),
     /// The camera.
     pub orbit: Orbit,
@@ -91,11 +93,12 @@ impl Live {
     /// Compiles and prepares `scene` for a window of `size`.
     pub fn new(gpu: Gpu, scene: Scene, options: Options, size: (u32, u32)) -> Result<Live, Error> {
         let orbit = Orbit::new(&scene.camera);
-        let (full, coarse) = prepare(&gpu, &scene, &options, size, &HashMap::new())?;
+        let (full, coarse, pruner) = prepare(&gpu, &scene, &options, size, &HashMap::new())?;
         Ok(Live {
             gpu,
             full,
             coarse,
+            pruner,
             size,
             orbit,
             channel: Channel::Color,
@@ -121,7 +124,8 @@ impl Live {
     /// A new scene (a reload that checked): compiled and prepared; the camera stays where the
     /// user turned it.
     pub fn replace(&mut self, scene: Scene, options: Options) -> Result<(), Error> {
-        let (full, coarse) = prepare(&self.gpu, &scene, &options, self.size, &HashMap::new())?;
+        let (full, coarse, pruner) =
+            prepare(&self.gpu, &scene, &options, self.size, &HashMap::new())?;
         self.tape_values.clear();
         self.tape_follows_time = follows_time(&scene, &options);
         self.tape_cells = (options.cells, None);
@@ -139,7 +143,7 @@ impl Live {
         });
         self.selected = self.selected.min(scene.params.len().saturating_sub(1));
         self.orbit.rehome(&scene.camera);
-        (self.full, self.coarse) = (full, coarse);
+        (self.full, self.coarse, self.pruner) = (full, coarse, pruner);
         (self.scene, self.options) = (scene, options);
         // Coarse frames first, as when the camera moves: the change shows at once.
         self.touch();
@@ -150,7 +154,8 @@ impl Live {
     pub fn resize(&mut self, size: (u32, u32)) -> Result<(), Error> {
         let size = (size.0.clamp(1, MAX_SIDE), size.1.clamp(1, MAX_SIDE));
         let values = &self.tape_values;
-        (self.full, self.coarse) = prepare(&self.gpu, &self.scene, &self.options, size, values)?;
+        (self.full, self.coarse, self.pruner) =
+            prepare(&self.gpu, &self.scene, &self.options, size, values)?;
         self.size = size;
         self.restart();
         Ok(())
@@ -291,8 +296,8 @@ impl Live {
             // to the same pipelines (no new shader for the driver).
             let clock = Instant::now();
             let valued = self.scene.with_values(&wanted);
-            let data = crate::cli::tape_data(&self.scene, &valued, cells)?;
-            self.gpu.set_tape(Some(&data))?;
+            let pruner = self.pruner.as_ref();
+            crate::cli::set_tape(&self.gpu, (&self.scene, &valued), cells, pruner)?;
             self.full.retape();
             self.coarse.retape();
             self.tape_values = wanted;
@@ -395,24 +400,26 @@ fn coarse_size((w, h): (u32, u32)) -> (u32, u32) {
 }
 
 /// The compute module of `scene`, prepared at `size` and at a quarter of it (one dispatch
-/// each: a frame is one submission); the data form's buffers made at `values`.
+/// each: a frame is one submission); the data form's buffers made at `values`, by the
+/// pre-pass returned where it runs on the device.
 fn prepare(
     gpu: &Gpu,
     scene: &Scene,
     options: &Options,
     size: (u32, u32),
     values: &HashMap<String, Vec<f64>>,
-) -> Result<(Prepared, Prepared), Error> {
+) -> Result<(Prepared, Prepared, Option<Pruner>), Error> {
     let (module, _) =
         emit::module(scene, Entry::Compute, options).map_err(|e| Error::Compiler(e.0))?;
     gpu.set_params(&bytes(&scene.params));
     gpu.set_volumes(&scene.volumes());
-    let data = options.form == sdfc_compiler::lower::tracer::Form::Data;
-    gpu.set_tape(
-        data.then(|| crate::cli::tape_data(scene, &scene.with_values(values), options.cells))
-            .transpose()?
-            .as_ref(),
-    )?;
+    let pruner = crate::cli::pruner(gpu, scene, options)?;
+    if options.form == sdfc_compiler::lower::tracer::Form::Data {
+        let valued = scene.with_values(values);
+        crate::cli::set_tape(gpu, (scene, &valued), options.cells, pruner.as_ref())?;
+    } else {
+        gpu.set_tape(None)?;
+    }
     let layout = Layout::Full { passes: false };
     let full = View::new(&scene.camera, size.0, size.1);
     let c = coarse_size(size);
@@ -420,5 +427,6 @@ fn prepare(
     Ok((
         gpu.prepare(Source::Module(&module), layout, &full, None, u32::MAX)?,
         gpu.prepare(Source::Module(&module), layout, &small, None, u32::MAX)?,
+        pruner,
     ))
 }

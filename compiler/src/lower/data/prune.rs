@@ -37,6 +37,7 @@ pub(super) struct Buffers {
     nodes: Ex,
     meta: Ex,
     code: Ex,
+    scratch: Ex,
 }
 
 /// One cell's walk: its parent's program (`from`, `len` instructions) and its own room
@@ -62,14 +63,16 @@ pub(in crate::lower) fn add(mb: &mut ModuleBuilder, kinds: &[&'static Primitive]
     let mut b = FnBuilder::new(mb, "main", &[("gid", uvec3)], None);
     b.func.arguments[0].binding = Some(Binding::BuiltIn(BuiltIn::GlobalInvocationId));
     let gid = b.arg(0);
-    let cell = b.at(gid, 0);
-    let [nodes, meta, code, ranges, level, counter] =
+    let [nodes, meta, code, ranges, level, counter, scratch] =
         globals.map(|g| b.expr(Expression::GlobalVariable(g)));
     let field = |b: &mut FnBuilder, name: &str| {
         let i = PRUNE_LEVEL_FIELDS.iter().position(|(n, _)| *n == name);
         let p = b.at(level, i.expect("a field of the level") as u32);
         b.load(p)
     };
+    let first_cell = field(&mut b, "first_cell");
+    let cell = b.at(gid, 0);
+    let cell = b.add(cell, first_cell);
     let total = field(&mut b, "total");
     let past = b.ge(cell, total);
     b.if_(past, |b| b.ret(None), |_| {});
@@ -82,36 +85,27 @@ pub(in crate::lower) fn add(mb: &mut ModuleBuilder, kinds: &[&'static Primitive]
     let ptr = b.index(ranges, at);
     let range = b.load(ptr);
     let (from, len) = (b.at(range, 0), b.at(range, 1));
-    let next = b.at(counter, 0);
-    let start = b.atomic_add(next, len);
-    let capacity = field(&mut b, "capacity");
-    let too_long = b.gt(len, capacity);
-    let room = b.sub(capacity, len);
-    let beyond = b.gt(start, room);
-    let over = b.bin(Op::LogicalOr, too_long, beyond);
     let out_base = field(&mut b, "out_base");
     let out_at = b.add(out_base, cell);
     let out = b.index(ranges, out_at);
-    b.if_(
-        over,
-        |b| {
-            // No room: counted, and the cell left empty (the host then makes the data again).
-            let overflow = b.at(counter, 1);
-            let one = b.u(1);
-            b.atomic_add(overflow, one);
-            let zero = b.u(0);
-            let none = b.compose(uvec2, vec![zero, zero]);
-            b.store(out, none);
-            b.ret(None);
-        },
-        |_| {},
-    );
+    let room = Room {
+        counter,
+        out,
+        empty: uvec2,
+    };
+    let scratch_room = field(&mut b, "scratch_capacity");
+    let start = room.take(&mut b, COUNTER_SCRATCH, len, scratch_room);
     let (lo, size) = (field(&mut b, "lo"), field(&mut b, "size"));
     let centre = centre_of(&mut b, xyz, (lo, size));
     let half_diagonal = b.f(3f64.sqrt() / 2.0 * (1.0 + MARGIN));
     let radius = b.mul(size, half_diagonal);
     let scale = field(&mut b, "scale");
-    let bufs = Buffers { nodes, meta, code };
+    let bufs = Buffers {
+        nodes,
+        meta,
+        code,
+        scratch,
+    };
     let walk = Walk {
         bufs,
         from,
@@ -120,7 +114,18 @@ pub(in crate::lower) fn add(mb: &mut ModuleBuilder, kinds: &[&'static Primitive]
     };
     first::walk(&mut b, walk, &kinds, (centre, radius, scale), height);
     let (kept, leaves) = pack::walk(&mut b, walk, height);
-    let range = b.compose(uvec2, vec![start, kept]);
+    // The cell's program, from its scratch to the programs' buffer.
+    let capacity = field(&mut b, "capacity");
+    let to = room.take(&mut b, COUNTER_NEXT, kept, capacity);
+    b.repeat("c", kept, |b, k| {
+        let at = b.add(start, k);
+        let p = b.index(scratch, at);
+        let w = b.load(p);
+        let at = b.add(to, k);
+        let p = b.index(code, at);
+        b.store(p, w);
+    });
+    let range = b.compose(uvec2, vec![to, kept]);
     b.store(out, range);
     let counting = field(&mut b, "count_leaves");
     let zero = b.u(0);
@@ -128,7 +133,7 @@ pub(in crate::lower) fn add(mb: &mut ModuleBuilder, kinds: &[&'static Primitive]
     b.if_(
         counting,
         |b| {
-            let total = b.at(counter, 2);
+            let total = b.at(counter, COUNTER_LEAVES);
             b.atomic_add(total, leaves);
         },
         |_| {},
@@ -137,8 +142,58 @@ pub(in crate::lower) fn add(mb: &mut ModuleBuilder, kinds: &[&'static Primitive]
     super::super::entry::compute_main(mb, f, [crate::layout::PRUNE_WORKGROUP, 1, 1]);
 }
 
-/// The table, meta, programs, ranges, level and counter globals, in `PRUNE_BINDINGS`' order.
-fn declare(mb: &mut ModuleBuilder) -> [Handle<naga::GlobalVariable>; 6] {
+/// The counter's fields (`layout::PRUNE_COUNTER_FIELDS`).
+const COUNTER_NEXT: u32 = 0;
+const COUNTER_OVERFLOW: u32 = 1;
+const COUNTER_LEAVES: u32 = 2;
+const COUNTER_SCRATCH: u32 = 3;
+
+/// Where a cell takes room from a counter: the counter, the cell's range (left empty where
+/// there is no room) and its type.
+#[derive(Clone, Copy)]
+struct Room {
+    counter: Ex,
+    out: Ex,
+    empty: Handle<naga::Type>,
+}
+
+impl Room {
+    /// `words` taken from the counter's field `field` within `capacity`: their first word; where
+    /// they do not fit, the overflow counted, the cell's range left empty and the invocation
+    /// ended (the host then runs the pre-pass again with more room).
+    fn take(self, b: &mut FnBuilder, field: u32, words: Ex, capacity: Ex) -> Ex {
+        // (The host tells the two apart: the programs' buffer counts ones, the scratch 2¹⁶s.)
+        let missed = if field == COUNTER_SCRATCH {
+            crate::layout::PRUNE_SCRATCH_MISSED
+        } else {
+            1
+        };
+        let next = b.at(self.counter, field);
+        let start = b.atomic_add(next, words);
+        let too_long = b.gt(words, capacity);
+        let room = b.sub(capacity, words);
+        let beyond = b.gt(start, room);
+        let over = b.bin(Op::LogicalOr, too_long, beyond);
+        b.if_(
+            over,
+            |b| {
+                let overflow = b.at(self.counter, COUNTER_OVERFLOW);
+                let missed = b.u(missed);
+                b.atomic_add(overflow, missed);
+                let zero = b.u(0);
+                let none = b.compose(self.empty, vec![zero, zero]);
+                b.store(self.out, none);
+                b.ret(None);
+            },
+            |_| {},
+        );
+        start
+    }
+}
+
+/// The table, meta, programs, ranges, level, counter and scratch globals, in
+/// `PRUNE_BINDINGS`' order.
+fn declare(mb: &mut ModuleBuilder) -> [Handle<naga::GlobalVariable>; 7] {
     let (u32t, f32t, v3) = (mb.u32(), mb.f32(), mb.vec3());
     let (uvec4, uvec3, uvec2) = (
         mb.uvec(VectorSize::Quad),
@@ -159,7 +214,7 @@ fn declare(mb: &mut ModuleBuilder) -> [Handle<naga::GlobalVariable>; 6] {
         access: StorageAccess::LOAD | StorageAccess::STORE,
     };
     let level_types = [
-        v3, f32t, uvec3, u32t, uvec3, u32t, u32t, u32t, u32t, f32t, u32t,
+        v3, f32t, uvec3, u32t, uvec3, u32t, u32t, u32t, u32t, f32t, u32t, u32t, u32t,
     ];
     let members: Vec<(&str, Handle<naga::Type>, u32)> = PRUNE_LEVEL_FIELDS
         .iter()
@@ -173,7 +228,7 @@ fn declare(mb: &mut ModuleBuilder) -> [Handle<naga::GlobalVariable>; 6] {
         .enumerate()
         .map(|(i, n)| (*n, atomic, 4 * i as u32))
         .collect();
-    let counter_ty = super::super::globals::struct_ty(mb, "Counter", &counter_members, 12);
+    let counter_ty = super::super::globals::struct_ty(mb, "Counter", &counter_members, 16);
     let tys = [
         (array(mb, uvec4, 16), read, "tape_nodes"),
         (array(mb, uvec4, 16), read, "tape_meta"),
@@ -181,6 +236,7 @@ fn declare(mb: &mut ModuleBuilder) -> [Handle<naga::GlobalVariable>; 6] {
         (array(mb, uvec2, 8), write, "tape_ranges"),
         (level_ty, AddressSpace::Uniform, "level"),
         (counter_ty, write, "counter"),
+        (array(mb, u32t, 4), write, "tape_scratch"),
     ];
     let mut i = 0;
     tys.map(|(ty, space, name)| {

@@ -53,24 +53,35 @@ struct Report {
 /// The data form's pre-pass, as measured.
 #[derive(Serialize)]
 struct Prepass {
+    /// Where it ran: "gpu" (the pre-pass entry on the device) or "cpu".
+    ran_on: &'static str,
+    /// Seconds from the scene to the buffers set.
     seconds: f64,
+    /// Seconds the device's pre-pass pipeline took to compile (once per scene; 0 on the CPU).
+    compile_seconds: f64,
     bytes: usize,
     cells: usize,
     mean_leaves: f64,
 }
 
-/// The data form's buffers made on the CPU (on `cells` a side, by default the parts'), timed,
-/// and set on `gpu`.
-fn prepass(gpu: &Gpu, scene: &Scene, cells: Option<usize>) -> Result<Prepass, Error> {
+/// The data form's buffers made (on `cells` a side, by default the parts'; on the device
+/// where `options` say and it can, else on the CPU), timed, and set on `gpu`.
+fn prepass(
+    gpu: &Gpu,
+    scene: &Scene,
+    options: &sdfc_compiler::lower::tracer::Options,
+) -> Result<Prepass, Error> {
     let clock = std::time::Instant::now();
-    let tape = crate::cli::tape_data(scene, scene, cells)?;
-    let seconds = clock.elapsed().as_secs_f64();
-    gpu.set_tape(Some(&tape))?;
+    let pruner = crate::cli::pruner(gpu, scene, options)?;
+    let compile_seconds = clock.elapsed().as_secs_f64();
+    let made = crate::cli::set_tape(gpu, (scene, scene), options.cells, pruner.as_ref())?;
     Ok(Prepass {
-        seconds,
-        bytes: tape.bytes(),
-        cells: tape.cells(),
-        mean_leaves: tape.mean_leaves,
+        ran_on: if made.on_gpu { "gpu" } else { "cpu" },
+        seconds: made.seconds,
+        compile_seconds,
+        bytes: made.bytes,
+        cells: made.cells,
+        mean_leaves: made.mean_leaves,
     })
 }
 
@@ -131,6 +142,7 @@ fn bench(args: &BenchArgs) -> Result<(), Error> {
     options.fixed_offset = args.fixed_offset;
     options.form = args.form.choose(args.passes, &scene)?;
     options.cells = crate::cli::tracer::check_cells(args.cells, options.form)?;
+    options.prepass = crate::cli::tracer::check_prepass(args.prepass, options.form)?;
     let data = options.form == Form::Data;
     driver_module(&scene, &sources, &mut options, args.allow_slow_compile)?;
     let cells = plan(args, &scene)?;
@@ -146,7 +158,7 @@ fn bench(args: &BenchArgs) -> Result<(), Error> {
     let mut measured = Vec::new();
     let mut swept = Vec::new();
     let prepass = match data {
-        true => Some(prepass(&gpu, &scene, options.cells)?),
+        true => Some(prepass(&gpu, &scene, &options)?),
         false => None,
     };
     if sweep.is_empty() {

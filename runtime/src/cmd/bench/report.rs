@@ -76,8 +76,16 @@ fn parts(r: &Report) -> String {
     }
     if let Some(p) = &r.prepass {
         out += &format!(
-            "form: data — pre-pass on the CPU {:.1} ms, {} cells, {:.1} leaves a cell, {:.1} MiB of buffers\n",
+            "form: data — pre-pass on the {} {:.1} ms{}, {} cells, {:.1} leaves a cell, {:.1} MiB of buffers\n",
+            p.ran_on.to_uppercase(),
             p.seconds * 1e3,
+            match p.ran_on {
+                "gpu" => format!(
+                    " (its pipeline compiled in {:.1} ms)",
+                    p.compile_seconds * 1e3
+                ),
+                _ => String::new(),
+            },
             p.cells,
             p.mean_leaves,
             p.bytes as f64 / f64::from(1u32 << 20)

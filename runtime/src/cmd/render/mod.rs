@@ -148,11 +148,8 @@ fn prepare(args: &RenderArgs, (w, h): (u32, u32), started: Instant) -> Result<Jo
     gpu.set_params(&sdfc_compiler::lower::params::bytes(&valued.params));
     gpu.set_volumes(&scene.volumes());
     if options.form == sdfc_compiler::lower::tracer::Form::Data {
-        gpu.set_tape(Some(&crate::cli::tape_data(
-            &scene,
-            &valued,
-            options.cells,
-        )?))?;
+        let pruner = crate::cli::pruner(&gpu, &scene, &options)?;
+        crate::cli::set_tape(&gpu, (&scene, &valued), options.cells, pruner.as_ref())?;
     }
     if predicted.seconds >= SLOW_COMPILE {
         // The driver compiles the shader at pipeline creation, silently.

@@ -1,5 +1,5 @@
 //! The pre-pass's first walk (`lower/data/prune.rs`): the parent cell's program run at the
-//! cell's centre and copied to the cell's room, with `tape::cells::keep`'s rule dropping the
+//! cell's centre and copied to the cell's scratch, with `tape::cells::keep`'s rule dropping the
 //! children that cannot change their fold's result over the cell.
 
 use super::super::join::{flag, has_bit};
@@ -24,7 +24,7 @@ struct Frames {
     sp: Ex,
 }
 
-/// Runs the parent's program at the cell's centre, copying it to the cell's room, and drops
+/// Runs the parent's program at the cell's centre, copying it to the cell's scratch, and drops
 /// what cannot change the field over the cell (`DROPPED` over its instructions).
 pub(super) fn walk(
     b: &mut FnBuilder,
@@ -47,13 +47,18 @@ pub(super) fn walk(
     };
     let v = b.local("v", f32t, None);
     let cs = b.local("cs", u32t, None);
-    let Buffers { nodes, meta, code } = walk.bufs;
+    let Buffers {
+        nodes,
+        meta,
+        code,
+        scratch,
+    } = walk.bufs;
     b.repeat("i", walk.len, |b, i| {
         let src = b.add(walk.from, i);
         let ptr = b.index(code, src);
         let ins = b.load(ptr);
         let dst = b.add(walk.start, i);
-        let to = b.index(code, dst);
+        let to = b.index(scratch, dst);
         b.store(to, ins);
         let mask = b.u(OFFSET);
         let off = b.bin(Op::And, ins, mask);
@@ -268,7 +273,7 @@ fn drop(b: &mut FnBuilder, walk: Walk, (from, to): (Ex, Ex)) {
     b.repeat("j", count, |b, j| {
         let at = b.add(from, j);
         let at = b.add(walk.start, at);
-        let p = b.index(walk.bufs.code, at);
+        let p = b.index(walk.bufs.scratch, at);
         b.store(p, dropped);
     });
 }

@@ -1,4 +1,5 @@
-//! The pre-pass's second walk (`lower/data/prune.rs`): the kept instructions packed in place,
+//! The pre-pass's second walk (`lower/data/prune.rs`): the kept instructions packed in place in
+//! the cell's scratch,
 //! their `FIRST` and `SPILL` bits made anew from each part's parent as `program::encode` sets
 //! them for the pruned tree.
 
@@ -24,10 +25,10 @@ pub(super) fn walk(b: &mut FnBuilder, walk: Walk, height: usize) -> (Ex, Ex) {
     let leaves = b.local("leaves", u32t, Some(zero));
     let first = b.local("first", u32t, None);
     let spill = b.local("spill", u32t, None);
-    let Buffers { meta, code, .. } = walk.bufs;
+    let Buffers { meta, scratch, .. } = walk.bufs;
     b.repeat("i", walk.len, |b, i| {
         let at = b.add(walk.start, i);
-        let ptr = b.index(code, at);
+        let ptr = b.index(scratch, at);
         let ins = b.load(ptr);
         let dropped = b.u(DROPPED);
         let live = b.bin(Op::NotEqual, ins, dropped);
@@ -65,7 +66,7 @@ pub(super) fn walk(b: &mut FnBuilder, walk: Walk, height: usize) -> (Ex, Ex) {
                 let word = b.bin(Op::InclusiveOr, word, s);
                 let k = b.load(kept);
                 let at = b.add(walk.start, k);
-                let ptr = b.index(code, at);
+                let ptr = b.index(scratch, at);
                 b.store(ptr, word);
                 b.increment(kept);
             },
