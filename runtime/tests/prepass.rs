@@ -156,3 +156,49 @@ fn the_gpu_prepass_prunes_as_the_cpu_does() {
         said.join("; ")
     ));
 }
+
+/// On the command line: `render --prepass gpu` and `--prepass cpu` write the same picture, byte
+/// for byte (`auto` takes the CPU below 1000 parts: the same again); `--prepass` on a scene
+/// drawn inline is an error that says so.
+#[test]
+fn the_command_line_prunes_where_asked_with_the_same_picture() {
+    use crate::common::{refused, scratch, succeeded, write};
+    let dir = scratch("prepass-cli");
+    let source = format!(
+        "camera {{ eye (0, 1, -4)  target (0, 0, 0) }}\nsmooth_union(0.03) {{\n{}\n}}\nplane(y, -1.2)",
+        balls(150, false)
+    );
+    let file = write(&dir, "balls.sdf", &source);
+    let picture = |how: &str| {
+        let out = dir.join(format!("{how}.png"));
+        let out = out.to_str().unwrap();
+        succeeded(&[
+            "render",
+            &file,
+            "-o",
+            out,
+            "--size",
+            "96x64",
+            "--prepass",
+            how,
+        ]);
+        std::fs::read(out).unwrap()
+    };
+    let (gpu, cpu, auto) = (picture("gpu"), picture("cpu"), picture("auto"));
+    assert!(gpu == cpu && cpu == auto, "the pictures differ");
+    let out = dir.join("inline.png");
+    refused(
+        &[
+            "render",
+            &file,
+            "-o",
+            out.to_str().unwrap(),
+            "--form",
+            "inline",
+            "--prepass",
+            "gpu",
+        ],
+        "`--prepass gpu` is for the data form",
+        &out,
+    );
+}

@@ -135,6 +135,8 @@ fn an_orbit_says_its_rate_and_new_values_compile_nothing() {
         "4",
         "--form",
         "data",
+        "--prepass",
+        "gpu",
     ];
     let Viewer {
         mut child,

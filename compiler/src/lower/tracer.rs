@@ -73,8 +73,11 @@ pub struct Options {
 /// Where the data form's pre-pass runs (`--prepass`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Prepass {
-    /// On the device, where it can (else on the CPU).
+    /// On the device for a tree of at least `tape::data::GPU_PREPASS_FROM` leaves, else on
+    /// the CPU (where each measured faster on lavapipe).
     #[default]
+    Auto,
+    /// On the device, where it can hold the programs (else on the CPU).
     Gpu,
     /// On the CPU.
     Cpu,
@@ -130,7 +133,7 @@ impl Options {
             form: Form::Inline,
             count_primitives: false,
             cells: None,
-            prepass: Prepass::Gpu,
+            prepass: Prepass::Auto,
         }
     }
 }

@@ -307,8 +307,8 @@ pub struct BenchArgs {
     /// The data form's grid: cells along its longest side, 1 to 128 (as `render --cells`).
     #[arg(long, value_name = "N")]
     pub cells: Option<usize>,
-    /// Where the data form's cells are pruned (as `render --prepass`): `gpu` (the default) or
-    /// `cpu`.
+    /// Where the data form's cells are pruned (as `render --prepass`): `auto` (the default),
+    /// `gpu` or `cpu`.
     #[arg(long, value_enum, value_name = "WHERE")]
     pub prepass: Option<super::tracer::PrepassArg>,
     /// Also count primitive evaluations per pixel, of the trace and of shading (compiles the

@@ -56,12 +56,21 @@ pub struct TapeMade {
     pub mean_leaves: f64,
     /// Whether the device pruned them.
     pub on_gpu: bool,
+    /// How many times the device ran the pre-pass again with more room.
+    pub retries: u32,
 }
 
-/// The pre-pass's pipeline for `scene` where `options` prune on the device (`None` for the
+/// The pre-pass's pipeline for `scene` where `options` prune on the device — `--prepass gpu`,
+/// or `auto` for a tree of at least `tape::data::GPU_PREPASS_FROM` leaves — (`None` for the
 /// CPU, or where the scene has no data form).
 pub fn pruner(gpu: &Gpu, scene: &Scene, options: &Options) -> Result<Option<Pruner>, Error> {
-    if options.form != sdfc_compiler::lower::tracer::Form::Data || options.prepass != Prepass::Gpu {
+    let device = match options.prepass {
+        Prepass::Gpu => true,
+        Prepass::Cpu => false,
+        Prepass::Auto => sdfc_compiler::tape::build(scene)
+            .is_ok_and(|tree| tree.leaves() >= data::GPU_PREPASS_FROM),
+    };
+    if options.form != sdfc_compiler::lower::tracer::Form::Data || !device {
         return Ok(None);
     }
     Ok(gpu.pruner(scene)?)
@@ -88,6 +97,7 @@ pub fn set_tape(
             cells: made.cells,
             mean_leaves: made.mean_leaves,
             on_gpu: true,
+            retries: made.retries,
         });
     }
     let data = data::data(valued, &tree, &layout).map_err(|w| fail(scene, w))?;
@@ -98,5 +108,6 @@ pub fn set_tape(
         cells: data.cells(),
         mean_leaves: data.mean_leaves,
         on_gpu: false,
+        retries: 0,
     })
 }

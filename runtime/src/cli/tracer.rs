@@ -74,9 +74,10 @@ pub struct TracerArgs {
     /// fewer parts a cell and trace faster.
     #[arg(long, value_name = "N")]
     pub cells: Option<usize>,
-    /// Where the data form's cells are pruned: `gpu` (the default) by a compute pre-pass on
-    /// the device (on the CPU where the device cannot hold the programs), or `cpu`. The same
-    /// programs either way (docs/data-form.md); `emit` makes its buffer files on the CPU.
+    /// Where the data form's cells are pruned: `gpu` by a compute pre-pass on the device (on
+    /// the CPU where the device cannot hold the programs), `cpu`, or `auto` (the default): the
+    /// device from 1000 parts, where it measured faster. The same programs either way
+    /// (docs/data-form.md); `emit` makes its buffer files on the CPU.
     #[arg(long, value_enum, value_name = "WHERE")]
     pub prepass: Option<PrepassArg>,
     /// Start shadow, reflected and refracted rays a fixed 2·ε_floor off the surface instead of
@@ -229,13 +230,15 @@ pub fn check_cells(
 /// `--prepass`: where the data form's cells are pruned.
 #[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
 pub enum PrepassArg {
-    /// On the device (the default).
+    /// On the device from 1000 parts, else on the CPU (the default).
+    Auto,
+    /// On the device.
     Gpu,
     /// On the CPU.
     Cpu,
 }
 
-/// `--prepass` checked: only for the data form; by default on the device.
+/// `--prepass` checked: only for the data form; by default `auto`.
 pub fn check_prepass(
     prepass: Option<PrepassArg>,
     form: sdfc_compiler::lower::tracer::Form,
@@ -245,12 +248,14 @@ pub fn check_prepass(
         (Some(p), Form::Inline) => Err(Error::Usage(format!(
             "error: `--prepass {}` is for the data form, and this scene is drawn inline\nhelp: `--form data`",
             match p {
+                PrepassArg::Auto => "auto",
                 PrepassArg::Gpu => "gpu",
                 PrepassArg::Cpu => "cpu",
             }
         ))),
         (Some(PrepassArg::Cpu), _) => Ok(Prepass::Cpu),
-        _ => Ok(Prepass::Gpu),
+        (Some(PrepassArg::Gpu), _) => Ok(Prepass::Gpu),
+        _ => Ok(Prepass::Auto),
     }
 }
 

@@ -32,16 +32,16 @@ pub struct Pruned {
 }
 
 /// Words of room for programs a cell is given at first (more where the counter says so).
-const FIRST_ROOM_PER_CELL: u64 = 12;
+const FIRST_ROOM_PER_CELL: u64 = 24;
 
 /// Cells a dispatch prunes at first (fewer where the scratch runs out).
-const CHUNK: usize = 1 << 16;
+const CHUNK: usize = 1 << 14;
 
 /// The fewest cells a dispatch prunes.
 const FEWEST: usize = 1024;
 
 /// Words of scratch a cell of a dispatch is given at first: its parent's program.
-const SCRATCH_PER_CELL: u64 = 32;
+const SCRATCH_PER_CELL: u64 = 512;
 
 impl Gpu {
     /// The pre-pass's pipeline for `scene` compiled at its defaults; none where the scene has

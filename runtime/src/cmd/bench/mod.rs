@@ -59,6 +59,8 @@ struct Prepass {
     seconds: f64,
     /// Seconds the device's pre-pass pipeline took to compile (once per scene; 0 on the CPU).
     compile_seconds: f64,
+    /// Times the device ran it again with more room for programs or scratch.
+    retries: u32,
     bytes: usize,
     cells: usize,
     mean_leaves: f64,
@@ -79,6 +81,7 @@ fn prepass(
         ran_on: if made.on_gpu { "gpu" } else { "cpu" },
         seconds: made.seconds,
         compile_seconds,
+        retries: made.retries,
         bytes: made.bytes,
         cells: made.cells,
         mean_leaves: made.mean_leaves,

@@ -81,8 +81,9 @@ fn parts(r: &Report) -> String {
             p.seconds * 1e3,
             match p.ran_on {
                 "gpu" => format!(
-                    " (its pipeline compiled in {:.1} ms)",
-                    p.compile_seconds * 1e3
+                    " (its pipeline compiled in {:.1} ms; run again with more room {} times)",
+                    p.compile_seconds * 1e3,
+                    p.retries
                 ),
                 _ => String::new(),
             },
