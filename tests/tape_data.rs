@@ -63,7 +63,8 @@ fn data_form_modules_validate_and_stay_the_same_size() {
 
 /// The buffers the host uploads (`data::data`: every cell's program, shared where equal, found
 /// through its range, pruned level by level) give the whole tree's value at random points of
-/// the grid, and the program outside it gives the parts the grid does not hold.
+/// the grid, and the program outside it gives the parts the grid does not hold; a cell marked
+/// far (far-field culling) has a clearance no larger than the field anywhere in it.
 #[test]
 fn the_data_s_programs_give_the_whole_field_in_every_cell() {
     use sdfc_compiler::tape::{data, program};
@@ -81,33 +82,42 @@ fn the_data_s_programs_give_the_whole_field_in_every_cell() {
         let n = layout.n.map(|k| k as f64);
         let hi = layout.lo + DVec3::new(n[0], n[1], n[2]) * layout.size;
         let run = |i: usize, p: DVec3| {
-            let [start, len] = d.ranges[data::HEADER + i];
+            let [start, count] = d.ranges[data::HEADER + i];
+            let (len, clearance) = data::unpack_count(count, layout.size);
             let words = d.code[start as usize..(start + len) as usize].to_vec();
             let code = program::Code {
                 words,
                 leaves: 0,
                 depth: 0,
             };
-            program::run(&table, &code, p).0
+            (program::run(&table, &code, p).0, clearance)
         };
+        let mut far = 0;
         for _ in 0..5000 {
             let p = point(&mut r, layout.lo, hi);
             let c = ((p - layout.lo) / layout.size).floor();
             let i = c.x as usize + layout.n[0] * (c.y as usize + layout.n[1] * c.z as usize);
-            let (got, want) = (run(i, p), tape::eval::value(&s, &tree, p));
+            let ((got, clearance), want) = (run(i, p), tape::eval::value(&s, &tree, p));
             assert!(
                 (got - want).abs() <= 1e-12 * (1.0 + want.abs()),
                 "at {p} (cell {c}): program {got}, tree {want}\n{source}"
             );
+            if let Some(clear) = clearance {
+                assert!(
+                    clear <= want,
+                    "at {p} (cell {c}): clearance {clear} above the field {want}"
+                );
+                far += 1;
+            }
         }
         // Outside the grid, the parts it does not hold (the plane) where there are any.
         if let Some(outside) = data::outside(&s, &tree) {
             let p = hi + DVec3::new(0.5, 0.7, 0.3);
             let want = tape::eval::value(&s, &outside, p);
-            assert!((run(d.cells(), p) - want).abs() <= 1e-12 * (1.0 + want.abs()));
+            assert!((run(d.cells(), p).0 - want).abs() <= 1e-12 * (1.0 + want.abs()));
         }
         said.push(format!(
-            "{}×{}×{} cells, {:.1} leaves a cell",
+            "{}×{}×{} cells, {:.1} leaves a cell, {far} of 5000 points in far cells",
             layout.n[0], layout.n[1], layout.n[2], d.mean_leaves
         ));
     }

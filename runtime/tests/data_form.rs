@@ -92,12 +92,14 @@ fn the_data_form_draws_what_the_inline_form_draws() {
             }
             materials += usize::from(inline.material[i] != data.material[i]);
         }
-        // Outside its grid the data form steps by the distance to the grid's box (a bound, not
-        // the field), so a ray arrives by other steps and stops where its field first drops
-        // below ε: within ε of the inline hit. Where that moves the hit across a small ball's
-        // rim, the normal and so the colour differ (about 1.5% of the pixels of 200 small
-        // balls); hit masks, depths and materials agree but for a few pixels in a thousand.
-        let most = pixels / 500;
+        // Outside its grid the data form steps by the distance to the grid's box, and in a cell
+        // far from every surface by the cell's clearance (bounds, not the field), so a ray
+        // arrives by other steps and stops where its field first drops below ε: within ε of
+        // the inline hit. Where that moves the hit across a small ball's rim or a crease, the
+        // normal and so the colour differ (about 1.5% of the pixels of 200 small balls); hit
+        // masks, depths and materials agree but for a few pixels in a thousand (the cuts'
+        // creases: 29 materials of 14 400, as measured).
+        let most = pixels / 400;
         assert!(
             masks <= most && deep <= most && colours <= pixels / 40 && materials <= most,
             "{name}: of {pixels} pixels {masks} hit masks, {deep} depths, {colours} colours, {materials} materials differ"
@@ -217,9 +219,11 @@ fn parameters_move_the_parts_of_the_data_form() {
             .count()
     };
     let pixels = (160 * 90) as usize;
-    // (Measured: 0 pixels differ; the bar's turn alone moves about 3% of them.)
+    // (Measured: 169 pixels differ, on the small balls' rims: the data form's rays cross far
+    // cells by their clearance and stop elsewhere within ε; 0 before far-field culling. The
+    // bar's turn alone moves about 3% of them.)
     assert!(
-        differ(&data, &inline) <= pixels / 100,
+        differ(&data, &inline) <= pixels / 50,
         "{} of {pixels} pixels differ",
         differ(&data, &inline)
     );

@@ -12,11 +12,12 @@ use crate::scene::{Epsilon, Scene};
 use naga::{Function, Handle, Type};
 
 /// Adds the tracer, normal, shading and the entry interface to a module that has `map` (for
-/// [`Entry::Field`], only the entry: it calls `map` alone).
+/// [`Entry::Field`], only the entry: it calls `map` alone); the tracer calls `trace_map` (the
+/// data form's `tape_trace`, else `map`).
 pub(super) fn add(
     mb: &mut ModuleBuilder,
     scene: &Scene,
-    map: Handle<Function>,
+    (map, trace_map): (Handle<Function>, Handle<Function>),
     [material, texture, blend]: [Option<Handle<Function>>; 3],
     loose: Option<Handle<Function>>,
     entry: Entry,
@@ -27,7 +28,7 @@ pub(super) fn add(
         return;
     }
     let floor = scene.camera.epsilon_floor();
-    let (tracer, result_ty) = add_tracer(mb, scene, (map, loose), options, floor);
+    let (tracer, result_ty) = add_tracer(mb, scene, (trace_map, loose), options, floor);
     if entry == Entry::Compute && mb.evaluations.is_none() {
         count::add_counter(mb);
     }

@@ -8,6 +8,7 @@
 //! parts.
 
 mod blend;
+mod far;
 mod grid;
 mod join;
 pub(super) mod prune;
@@ -22,13 +23,17 @@ use naga::{
     AddressSpace, ArraySize, Function, Handle, ScalarKind, StorageAccess, TypeInner, VectorSize,
 };
 
-/// Declares the buffers and adds `tape_eval`, and with `blends` `tape_blend` (see
-/// [`blend_at`]).
-pub(super) fn add(
-    mb: &mut ModuleBuilder,
-    layout: &Layout,
-    blends: bool,
-) -> (Handle<Function>, Option<Handle<Function>>) {
+/// The data form's evaluators: `tape_eval`, `tape_blend` where the scene blends materials
+/// (see [`blend_at`]), and `tape_trace`, the camera's trace's `map` where the scene has a grid
+/// (far cells answer with their clearance: `far.rs`).
+pub(super) struct Evaluators {
+    pub eval: Handle<Function>,
+    pub blend: Option<Handle<Function>>,
+    pub trace: Option<Handle<Function>>,
+}
+
+/// Declares the buffers and adds the evaluators (`tape_blend` with `blends`).
+pub(super) fn add(mb: &mut ModuleBuilder, layout: &Layout, blends: bool) -> Evaluators {
     let u32t = mb.u32();
     let uvec4 = mb.uvec(VectorSize::Quad);
     let uvec2 = mb.uvec(VectorSize::Bi);
@@ -53,7 +58,11 @@ pub(super) fn add(
     let ranges = super::globals::global(mb, "tape_ranges", ranges_ty, read, r);
     let buffers = [nodes, code, ranges];
     let eval = evaluator(mb, layout, buffers, false);
-    (eval, blends.then(|| evaluator(mb, layout, buffers, true)))
+    Evaluators {
+        eval,
+        blend: blends.then(|| evaluator(mb, layout, buffers, true)),
+        trace: far::add(mb, layout, ranges, eval),
+    }
 }
 
 /// The evaluator over the buffers: `tape_eval(p) -> vec2(value, tag bits)`, or with `blend`
@@ -101,6 +110,7 @@ fn evaluator(
     let (range, inside) = cell_range(&mut b, layout, ranges, p);
     let start = b.at(range, 0);
     let len = b.at(range, 1);
+    let len = grid::length(&mut b, len);
     let end = b.add(start, len);
     // An empty program (outside a grid that holds every part) leaves "nothing here".
     let far = b.f(crate::ir::FAR);

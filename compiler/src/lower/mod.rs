@@ -78,11 +78,12 @@ pub fn lower(scene: &Scene, entry: Entry, options: &tracer::Options) -> naga::Mo
     let f32t = mb.f32();
     // The data form's evaluator, where asked for and the scene has one.
     let blends = crate::reference::blend::has_blends(scene);
-    let (data, data_blend) = (options.form == tracer::Form::Data)
+    let evaluators = (options.form == tracer::Form::Data)
         .then(|| crate::tape::data::layout(scene, None).ok())
         .flatten()
-        .map(|(_, layout)| data::add(&mut mb, &layout, blends))
-        .map_or((None, None), |(eval, blend)| (Some(eval), blend));
+        .map(|(_, layout)| data::add(&mut mb, &layout, blends));
+    let data = evaluators.as_ref().map(|e| e.eval);
+    let data_blend = evaluators.as_ref().and_then(|e| e.blend);
     let map = point_function(&mut mb, "map", f32t, |b, p| match data {
         Some(eval) => data::value(b, eval, p),
         None => {
@@ -114,10 +115,12 @@ pub fn lower(scene: &Scene, entry: Entry, options: &tracer::Options) -> naga::Mo
         })
     });
     let [texture, blend] = add_surface_maps(&mut mb, &walk, scene, data_blend);
+    // The camera's trace steps by a far cell's clearance (`data/far.rs`); all else by `map`.
+    let trace_map = evaluators.and_then(|e| e.trace).unwrap_or(map);
     assemble::add(
         &mut mb,
         scene,
-        map,
+        (map, trace_map),
         [material, texture, blend],
         loose,
         entry,

@@ -29,20 +29,7 @@ pub fn prune(scene: &Scene, part: &Part, center: DVec3, radius: f64) -> Part {
     let PartKind::Fold { way, k, children } = &part.kind else {
         return part.clone();
     };
-    // The children's values over the cell: their parent's point moves by zoom × radius.
-    let reach = part.zoom * radius * (1.0 + MARGIN) + MARGIN;
-    let bounds: Vec<(f64, f64)> = children
-        .iter()
-        .map(|(c, negate)| {
-            if !c.proven {
-                return (f64::NEG_INFINITY, f64::INFINITY);
-            }
-            let v = value(scene, c, center);
-            let v = if *negate { -v } else { v };
-            let slack = reach + MARGIN * v.abs();
-            (v - slack, v + slack)
-        })
-        .collect();
+    let bounds = child_bounds(scene, part, center, radius);
     let kept = keep(*way, *k, &bounds);
     let children = kept
         .into_iter()
@@ -69,6 +56,47 @@ pub fn prune(scene: &Scene, part: &Part, center: DVec3, radius: f64) -> Part {
     }
 }
 
+/// The bounds of fold `part`'s children's values (negated where it negates them) over the cell
+/// around `center` of half-diagonal `radius`: their parent's point moves by zoom × radius.
+fn child_bounds(scene: &Scene, part: &Part, center: DVec3, radius: f64) -> Vec<(f64, f64)> {
+    let PartKind::Fold { children, .. } = &part.kind else {
+        return Vec::new();
+    };
+    let reach = part.zoom * radius * (1.0 + MARGIN) + MARGIN;
+    children
+        .iter()
+        .map(|(c, negate)| {
+            if !c.proven {
+                return (f64::NEG_INFINITY, f64::INFINITY);
+            }
+            let v = value(scene, c, center);
+            let v = if *negate { -v } else { v };
+            let slack = reach + MARGIN * v.abs();
+            (v - slack, v + slack)
+        })
+        .collect()
+}
+
+/// A lower bound of the whole tree's value over the cell around `center` of half-diagonal
+/// `radius`, from `part`, its tree pruned for the cell: a root fold's result's bounds as
+/// [`keep_bounded`] ends with them, times its factor — what the device's pre-pass computes too
+/// (`lower/data/prune/first.rs`). None for a root that is a leaf or not proven.
+pub fn lower_bound(scene: &Scene, part: &Part, center: DVec3, radius: f64) -> Option<f64> {
+    let PartKind::Fold { way, k, .. } = &part.kind else {
+        return None;
+    };
+    if !part.proven {
+        return None;
+    }
+    let bounds = child_bounds(scene, part, center, radius);
+    let (_, (lo, hi)) = keep_bounded(*way, *k, &bounds);
+    let raw = match way {
+        Way::Min => lo,
+        Way::Max => -hi,
+    };
+    Some(raw * part.factor)
+}
+
 /// Which of a fold's children, with values within `bounds` (already negated where the fold
 /// negates), can change its result: their indices in order.
 ///
@@ -76,6 +104,12 @@ pub fn prune(scene: &Scene, part: &Part, center: DVec3, radius: f64) -> Part {
 /// r > min(aᵢ) − k: each smooth step subtracts h²k/4 with h = (k − |r − a|)/k, and with
 /// δ = (min − r)/k a step gives at most δ + (1 − δ)²/4 < 1 whenever δ < 1. A maximum mirrors it.
 pub fn keep(way: Way, k: f64, bounds: &[(f64, f64)]) -> Vec<usize> {
+    keep_bounded(way, k, bounds).0
+}
+
+/// [`keep`], with the bounds of the fold's result over the cell that the walk ends with (as a
+/// minimum sees them: a maximum's negated): what the pre-pass marks a far cell by.
+pub fn keep_bounded(way: Way, k: f64, bounds: &[(f64, f64)]) -> (Vec<usize>, (f64, f64)) {
     // Work on minima: a maximum's bounds are negated (max(a, b) = −min(−a, −b), smoothly too).
     let flip = |(lo, hi): (f64, f64)| match way {
         Way::Min => (lo, hi),
@@ -104,7 +138,7 @@ pub fn keep(way: Way, k: f64, bounds: &[(f64, f64)]) -> Vec<usize> {
             lo = (lo.min(blo) - dip).max(lowest - k);
         }
     }
-    kept
+    (kept, (lo, hi))
 }
 
 /// Cells a side of the coarser grid a fine one is pruned from (see [`map_grid`]). Measured on
@@ -112,7 +146,7 @@ pub fn keep(way: Way, k: f64, bounds: &[(f64, f64)]) -> Vec<usize> {
 /// 64, 32, 16, 8, 4), 326 ms with 4 (64, 16, 4).
 pub const SPLIT: usize = 2;
 
-/// `made` of each cell's tree for the grid from `lo` of `n` cells of edge `size`, x fastest
+/// `made` of each cell's tree (and the cell's centre) for the grid from `lo` of `n` cells of edge `size`, x fastest
 /// (the fine cells' trees are not kept: a grid of millions of cells holds only what `made`
 /// makes of them). Pruned hierarchically, as the paper does (§4.2): where the grid is larger
 /// than `2 · SPLIT` cells a side, each cell is pruned from the tree of the coarser cell,
@@ -123,7 +157,7 @@ pub fn map_grid<R: Send>(
     scene: &Scene,
     part: &Part,
     (lo, size, n): (DVec3, f64, [usize; 3]),
-    made: impl Fn(Part) -> R + Sync,
+    made: impl Fn(Part, DVec3) -> R + Sync,
 ) -> Vec<R> {
     let radius = size * 3f64.sqrt() / 2.0;
     let cells: Vec<usize> = (0..n[0] * n[1] * n[2]).collect();
@@ -132,20 +166,22 @@ pub fn map_grid<R: Send>(
         |[x, y, z]: [usize; 3]| lo + (DVec3::new(x as f64, y as f64, z as f64) + 0.5) * size;
     let Some(up) = coarser(n) else {
         return crate::parallel::par_map(&cells, |&i| {
-            made(prune(scene, part, center(at(i)), radius))
+            let c = center(at(i));
+            made(prune(scene, part, c, radius), c)
         });
     };
-    let coarse = map_grid(
-        scene,
-        part,
-        (lo, size * SPLIT as f64, up),
-        std::convert::identity,
-    );
+    let coarse = map_grid(scene, part, (lo, size * SPLIT as f64, up), the_tree);
     crate::parallel::par_map(&cells, |&i| {
         let [x, y, z] = at(i);
         let parent = &coarse[x / SPLIT + up[0] * (y / SPLIT + up[1] * (z / SPLIT))];
-        made(prune(scene, parent, center([x, y, z]), radius))
+        let c = center([x, y, z]);
+        made(prune(scene, parent, c, radius), c)
     })
+}
+
+/// A cell's tree as [`map_grid`] makes it.
+fn the_tree(part: Part, _centre: DVec3) -> Part {
+    part
 }
 
 /// The coarser grid a grid of `n` cells a side is pruned from ([`map_grid`]): `SPLIT` times
@@ -182,7 +218,7 @@ impl Cells {
     /// The scene's tree pruned for each cube of edge `size` of the grid from `lo` with `n`
     /// cells along each axis.
     pub fn new(scene: &Scene, part: &Part, lo: DVec3, size: f64, n: [usize; 3]) -> Cells {
-        let parts = map_grid(scene, part, (lo, size, n), std::convert::identity);
+        let parts = map_grid(scene, part, (lo, size, n), the_tree);
         Cells { lo, size, n, parts }
     }
 

@@ -6,6 +6,7 @@
 
 use super::cells::map_grid;
 use super::program::{self, Code, Refused, Table};
+pub use super::seed::{Seed, seed};
 use super::{Part, Unsupported};
 use crate::catalog::Primitive;
 use crate::scene::Scene;
@@ -120,6 +121,56 @@ impl Data {
     }
 }
 
+/// A range's count bit: the cell is far from every surface (far-field culling, Barbier, Sanchez
+/// et al. 2025 §4.3): the field over the whole cell is at least a clearance the count holds,
+/// which the camera's trace steps by instead of running the program (`lower/data/far.rs`);
+/// shading runs the program.
+pub const FAR: u32 = 1 << 31;
+
+/// The bits of a far cell's count that hold its program's length (a cell whose program is
+/// longer is not marked).
+pub const FAR_LENGTH: u32 = 0xffff;
+
+/// Where a far cell's clearance starts in its count: the clearance in 64ths of the cell's edge,
+/// at most [`FAR_MOST`].
+pub const FAR_SHIFT: u32 = 16;
+
+/// Steps of a far cell's clearance in a cell's edge.
+pub const FAR_STEPS: f64 = 64.0;
+
+/// The largest clearance a count holds, in 64ths of the cell's edge.
+pub const FAR_MOST: u32 = 0x7fff;
+
+/// A cell's count: its program's length `len`, marked [`FAR`] with its clearance where `lower`
+/// (a lower bound of the field over the cell, none where the tree is not proven) is at least
+/// the cell's half-diagonal (cells of edge `size`) — there a step of the clearance crosses the
+/// cell in a few — and the program is short enough to share the count.
+pub fn far_count(len: u32, lower: Option<f64>, size: f64) -> u32 {
+    let radius = size * 3f64.sqrt() / 2.0;
+    match lower {
+        Some(lower) if lower >= radius && len <= FAR_LENGTH => {
+            let steps = ((lower / size) * FAR_STEPS)
+                .floor()
+                .min(f64::from(FAR_MOST)) as u32;
+            FAR | steps << FAR_SHIFT | len
+        }
+        _ => len,
+    }
+}
+
+/// A range's program length and, for a far cell, the clearance (a lower bound of the field over
+/// the cell) for cells of edge `size`.
+pub fn unpack_count(count: u32, size: f64) -> (u32, Option<f64>) {
+    if count & FAR == 0 {
+        return (count, None);
+    }
+    let steps = (count >> FAR_SHIFT) & FAR_MOST;
+    (
+        count & FAR_LENGTH,
+        Some(f64::from(steps) / FAR_STEPS * size),
+    )
+}
+
 /// The data form's buffers by name, in the order of `layout::TAPE_BINDINGS` and
 /// [`Data::buffers`], with the type of their elements as WGSL spells it.
 pub const BUFFERS: [(&str, &str); 3] = [
@@ -174,7 +225,7 @@ impl Layout {
 pub const HEADER: usize = 4;
 
 /// The grid's header entries of the ranges buffer (see [`HEADER`]).
-fn header(layout: &Layout) -> [[u32; 2]; HEADER] {
+pub(super) fn header(layout: &Layout) -> [[u32; 2]; HEADER] {
     let f = |x: f64| (x as f32).to_bits();
     let [nx, ny, nz] = layout.n.map(|n| n as u32);
     [
@@ -326,7 +377,15 @@ pub fn data(scene: &Scene, tree: &Part, layout: &Layout) -> Result<Data, Why> {
     let [nx, ny, nz] = layout.n;
     let table = Table::new(scene, tree).map_err(Why::Program)?;
     let grid = (layout.lo, layout.size, [nx, ny, nz]);
-    let codes = map_grid(scene, tree, grid, |part| program::encode(&table, &part));
+    // A cell far from every surface is marked with a bound of the field over it (for the
+    // camera's trace, `far_count`): the root fold's result's bounds, as the pruning ends with
+    // them.
+    let radius = layout.size * 3f64.sqrt() / 2.0;
+    let codes = map_grid(scene, tree, grid, |part, centre| {
+        let code = program::encode(&table, &part)?;
+        let lower = super::cells::lower_bound(scene, &part, centre, radius);
+        Ok::<_, Refused>((code, lower))
+    });
     let count = codes.len();
     let mut code = Vec::new();
     let mut ranges = Vec::with_capacity(HEADER + count + 1);
@@ -335,14 +394,14 @@ pub fn data(scene: &Scene, tree: &Part, layout: &Layout) -> Result<Data, Why> {
     // Cells with the same program (neighbours that keep the same parts) share it.
     let mut seen: std::collections::HashMap<Vec<u32>, [u32; 2]> = std::collections::HashMap::new();
     for p in codes {
-        let p: Code = p.map_err(Why::Program)?;
+        let (p, lower): (Code, Option<f64>) = p.map_err(Why::Program)?;
         leaves += p.leaves;
-        let range = *seen.entry(p.words).or_insert_with_key(|words| {
+        let [start, len] = *seen.entry(p.words).or_insert_with_key(|words| {
             let range = [code.len() as u32, words.len() as u32];
             code.extend_from_slice(words);
             range
         });
-        ranges.push(range);
+        ranges.push([start, far_count(len, lower, layout.size)]);
     }
     let beyond = beyond(scene, tree, layout, &table)?;
     ranges.push([code.len() as u32, beyond.len() as u32]);
@@ -357,7 +416,12 @@ pub fn data(scene: &Scene, tree: &Part, layout: &Layout) -> Result<Data, Why> {
 
 /// The program outside the grid: the parts it does not hold, with the proxy for the rest
 /// (empty where it holds them all).
-fn beyond(scene: &Scene, tree: &Part, layout: &Layout, table: &Table) -> Result<Vec<u32>, Why> {
+pub(super) fn beyond(
+    scene: &Scene,
+    tree: &Part,
+    layout: &Layout,
+    table: &Table,
+) -> Result<Vec<u32>, Why> {
     let part = match (layout.proxy, outside(scene, tree)) {
         (Some(_), None) => return Ok(Vec::new()),
         (_, Some(o)) => o,
@@ -365,74 +429,6 @@ fn beyond(scene: &Scene, tree: &Part, layout: &Layout, table: &Table) -> Result<
     };
     let p = program::encode(table, &part).map_err(Why::Program)?;
     Ok(p.words)
-}
-
-/// What the pre-pass on the GPU starts from (`lower/data/prune.rs` prunes, the runtime's
-/// `gpu/prune.rs` runs it): the table and what the pre-pass knows of its parts, the whole
-/// tree's program and the one outside the grid, the grid's header and the grids pruned in
-/// turn. The GPU writes every cell's program after these.
-#[derive(Clone, Debug)]
-pub struct Seed {
-    /// The table of the tree's parts, as [`Data::nodes`].
-    pub nodes: Vec<[u32; 4]>,
-    /// Each part's parent, provenness and parent's zoom (`Table::meta`).
-    pub meta: Vec<[u32; 4]>,
-    /// The whole tree's program, then the one outside the grid.
-    pub code: Vec<u32>,
-    /// The whole program's range in `code`.
-    pub whole: [u32; 2],
-    /// The outside program's range in `code`.
-    pub outside: [u32; 2],
-    /// The grid's header entries of the ranges buffer ([`HEADER`]).
-    pub header: [[u32; 2]; HEADER],
-    /// The grids pruned in turn (`cells::levels`), coarsest first, the layout's last, each
-    /// with its cells' edge length; all from the layout's lowest corner.
-    pub levels: Vec<([usize; 3], f64)>,
-    /// The grid's lowest corner.
-    pub lo: DVec3,
-    /// How many folds deep the tree nests (`program::height`): the open folds the pre-pass
-    /// holds at once.
-    pub height: usize,
-}
-
-impl Seed {
-    /// The cells of the layout's grid (its last level).
-    pub fn cells(&self) -> usize {
-        self.levels.last().map_or(0, |(n, _)| n.iter().product())
-    }
-}
-
-/// The pre-pass's seed for `tree` on `layout`'s grid (see [`Seed`]); none where the layout
-/// has no grid (every point runs the whole program: nothing to prune).
-pub fn seed(scene: &Scene, tree: &Part, layout: &Layout) -> Result<Option<Seed>, Why> {
-    if layout.n.iter().product::<usize>() == 0 {
-        return Ok(None);
-    }
-    let table = Table::new(scene, tree).map_err(Why::Program)?;
-    let whole = program::encode(&table, tree).map_err(Why::Program)?.words;
-    let beyond = beyond(scene, tree, layout, &table)?;
-    let w = whole.len() as u32;
-    let mut size = layout.size * (super::cells::SPLIT as f64).powi(-1);
-    let mut levels: Vec<([usize; 3], f64)> = super::cells::levels(layout.n)
-        .into_iter()
-        .rev()
-        .map(|n| {
-            size *= super::cells::SPLIT as f64;
-            (n, size)
-        })
-        .collect();
-    levels.reverse();
-    Ok(Some(Seed {
-        nodes: table.to_gpu(),
-        meta: table.meta(tree),
-        whole: [0, w],
-        outside: [w, beyond.len() as u32],
-        code: whole.into_iter().chain(beyond).collect(),
-        header: header(layout),
-        levels,
-        lo: layout.lo,
-        height: program::height(tree),
-    }))
 }
 
 /// Why the scene has no data form, in words for the user.

@@ -11,6 +11,7 @@ pub mod cells;
 pub mod data;
 pub mod eval;
 pub mod program;
+pub mod seed;
 
 use crate::catalog::traits::{Fold, Motion};
 use crate::scene::{NodeId, NodeKind, Scene};

@@ -9,7 +9,8 @@ use naga::ScalarKind;
 /// cell size, cells along x, y and z (as floats and as u32s) and the proxy's margin.
 pub(super) struct Grid {
     lo: Ex,
-    size: Ex,
+    /// The cells' edge.
+    pub size: Ex,
     n: Ex,
     counts: [Ex; 3],
     margin: Ex,
@@ -105,4 +106,16 @@ pub(super) fn cell_range(
     let index = b.select(inside, index, total);
     let ptr = b.index(ranges, index);
     (b.load(ptr), Some((inside, g)))
+}
+
+/// A range's program length from its count (`tape::data::FAR`: a far cell's count holds its
+/// clearance above the length).
+pub(super) fn length(b: &mut FnBuilder, count: Ex) -> Ex {
+    let far = b.u(crate::tape::data::FAR);
+    let bit = b.bin(naga::BinaryOperator::And, count, far);
+    let zero = b.u(0);
+    let is_far = b.bin(naga::BinaryOperator::NotEqual, bit, zero);
+    let mask = b.u(crate::tape::data::FAR_LENGTH);
+    let short = b.bin(naga::BinaryOperator::And, count, mask);
+    b.select(is_far, short, count)
 }

@@ -112,7 +112,7 @@ pub(in crate::lower) fn add(mb: &mut ModuleBuilder, kinds: &[&'static Primitive]
         len,
         start,
     };
-    first::walk(&mut b, walk, &kinds, (centre, radius, scale), height);
+    let root = first::walk(&mut b, walk, &kinds, (centre, radius, scale), height);
     let (kept, leaves) = pack::walk(&mut b, walk, height);
     // The cell's program, from its scratch to the programs' buffer.
     let capacity = field(&mut b, "capacity");
@@ -125,11 +125,12 @@ pub(in crate::lower) fn add(mb: &mut ModuleBuilder, kinds: &[&'static Primitive]
         let p = b.index(code, at);
         b.store(p, w);
     });
-    let range = b.compose(uvec2, vec![to, kept]);
-    b.store(out, range);
     let counting = field(&mut b, "count_leaves");
     let zero = b.u(0);
     let counting = b.bin(Op::NotEqual, counting, zero);
+    let count = far_count(&mut b, (root, kept), (nodes, meta), (size, counting));
+    let range = b.compose(uvec2, vec![to, count]);
+    b.store(out, range);
     b.if_(
         counting,
         |b| {
@@ -140,6 +141,56 @@ pub(in crate::lower) fn add(mb: &mut ModuleBuilder, kinds: &[&'static Primitive]
     );
     let f = b.finish();
     super::super::entry::compute_main(mb, f, [crate::layout::PRUNE_WORKGROUP, 1, 1]);
+}
+
+/// The cell's count: `kept` words, marked far with its clearance (`tape::data::far_count`)
+/// where this is the layout's grid (`last`), the root is a proven fold, and its value's lower
+/// bound over the cell (its frame's, `first::Root::lower`) is at least the cell's
+/// half-diagonal (cells of edge `size`).
+fn far_count(
+    b: &mut FnBuilder,
+    (root, kept): (first::Root, Ex),
+    (nodes, meta): (Ex, Ex),
+    (size, last): (Ex, Ex),
+) -> Ex {
+    use crate::tape::data::{FAR, FAR_LENGTH, FAR_MOST, FAR_SHIFT, FAR_STEPS};
+    let zero = b.u(0);
+    let ptr = b.index(nodes, zero);
+    let head = b.load(ptr);
+    let ptr = b.index(meta, zero);
+    let m = b.load(ptr);
+    let proven = b.at(m, 1);
+    let proven = b.bin(Op::NotEqual, proven, zero);
+    let lower = root.lower(b, head);
+    // (f32's rounding of the frame's few operations.)
+    let slack = b.abs(lower);
+    let tiny = b.f(1.0 / 1_048_576.0);
+    let slack = b.mul(slack, tiny);
+    let lower = b.sub(lower, slack);
+    let half_diagonal = b.f(3f64.sqrt() / 2.0);
+    let radius = b.mul(size, half_diagonal);
+    let clear = b.ge(lower, radius);
+    let short = b.u(FAR_LENGTH);
+    let short = b.le(kept, short);
+    let mut far = b.bin(Op::LogicalAnd, root.fold, proven);
+    for c in [clear, short, last] {
+        far = b.bin(Op::LogicalAnd, far, c);
+    }
+    let steps = b.div(lower, size);
+    let per = b.f(FAR_STEPS);
+    let steps = b.mul(steps, per);
+    let steps = b.math(naga::MathFunction::Floor, &[steps]);
+    let most = b.f(f64::from(FAR_MOST));
+    let steps = b.min(steps, most);
+    let zerof = b.f(0.0);
+    let steps = b.max(steps, zerof);
+    let steps = b.cast(steps, ScalarKind::Uint);
+    let shift = b.u(FAR_SHIFT);
+    let steps = b.bin(Op::ShiftLeft, steps, shift);
+    let bit = b.u(FAR);
+    let marked = b.bin(Op::InclusiveOr, bit, steps);
+    let marked = b.bin(Op::InclusiveOr, marked, kept);
+    b.select(far, marked, kept)
 }
 
 /// The counter's fields (`layout::PRUNE_COUNTER_FIELDS`).

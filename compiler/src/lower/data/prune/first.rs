@@ -14,7 +14,7 @@ use naga::{BinaryOperator as Op, Function, Handle, ScalarKind};
 /// (`cells::keep`'s lo, hi and lowest, as a minimum sees them), how many children it has seen
 /// and where its first child's instructions start; and how many are open.
 #[derive(Clone, Copy)]
-struct Frames {
+pub(super) struct Frames {
     value: Ex,
     lo: Ex,
     hi: Ex,
@@ -32,7 +32,7 @@ pub(super) fn walk(
     kinds: &[(Handle<Function>, &'static Primitive)],
     (centre, radius, scale): (Ex, Ex, Ex),
     height: usize,
-) {
+) -> Root {
     let (f32t, u32t) = (b.m.f32(), b.m.u32());
     let (fty, uty) = (array_of(b, f32t, height), array_of(b, u32t, height));
     let zero = b.u(0);
@@ -47,6 +47,9 @@ pub(super) fn walk(
     };
     let v = b.local("v", f32t, None);
     let cs = b.local("cs", u32t, None);
+    let boolt = b.m.bool();
+    let no = b.boolean(false);
+    let root_fold = b.local("root_fold", boolt, Some(no));
     let Buffers {
         nodes,
         meta,
@@ -108,9 +111,39 @@ pub(super) fn walk(
         b.if_(
             child,
             |b| join(b, (walk, frames), part, (radius, scale)),
-            |_| {},
+            |b| b.store(root_fold, is_end),
         );
     });
+    Root {
+        frames,
+        fold: b.load(root_fold),
+    }
+}
+
+/// What the first walk knows of the root at its end: whether it is a fold, and the frames,
+/// whose first (the root fold's) holds the bounds of its result over the cell.
+#[derive(Clone, Copy)]
+pub(super) struct Root {
+    pub frames: Frames,
+    pub fold: Ex,
+}
+
+impl Root {
+    /// A lower bound of the root fold's value over the cell (its result's bounds, as a minimum
+    /// sees them, turned back for a largest fold, times its factor); `head`: the root's.
+    pub fn lower(&self, b: &mut FnBuilder, head: Ex) -> Ex {
+        let zero = b.u(0);
+        let lo = b.index(self.frames.lo, zero);
+        let lo = b.load(lo);
+        let hi = b.index(self.frames.hi, zero);
+        let hi = b.load(hi);
+        let above = b.neg(hi);
+        let largest = flag(b, head, crate::tape::program::OWN_LARGEST);
+        let raw = b.select(largest, above, lo);
+        let factor = b.at(head, 2);
+        let factor = b.bitcast(factor, ScalarKind::Float);
+        b.mul(raw, factor)
+    }
 }
 
 /// A part the first walk has just finished: its instruction, head and meta, its value as its
