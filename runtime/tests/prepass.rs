@@ -63,7 +63,7 @@ fn the_gpu_prepass_prunes_as_the_cpu_does() {
     for (name, source) in scenes() {
         let scene = compile(&source);
         let (tree, layout) = data::layout(&scene, None).expect("a data form");
-        let seed = data::seed(&scene, &tree, &layout)
+        let seed = sdfc_compiler::tape::seed::seed(&scene, &tree, &layout)
             .expect("a seed")
             .expect("a grid");
         let pruner = gpu.pruner(&scene).unwrap().expect("a pre-pass");

@@ -6,7 +6,6 @@
 
 use super::cells::map_grid;
 use super::program::{self, Code, Refused, Table};
-pub use super::seed::{Seed, seed};
 use super::{Part, Unsupported};
 use crate::catalog::Primitive;
 use crate::scene::Scene;

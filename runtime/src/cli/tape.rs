@@ -88,7 +88,8 @@ pub fn set_tape(
     let clock = std::time::Instant::now();
     let (tree, layout) = layout_at(scene, valued, cells)?;
     if let Some(pruner) = pruner
-        && let Some(seed) = data::seed(valued, &tree, &layout).map_err(|w| fail(scene, w))?
+        && let Some(seed) =
+            sdfc_compiler::tape::seed::seed(valued, &tree, &layout).map_err(|w| fail(scene, w))?
         && let Some(made) = gpu.prune(pruner, &seed)?
     {
         return Ok(TapeMade {

@@ -8,7 +8,8 @@ use sdfc_compiler::layout::{
     PRUNE_BINDINGS, PRUNE_LEVEL_BYTES, PRUNE_SCRATCH_MISSED, PRUNE_WORKGROUP,
 };
 use sdfc_compiler::scene::Scene;
-use sdfc_compiler::tape::data::{HEADER, Seed};
+use sdfc_compiler::tape::data::HEADER;
+use sdfc_compiler::tape::seed::Seed;
 use wgpu::util::DeviceExt;
 
 /// The pre-pass's pipeline for a scene, compiled once for every new set of parameters.
