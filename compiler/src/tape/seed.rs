@@ -75,3 +75,99 @@ pub fn seed(scene: &Scene, tree: &Part, layout: &Layout) -> Result<Option<Seed>,
         height: program::height(tree),
     }))
 }
+
+/// Words of a level's uniform (`layout::PRUNE_LEVEL_FIELDS`).
+pub const LEVEL_WORDS: usize = crate::layout::PRUNE_LEVEL_BYTES as usize / 4;
+
+/// Where a level's uniform holds what the host fills in for each dispatch (its word, of
+/// [`LEVEL_WORDS`]): the programs' room, the scratch's, the dispatch's first cell.
+pub const ROOM_WORDS: [usize; 3] = [14, 17, 18];
+
+impl Seed {
+    /// The ranges buffer's first contents and each level's first entry: the header, the grid's
+    /// cells (the last level's, as the tracer reads them), the outside program's range, the
+    /// whole program's (the first level's parent), then every coarser level's cells.
+    pub fn ranges(&self) -> (Vec<u32>, Vec<u32>) {
+        let cells = self.cells();
+        let mut words: Vec<u32> = self.header.iter().flatten().copied().collect();
+        words.resize(2 * (HEADER + cells), 0);
+        words.extend(self.outside);
+        words.extend(self.whole);
+        let mut bases = Vec::with_capacity(self.levels.len());
+        let mut next = HEADER + cells + 2;
+        for (l, (n, _)) in self.levels.iter().enumerate() {
+            if l + 1 == self.levels.len() {
+                bases.push(HEADER as u32);
+            } else {
+                bases.push(next as u32);
+                next += n.iter().product::<usize>();
+            }
+        }
+        words.resize(2 * next, 0);
+        (words, bases)
+    }
+
+    /// Level `l`'s uniform (`layout::PRUNE_LEVEL_FIELDS`), its levels' first ranges entries
+    /// `bases` ([`Seed::ranges`]), with the programs' and the scratch's room (words) and the
+    /// dispatch's first cell at [`ROOM_WORDS`].
+    pub fn level_words(
+        &self,
+        l: usize,
+        bases: &[u32],
+        (code, scratch, first): (u32, u32, u32),
+    ) -> [u32; LEVEL_WORDS] {
+        // (The words the host fills in are the uniform's fields of those names.)
+        assert!(
+            ["capacity", "scratch_capacity", "first_cell"]
+                .iter()
+                .zip(ROOM_WORDS)
+                .all(|(name, at)| crate::layout::PRUNE_LEVEL_FIELDS
+                    .iter()
+                    .any(|&(n, offset)| n == *name && offset as usize == 4 * at))
+        );
+        let (n, size) = self.levels[l];
+        let whole = (HEADER + self.cells() + 1) as u32;
+        let (up, split, in_base) = match l {
+            // The coarsest grid's cells all prune the whole program.
+            0 => ([1, 1, 1], u32::MAX, whole),
+            _ => {
+                let up = self.levels[l - 1].0;
+                let split = super::cells::SPLIT as u32;
+                (up.map(|k| k as u32), split, bases[l - 1])
+            }
+        };
+        let hi = self.lo + DVec3::from(n.map(|k| k as f64)) * size;
+        let scale = self.lo.abs().max(hi.abs()).max_element() + (hi - self.lo).length();
+        let f = |x: f64| (x as f32).to_bits();
+        let last = l + 1 == self.levels.len();
+        let cells = n.iter().product::<usize>() as u32;
+        let [nx, ny, nz] = n.map(|k| k as u32);
+        let (lo, s) = (self.lo, f(size));
+        let mut words = [
+            f(lo.x),
+            f(lo.y),
+            f(lo.z),
+            s,
+            nx,
+            ny,
+            nz,
+            cells,
+            up[0],
+            up[1],
+            up[2],
+            split,
+            in_base,
+            bases[l],
+            0,
+            f(scale),
+            u32::from(last),
+            0,
+            0,
+            0,
+        ];
+        for (at, x) in ROOM_WORDS.into_iter().zip([code, scratch, first]) {
+            words[at] = x;
+        }
+        words
+    }
+}

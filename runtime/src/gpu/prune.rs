@@ -4,9 +4,7 @@
 //! `tape::data::data` is the reference it is tested against (`tests/prepass.rs`).
 
 use super::{Error, Gpu, lock};
-use sdfc_compiler::layout::{
-    PRUNE_BINDINGS, PRUNE_LEVEL_BYTES, PRUNE_SCRATCH_MISSED, PRUNE_WORKGROUP,
-};
+use sdfc_compiler::layout::{PRUNE_BINDINGS, PRUNE_SCRATCH_MISSED, PRUNE_WORKGROUP};
 use sdfc_compiler::scene::Scene;
 use sdfc_compiler::tape::data::HEADER;
 use sdfc_compiler::tape::seed::Seed;
@@ -145,7 +143,7 @@ impl Gpu {
         let code = empty("tape code", room.code, wgpu::BufferUsages::COPY_DST | copy);
         self.queue.write_buffer(&code, 0, &le_bytes(&seed.code));
         let scratch = empty("prune scratch", room.scratch, wgpu::BufferUsages::empty());
-        let (ranges_words, bases) = ranges(seed);
+        let (ranges_words, bases) = seed.ranges();
         let ranges = storage("tape ranges", &ranges_words, copy);
         let start = [seed.code.len() as u32, 0, 0, 0];
         let counter = storage("prune counter", &start, copy | wgpu::BufferUsages::COPY_DST);
@@ -159,7 +157,11 @@ impl Gpu {
             for first in (0..total).step_by(room.chunk) {
                 let uniform = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                     label: Some("prune level"),
-                    contents: &level_bytes(seed, (l, first as u32), &bases, room),
+                    contents: &le_bytes(&seed.level_words(
+                        l,
+                        &bases,
+                        (room.code as u32, room.scratch as u32, first as u32),
+                    )),
                     usage: wgpu::BufferUsages::UNIFORM,
                 });
                 let buffers = [&nodes, &meta, &code, &ranges, &uniform, &counter, &scratch];
@@ -235,70 +237,4 @@ fn le_bytes(words: &[u32]) -> Vec<u8> {
 /// The bytes of the ranges the tracer reads: the header, the grid's cells, the outside one.
 fn ranges_bytes(seed: &Seed) -> usize {
     (HEADER + seed.cells() + 1) * 8
-}
-
-/// The ranges buffer's first contents and each level's first entry: the header, the grid's
-/// cells (the last level's, as the tracer reads them), the outside program's range, the whole
-/// program's (the first level's parent), then every coarser level's cells.
-fn ranges(seed: &Seed) -> (Vec<u32>, Vec<u32>) {
-    let cells = seed.cells();
-    let mut words: Vec<u32> = seed.header.iter().flatten().copied().collect();
-    words.resize(2 * (HEADER + cells), 0);
-    words.extend(seed.outside);
-    words.extend(seed.whole);
-    let mut bases = Vec::with_capacity(seed.levels.len());
-    let mut next = HEADER + cells + 2;
-    for (l, (n, _)) in seed.levels.iter().enumerate() {
-        if l + 1 == seed.levels.len() {
-            bases.push(HEADER as u32);
-        } else {
-            bases.push(next as u32);
-            next += cells_of(*n);
-        }
-    }
-    words.resize(2 * next, 0);
-    (words, bases)
-}
-
-/// Level `l`'s uniform (`layout::PRUNE_LEVEL_FIELDS`) for the dispatch from cell `first`.
-fn level_bytes(seed: &Seed, (l, first): (usize, u32), bases: &[u32], room: Room) -> Vec<u8> {
-    let (n, size) = seed.levels[l];
-    let whole = (HEADER + seed.cells() + 1) as u32;
-    let (up, split, in_base) = match l {
-        // The coarsest grid's cells all prune the whole program.
-        0 => ([1, 1, 1], u32::MAX, whole),
-        _ => {
-            let up = seed.levels[l - 1].0;
-            let split = sdfc_compiler::tape::cells::SPLIT as u32;
-            (up.map(|k| k as u32), split, bases[l - 1])
-        }
-    };
-    let hi = seed.lo + glam::DVec3::from(n.map(|k| k as f64)) * size;
-    let scale = seed.lo.abs().max(hi.abs()).max_element() + (hi - seed.lo).length();
-    let f = |x: f64| (x as f32).to_bits();
-    let last = l + 1 == seed.levels.len();
-    let words: [u32; 20] = [
-        f(seed.lo.x),
-        f(seed.lo.y),
-        f(seed.lo.z),
-        f(size),
-        n[0] as u32,
-        n[1] as u32,
-        n[2] as u32,
-        cells_of(n) as u32,
-        up[0],
-        up[1],
-        up[2],
-        split,
-        in_base,
-        bases[l],
-        room.code as u32,
-        f(scale),
-        u32::from(last),
-        room.scratch as u32,
-        first,
-        0,
-    ];
-    debug_assert_eq!(words.len() * 4, PRUNE_LEVEL_BYTES as usize);
-    le_bytes(&words)
 }
