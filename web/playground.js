@@ -79,13 +79,13 @@ async function makeRenderer() {
     const here = new URL("scene.json", location.href);
     return {
       kind: "webgpu", target: "wgsl", entry: "library", format,
-      make: (r, f) => createHostFrom(device, r.code, r.manifest, f, here, r.volumes, r.data),
+      make: (r, f) => createHostFrom(device, r.code, r.manifest, f, here, r.volumes, r.data, r.prune),
       draw(host, eye, values) {
         const encoder = host.draw(context.getCurrentTexture().createView(), canvas.width, canvas.height, eye, values);
         device.queue.submit([encoder.finish()]);
       },
       pixels: async (r, w, h, values, eye) =>
-        hostPixels(await createHostFrom(device, r.code, r.manifest, "rgba8unorm", here, r.volumes, r.data), w, h, values, eye ?? r.manifest.camera.eye),
+        hostPixels(await createHostFrom(device, r.code, r.manifest, "rgba8unorm", here, r.volumes, r.data, r.prune), w, h, values, eye ?? r.manifest.camera.eye),
     };
   }
   const gl = canvas.getContext("webgl2");
@@ -161,6 +161,9 @@ async function main() {
     // A scene of many parts compiles to the data form (WebGPU): its buffers are made by the
     // compiler in the page at the sliders' values, again when a slider moves its parts.
     if (r.ok && r.manifest.data) r.data = (v) => sdfc.data(v);
+    // Pruned on the page's device where the compiler gave its pre-pass (WebGPU).
+    if (r.ok && r.manifest.data && r.prune) r.prune = { shader: r.prune, seed: (v) => sdfc.seed(v) };
+    else r.prune = null;
     if (!r.ok || !renderer.make) {
       state.compiles += 1;
       state.compiledText = text;

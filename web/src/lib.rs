@@ -1,9 +1,9 @@
 //! sdfc's compiler in the browser: `compile(request)` takes a scene's source and returns the
 //! shader, its manifest and the diagnostics as `sdfc emit` and `sdfc check --message-format json`
 //! give them, as JSON, through plain WebAssembly exports (`sdfc_alloc`, `sdfc_compile`,
-//! `sdfc_free`, `sdfc_volume`, `sdfc_data` and the memory) that `web/sdfc.mjs` wraps; a scene of
-//! many parts compiles to the data form for WebGPU, its buffers made at the page's values by
-//! `sdfc_data`. No wasm-bindgen: a string in and
+//! `sdfc_free`, `sdfc_volume`, `sdfc_data`, `sdfc_seed` and the memory) that `web/sdfc.mjs`
+//! wraps; a scene of many parts compiles to the data form for WebGPU, its buffers made at the
+//! page's values by `sdfc_data`, or pruned by the page's device from `sdfc_seed`. No wasm-bindgen: a string in and
 //! a string out need no generated glue, and the build needs no tool beyond cargo (our choice;
 //! issue 36 suggested wasm-bindgen).
 //!
@@ -17,6 +17,7 @@ use sdfc_compiler::lipschitz::{self, Effort, Values};
 use sdfc_compiler::lower::{Entry, tracer::Options};
 use sdfc_compiler::scene::{Scene, Trace};
 use sdfc_compiler::syntax::NoFiles;
+use sdfc_compiler::tape::data::Layout;
 use serde_json::{Value, json};
 use std::sync::Arc;
 
@@ -78,12 +79,18 @@ pub fn compile(request: &str) -> String {
     response["tracer"] = json!({ "name": method, "settings": settings });
     // `"form": "inline"` (the downloads: what `sdfc emit` writes) keeps every part in the code.
     let inline = text("form", "auto") == "inline";
-    match emitted(&scene, &name, target, entry, inline) {
-        Ok((code, manifest)) => {
+    let made = emitted(&scene, &name, target, entry, inline).and_then(|(code, manifest, data)| {
+        // A data form's pre-pass, for the page's device (`sdfc.seed` gives its input).
+        let prune = if data { prune_shader(&scene)? } else { None };
+        Ok((code, manifest, prune))
+    });
+    match made {
+        Ok((code, manifest, prune)) => {
             LAST_VOLUMES.with(|v| *v.borrow_mut() = scene.volumes());
             response["ok"] = json!(true);
             response["code"] = json!(code);
             response["manifest"] = manifest;
+            response["prune"] = json!(prune);
         }
         Err(e) => response["error"] = json!(format!("internal compiler error: {e}")),
     }
@@ -100,12 +107,11 @@ thread_local! {
     static LAST_DATA: std::cell::RefCell<Option<Scene>> = const { std::cell::RefCell::new(None) };
 }
 
-/// The data form's three buffers (nodes, code, ranges: as `sdfc emit --form data` writes
-/// them) for the last scene [`compile`] compiled as data, at the parameter values of
-/// `request` (JSON `{"name": [numbers], …}`; others at their defaults), each after its length
-/// (4 bytes, little-endian); `None` where the last scene is not drawn as data, or where these
-/// values need another shader (the parts' kinds, nesting or bounds changed).
-pub fn data_at(request: &str) -> Option<Vec<u8>> {
+/// The last scene [`compile`] compiled as data at the parameter values of `request` (JSON
+/// `{"name": [numbers], …}`; others at their defaults), with its tree and layout; `None` where
+/// the last scene is not drawn as data, or where these values need another shader (the parts'
+/// kinds, nesting or bounds changed).
+fn valued_at(request: &str) -> Option<(Scene, sdfc_compiler::tape::Part, Layout)> {
     use sdfc_compiler::tape::data;
     let values: std::collections::HashMap<String, Vec<f64>> =
         serde_json::from_str(request).unwrap_or_default();
@@ -115,17 +121,83 @@ pub fn data_at(request: &str) -> Option<Vec<u8>> {
         let valued = scene.with_values(&values);
         let (_, compiled) = data::layout(scene, None).ok()?;
         let (tree, layout) = data::layout(&valued, None).ok()?;
-        if !compiled.holds(&layout) {
-            return None;
-        }
-        let made = data::data(&valued, &tree, &layout).ok()?;
-        let mut out = Vec::new();
-        for b in made.buffers() {
-            out.extend_from_slice(&(b.len() as u32).to_le_bytes());
-            out.extend_from_slice(&b);
-        }
-        Some(out)
+        compiled.holds(&layout).then_some((valued, tree, layout))
     })
+}
+
+/// Byte arrays, each after its length (4 bytes, little-endian).
+fn parts(parts: &[&[u8]]) -> Vec<u8> {
+    let mut out = Vec::new();
+    for b in parts {
+        out.extend_from_slice(&(b.len() as u32).to_le_bytes());
+        out.extend_from_slice(b);
+    }
+    out
+}
+
+/// Little-endian bytes of u32 words.
+fn bytes_of(words: impl IntoIterator<Item = u32>) -> Vec<u8> {
+    words.into_iter().flat_map(u32::to_le_bytes).collect()
+}
+
+/// The data form's three buffers (nodes, code, ranges: as `sdfc emit --form data` writes
+/// them) for the last scene [`compile`] compiled as data, at the parameter values of
+/// `request` (see [`valued_at`]), each after its length; `None` where there are none.
+pub fn data_at(request: &str) -> Option<Vec<u8>> {
+    let (valued, tree, layout) = valued_at(request)?;
+    let made = sdfc_compiler::tape::data::data(&valued, &tree, &layout).ok()?;
+    let [a, b, c] = made.buffers();
+    Some(parts(&[&a, &b, &c]))
+}
+
+/// What the page's device pre-pass (the compile's `prune` shader) starts from for the last
+/// scene compiled as data at the values of `request` (see [`valued_at`]; `tape::seed`), each
+/// part after its length: the table, what the pre-pass knows of its parts, the whole and
+/// outside programs, the ranges buffer's first contents, and per level its cells and its
+/// uniform's words (the rooms and the first cell, at the compile's `room_words`, left 0 for
+/// the page to fill in). `None` where there is none, or the scene has no grid.
+pub fn seed_at(request: &str) -> Option<Vec<u8>> {
+    let (valued, tree, layout) = valued_at(request)?;
+    let seed = sdfc_compiler::tape::seed::seed(&valued, &tree, &layout).ok()??;
+    let (ranges, bases) = seed.ranges();
+    let mut levels = Vec::new();
+    for (l, (n, _)) in seed.levels.iter().enumerate() {
+        levels.push(n.iter().product::<usize>() as u32);
+        levels.extend(seed.level_words(l, &bases, (0, 0, 0)));
+    }
+    let nodes = bytes_of(seed.nodes.iter().flatten().copied());
+    let meta = bytes_of(seed.meta.iter().flatten().copied());
+    Some(parts(&[
+        &nodes,
+        &meta,
+        &bytes_of(seed.code.iter().copied()),
+        &bytes_of(ranges),
+        &bytes_of(levels),
+    ]))
+}
+
+/// The data form's pre-pass for the device (`lower::prune`) as WGSL, with what a page needs to
+/// run it (docs/playground.md): its workgroup, bindings, the level uniform's words and where
+/// the host's rooms go in it, and the overflow count of a cell that found no scratch.
+fn prune_shader(scene: &Scene) -> Result<Option<Value>, String> {
+    use sdfc_compiler::layout::{PRUNE_BINDINGS, PRUNE_SCRATCH_MISSED, PRUNE_WORKGROUP};
+    use sdfc_compiler::tape::seed::{LEVEL_WORDS, ROOM_WORDS};
+    let Some((module, info, _)) = emit::prune_module(scene).map_err(|e| e.0)? else {
+        return Ok(None);
+    };
+    let Output::Text(code) =
+        emit::write(&module, &info, Target::Wgsl, Entry::Compute).map_err(|e| e.0)?
+    else {
+        return Err("a binary output for WGSL".into());
+    };
+    Ok(Some(json!({
+        "code": code,
+        "workgroup": PRUNE_WORKGROUP,
+        "bindings": PRUNE_BINDINGS,
+        "level_words": LEVEL_WORDS,
+        "room_words": ROOM_WORDS,
+        "scratch_missed": PRUNE_SCRATCH_MISSED,
+    })))
 }
 
 /// Baked volume `index` of the last scene [`compile`] compiled, as the file `sdfc emit` writes
@@ -215,14 +287,14 @@ fn checked(name: &str, source: &str, later: bool) -> (Checked, Vec<Diagnostic>, 
 
 /// The shader and its manifest, as `sdfc emit FILE --target … --entry … --manifest` writes them
 /// (baked volumes named as `emit` would write them beside `NAME.wgsl`; the page is not given
-/// their bytes yet).
+/// their bytes yet), and whether it is the data form.
 fn emitted(
     scene: &Scene,
     name: &str,
     target: Target,
     entry: Entry,
     inline: bool,
-) -> Result<(String, Value), String> {
+) -> Result<(String, Value, bool), String> {
     let mut options = Options::from_scene(scene);
     // WebGPU draws a scene of many parts as data, as `sdfc render` does (`--form auto`): the
     // page asks for its buffers at the sliders' values (`data_at`). WebGL2 has no storage
@@ -265,7 +337,7 @@ fn emitted(
     };
     let manifest = sdfc_compiler::manifest::manifest(scene, &module, &origin);
     match out {
-        Output::Text(code) => Ok((code, manifest)),
+        Output::Text(code) => Ok((code, manifest, data)),
         Output::Binary(_) => Err("a binary output for a text target".into()),
     }
 }
@@ -324,6 +396,21 @@ pub unsafe extern "C" fn sdfc_data(at: *const u8, len: usize) -> *mut u8 {
     // SAFETY: the caller wrote `len` bytes at `at`.
     let request = unsafe { std::slice::from_raw_parts(at, len) };
     match data_at(&String::from_utf8_lossy(request)) {
+        Some(bytes) => handed_over(&bytes),
+        None => std::ptr::null_mut(),
+    }
+}
+
+/// [`seed_at`] for the values of the request of `len` bytes at `at` (UTF-8 JSON), handed over
+/// as [`sdfc_compile`] hands over its response; null where there is none.
+///
+/// # Safety
+/// `at` must point at `len` readable bytes.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sdfc_seed(at: *const u8, len: usize) -> *mut u8 {
+    // SAFETY: the caller wrote `len` bytes at `at`.
+    let request = unsafe { std::slice::from_raw_parts(at, len) };
+    match seed_at(&String::from_utf8_lossy(request)) {
         Some(bytes) => handed_over(&bytes),
         None => std::ptr::null_mut(),
     }

@@ -243,6 +243,9 @@ try {
       form: await page.evaluate(() => Boolean(window.sdfcPlayground.response.manifest.data)),
       follows: await page.evaluate(() => window.sdfcPlayground.response.manifest.data?.follows ?? []),
       compiled: (await page.evaluate(() => window.sdfcPlayground.compiles)) - dataCompiles,
+      // The live canvas's host: how many times its device pruned the cells, how many of those
+      // found no room (made in WebAssembly instead), and the last pre-pass's time.
+      prune: await page.evaluate(() => window.sdfcPlayground.host?.stats ?? null),
       ok: await page.evaluate(() => window.sdfcPlayground.ok),
     };
   }

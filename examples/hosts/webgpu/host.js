@@ -142,6 +142,69 @@ function uploaded(device, manifest, bytes) {
   });
 }
 
+/**
+ * The data form's pre-pass on `device` (docs/data-form.md): `shader` is a compile's `prune`
+ * (the playground's compiler gives it: `{code, workgroup, bindings, level_words, room_words,
+ * scratch_missed}`). `run(seed)` prunes every cell of a seed's grid (`sdfc.seed(values)`:
+ * the table, what the pre-pass knows of its parts, the whole and outside programs, the ranges'
+ * first contents, and each level's cells and uniform), grid by grid in one submission, and
+ * returns the three buffers the library reads (nodes, code, ranges) with a promise of whether
+ * every cell found room (else the host makes the buffers in WebAssembly).
+ */
+function devicePruner(device, shader) {
+  const module = device.createShaderModule({ code: shader.code });
+  const pipeline = device.createComputePipeline({ layout: "auto", compute: { module, entryPoint: "main" } });
+  const limit = Math.min(device.limits.maxStorageBufferBindingSize, device.limits.maxBufferSize);
+  // Cells a dispatch prunes (they share the scratch, emptied between dispatches), and words of
+  // room a cell is given in the programs' buffer and the scratch — as `sdfc render` gives them.
+  const chunk = 16384;
+  const [codePerCell, scratchPerCell] = [24, 512];
+  const { STORAGE, COPY_DST, COPY_SRC, UNIFORM, MAP_READ } = GPUBufferUsage;
+  const buffer = (size, usage, bytes = null) => {
+    const b = device.createBuffer({ size: Math.max(16, Math.ceil(size / 4) * 4), usage });
+    if (bytes) device.queue.writeBuffer(b, 0, bytes);
+    return b;
+  };
+  return {
+    run(seed) {
+      const cells = seed.levels.reduce((n, l) => n + l.cells, 0);
+      const codeWords = Math.min(limit / 4, seed.code.byteLength / 4 + codePerCell * cells);
+      const scratchWords = Math.min(limit / 4, chunk * scratchPerCell);
+      const nodes = buffer(seed.nodes.byteLength, STORAGE | COPY_DST, seed.nodes);
+      const meta = buffer(seed.meta.byteLength, STORAGE | COPY_DST, seed.meta);
+      const ranges = buffer(seed.ranges.byteLength, STORAGE | COPY_DST, seed.ranges);
+      const code = buffer(codeWords * 4, STORAGE | COPY_DST, seed.code);
+      const scratch = buffer(scratchWords * 4, STORAGE);
+      const counter = buffer(16, STORAGE | COPY_DST | COPY_SRC, new Uint32Array([seed.code.byteLength / 4, 0, 0, 0]));
+      const encoder = device.createCommandEncoder();
+      for (const level of seed.levels) {
+        for (let first = 0; first < level.cells; first += chunk) {
+          const words = level.words.slice();
+          [codeWords, scratchWords, first].forEach((x, i) => (words[shader.room_words[i]] = x));
+          const uniform = buffer(words.byteLength, UNIFORM | COPY_DST, words);
+          const entries = [nodes, meta, code, ranges, uniform, counter, scratch].map((b, i) => ({ binding: shader.bindings[i], resource: { buffer: b } }));
+          const pass = encoder.beginComputePass();
+          pass.setPipeline(pipeline);
+          pass.setBindGroup(0, device.createBindGroup({ layout: pipeline.getBindGroupLayout(0), entries }));
+          pass.dispatchWorkgroups(Math.ceil(Math.min(chunk, level.cells - first) / shader.workgroup));
+          pass.end();
+          // The scratch is empty again for the next dispatch.
+          encoder.clearBuffer(counter, 12, 4);
+        }
+      }
+      const readback = buffer(16, MAP_READ | COPY_DST);
+      encoder.copyBufferToBuffer(counter, 0, readback, 0, 16);
+      device.queue.submit([encoder.finish()]);
+      const fits = readback.mapAsync(GPUMapMode.READ).then(() => {
+        const missed = new Uint32Array(readback.getMappedRange())[1];
+        readback.unmap();
+        return missed === 0;
+      });
+      return { buffers: [nodes, code, ranges], fits };
+    },
+  };
+}
+
 /** The values of the parameters the data form's buffers follow, as a key (defaults where unset). */
 function followed(manifest, values) {
   return JSON.stringify(
@@ -170,7 +233,7 @@ export async function createHost(base, format) {
  * parameter they follow changes; else from the files, and those parameters stay at their
  * defaults.
  */
-export async function createHostFrom(device, library, manifest, format, manifestUrl, volumes = null, makeData = null) {
+export async function createHostFrom(device, library, manifest, format, manifestUrl, volumes = null, makeData = null, prune = null) {
   if (manifest.format !== "sdfc-manifest 1") throw new Error(`unknown manifest format ${manifest.format}`);
   const color = manifest.functions.find((f) => f.name === (manifest.prefix ? `${manifest.prefix}_color` : "color"));
   if (!color) throw new Error("the manifest lists no `color`: emit with --entry library");
@@ -200,29 +263,62 @@ export async function createHostFrom(device, library, manifest, format, manifest
     });
     entries.push({ binding: manifest.params.binding.binding, resource: { buffer: paramsBuffer } });
   }
-  // The data form's buffers, at the values of the parameters they follow (`madeAt`).
+  // The data form's buffers, at the values of the parameters they follow (`madeAt`): pruned
+  // on the device where the compiler gave its pre-pass (`prune`: its shader and the seed's
+  // maker), else made in WebAssembly (`makeData`), else loaded from the files.
+  const pruner = prune && manifest.data ? devicePruner(device, prune.shader) : null;
+  const stats = { prunes: 0, fellBack: 0, ms: 0 };
+  let checked = Promise.resolve();
+  const made = (values) => {
+    const seed = pruner && prune.seed(values);
+    if (!seed) {
+      const given = makeData(values);
+      return given && uploaded(device, manifest, given);
+    }
+    const t0 = performance.now();
+    const run = pruner.run(seed);
+    stats.prunes += 1;
+    checked = run.fits.then((ok) => {
+      stats.ms = performance.now() - t0;
+      if (ok) return;
+      // A cell found no room: the buffers made in WebAssembly instead (the next draw).
+      stats.fellBack += 1;
+      data = uploaded(device, manifest, makeData(values));
+      paramsGroup = group();
+    });
+    return (manifest.data?.buffers ?? []).map((b, i) => ({ binding: b.binding.binding, resource: { buffer: run.buffers[i] } }));
+  };
   let madeAt = followed(manifest, {});
-  let data = await dataEntries(device, manifest, manifestUrl, makeData && manifest.data ? makeData({}) : null);
+  let data = makeData && manifest.data ? made({}) : await dataEntries(device, manifest, manifestUrl, null);
   const group = () => device.createBindGroup({ layout: pipeline.getBindGroupLayout(0), entries: [...entries, ...data] });
   let paramsGroup = entries.length + data.length ? group() : null;
-  /** Draws into `view` (a texture view of `width`×`height`) from `eye` with `values`. */
-  function draw(view, width, height, eye, values) {
-    const c = manifest.camera;
-    // The data form's parts were placed at `madeAt`: at other values of the parameters they
-    // follow the buffers are made again, or — without a maker — the drawing is refused (it
-    // would put the parts where they are not).
+  /**
+   * The data form's buffers made for `values` where the parameters they follow changed (see
+   * `draw`); a promise that settles once the device's pre-pass is known to have found room
+   * (or its buffers were made again in WebAssembly).
+   */
+  function update(values) {
     const now = followed(manifest, values);
     if (now !== madeAt) {
       const name = manifest.data.follows.find((n, i) => JSON.stringify(JSON.parse(now)[i]) !== JSON.stringify(JSON.parse(madeAt)[i]));
       if (!makeData) {
         throw new Error(`${name} moves parts of the data form, whose buffers hold them at its default: give it that default in the scene and emit again`);
       }
-      const given = makeData(values);
-      if (!given) throw new Error(`at this value of ${name} the scene's parts need another shader: compile it again`);
-      data = uploaded(device, manifest, given);
+      const next = made(values);
+      if (!next) throw new Error(`at this value of ${name} the scene's parts need another shader: compile it again`);
+      data = next;
       madeAt = now;
       paramsGroup = group();
     }
+    return checked;
+  }
+  /** Draws into `view` (a texture view of `width`×`height`) from `eye` with `values`. */
+  function draw(view, width, height, eye, values) {
+    const c = manifest.camera;
+    // The data form's parts were placed at `madeAt`: at other values of the parameters they
+    // follow the buffers are made again, or — without a maker — the drawing is refused (it
+    // would put the parts where they are not).
+    update(values);
     device.queue.writeBuffer(cameraBuffer, 0, cameraBytes(eye, c.target, c.up, c.fov_degrees, width, height));
     if (paramsBuffer) device.queue.writeBuffer(paramsBuffer, 0, paramsBytes(manifest, values));
     const encoder = device.createCommandEncoder();
@@ -236,7 +332,7 @@ export async function createHostFrom(device, library, manifest, format, manifest
     pass.end();
     return encoder;
   }
-  return { device, manifest, draw };
+  return { device, manifest, draw, update, stats };
 }
 
 /**
@@ -257,6 +353,9 @@ export async function hostPixels(host, width, height, values = {}, eye = host.ma
   });
   const row = Math.ceil((4 * width) / 256) * 256;
   const readback = host.device.createBuffer({ size: row * height, usage: GPUBufferUsage.COPY_DST | GPUBufferUsage.MAP_READ });
+  // (A data form pruned on the device: drawn at once — the queue runs the pre-pass first — and
+  // drawn again if it turns out a cell found no room and the buffers were made in WebAssembly.)
+  const fellBack = host.stats?.fellBack;
   const encoder = host.draw(texture.createView(), width, height, eye, values);
   encoder.copyTextureToBuffer({ texture }, { buffer: readback, bytesPerRow: row }, [width, height]);
   host.device.queue.submit([encoder.finish()]);
@@ -265,6 +364,8 @@ export async function hostPixels(host, width, height, values = {}, eye = host.ma
   const out = new Uint8Array(4 * width * height);
   for (let y = 0; y < height; y++) out.set(data.subarray(y * row, y * row + 4 * width), 4 * width * y);
   readback.unmap();
+  await host.update?.(values);
+  if (host.stats && host.stats.fellBack !== fellBack) return hostPixels(host, width, height, values, eye);
   return out;
 }
 
