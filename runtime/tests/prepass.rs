@@ -74,7 +74,7 @@ fn the_gpu_prepass_prunes_as_the_cpu_does() {
         // The CPU's programs, cell by cell, in the same order.
         let table = Table::new(&scene, &tree).unwrap();
         let grid = (layout.lo, layout.size, layout.n);
-        let cpu = cells::map_grid(&scene, &tree, grid, |p, _| {
+        let cpu = cells::map_grid(&scene, &tree, grid, |p, _, _| {
             program::encode(&table, &p).unwrap().words
         });
         let whole = program::encode(&table, &tree).unwrap();

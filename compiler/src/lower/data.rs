@@ -57,23 +57,33 @@ pub(super) fn add(mb: &mut ModuleBuilder, layout: &Layout, blends: bool) -> Eval
     let code = super::globals::global(mb, "tape_code", code_ty, read, c);
     let ranges = super::globals::global(mb, "tape_ranges", ranges_ty, read, r);
     let buffers = [nodes, code, ranges];
-    let eval = evaluator(mb, layout, buffers, false);
+    let grid = layout.n.iter().product::<usize>() > 0;
     Evaluators {
-        eval,
-        blend: blends.then(|| evaluator(mb, layout, buffers, true)),
-        trace: far::add(mb, layout, ranges, eval),
+        eval: evaluator(mb, layout, buffers, Kind::Eval),
+        blend: blends.then(|| evaluator(mb, layout, buffers, Kind::Blend)),
+        trace: grid.then(|| evaluator(mb, layout, buffers, Kind::Trace)),
     }
 }
 
 /// The evaluator over the buffers: `tape_eval(p) -> vec2(value, tag bits)`, or with `blend`
 /// `tape_blend(p) -> vec3` (the blended materials at `p`: `blend::fold`'s rule on the same
 /// walk).
+/// What an evaluator returns: `tape_eval`'s value and tag, `tape_blend`'s blend, or
+/// `tape_trace`'s value, which a far cell answers with its clearance (`far.rs`).
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Kind {
+    Eval,
+    Blend,
+    Trace,
+}
+
 fn evaluator(
     mb: &mut ModuleBuilder,
     layout: &Layout,
     [nodes, code, ranges]: [Handle<naga::GlobalVariable>; 3],
-    blend: bool,
+    kind: Kind,
 ) -> Handle<Function> {
+    let blend = kind == Kind::Blend;
     let (u32t, f32t) = (mb.u32(), mb.f32());
     // (As deep as the scene's tree needs: none for one fold of leaves.)
     let stack_ty = |mb: &mut ModuleBuilder, base| {
@@ -92,10 +102,10 @@ fn evaluator(
             stride: 16,
         })
     });
-    let (name, ret) = if blend {
-        ("tape_blend", v3)
-    } else {
-        ("tape_eval", v2)
+    let (name, ret) = match kind {
+        Kind::Blend => ("tape_blend", v3),
+        Kind::Eval => ("tape_eval", v2),
+        Kind::Trace => ("tape_trace", f32t),
     };
     let kinds: Vec<(Handle<Function>, &'static crate::catalog::Primitive)> = layout
         .kinds
@@ -108,6 +118,9 @@ fn evaluator(
     let code = b.expr(naga::Expression::GlobalVariable(code));
     let ranges = b.expr(naga::Expression::GlobalVariable(ranges));
     let (range, inside) = cell_range(&mut b, layout, ranges, p);
+    if let (Kind::Trace, Some((inside, grid))) = (kind, &inside) {
+        far::answer(&mut b, range, *inside, grid);
+    }
     let start = b.at(range, 0);
     let len = b.at(range, 1);
     let len = grid::length(&mut b, len);
@@ -153,10 +166,13 @@ fn evaluator(
         let nearer = b.min(v0, d);
         v0 = b.select(inside, v0, nearer);
     }
-    let out = b.compose(v2, vec![v0, t0]);
+    let out = match kind {
+        Kind::Trace => v0,
+        _ => b.compose(v2, vec![v0, t0]),
+    };
     b.ret(Some(out));
     let f = b.finish();
-    mb.add_helper("tape_eval", f)
+    mb.add_helper(name, f)
 }
 
 /// `map_blend`'s blended materials from `tape_blend` (`blend`) at `p`.

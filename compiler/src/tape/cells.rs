@@ -26,11 +26,31 @@ const MARGIN: f64 = 1e-9;
 
 /// `part` pruned to the cell around `center` of half-diagonal `radius` (world units).
 pub fn prune(scene: &Scene, part: &Part, center: DVec3, radius: f64) -> Part {
+    prune_bounded(scene, part, center, radius).0
+}
+
+/// [`prune`], with a lower bound of the whole part's value over the cell where it is a proven
+/// fold: its result's bounds as the walk of [`keep_bounded`] ends with them, times its factor
+/// — what far-field culling marks a cell by (`data::far_count`; the device's pre-pass takes the
+/// same from its frame, `lower/data/prune/first.rs`).
+pub fn prune_bounded(
+    scene: &Scene,
+    part: &Part,
+    center: DVec3,
+    radius: f64,
+) -> (Part, Option<f64>) {
     let PartKind::Fold { way, k, children } = &part.kind else {
-        return part.clone();
+        return (part.clone(), None);
     };
     let bounds = child_bounds(scene, part, center, radius);
-    let kept = keep(*way, *k, &bounds);
+    let (kept, (lo, hi)) = keep_bounded(*way, *k, &bounds);
+    let lower = part.proven.then(|| {
+        let raw = match way {
+            Way::Min => lo,
+            Way::Max => -hi,
+        };
+        raw * part.factor
+    });
     let children = kept
         .into_iter()
         .map(|i| {
@@ -39,7 +59,7 @@ pub fn prune(scene: &Scene, part: &Part, center: DVec3, radius: f64) -> Part {
         })
         .collect();
     // (Field by field: `..part.clone()` would copy the whole subtree only to drop it.)
-    Part {
+    let pruned = Part {
         kind: PartKind::Fold {
             way: *way,
             k: *k,
@@ -53,7 +73,8 @@ pub fn prune(scene: &Scene, part: &Part, center: DVec3, radius: f64) -> Part {
         material: part.material,
         proven: part.proven,
         loose: part.loose,
-    }
+    };
+    (pruned, lower)
 }
 
 /// The bounds of fold `part`'s children's values (negated where it negates them) over the cell
@@ -75,26 +96,6 @@ fn child_bounds(scene: &Scene, part: &Part, center: DVec3, radius: f64) -> Vec<(
             (v - slack, v + slack)
         })
         .collect()
-}
-
-/// A lower bound of the whole tree's value over the cell around `center` of half-diagonal
-/// `radius`, from `part`, its tree pruned for the cell: a root fold's result's bounds as
-/// [`keep_bounded`] ends with them, times its factor — what the device's pre-pass computes too
-/// (`lower/data/prune/first.rs`). None for a root that is a leaf or not proven.
-pub fn lower_bound(scene: &Scene, part: &Part, center: DVec3, radius: f64) -> Option<f64> {
-    let PartKind::Fold { way, k, .. } = &part.kind else {
-        return None;
-    };
-    if !part.proven {
-        return None;
-    }
-    let bounds = child_bounds(scene, part, center, radius);
-    let (_, (lo, hi)) = keep_bounded(*way, *k, &bounds);
-    let raw = match way {
-        Way::Min => lo,
-        Way::Max => -hi,
-    };
-    Some(raw * part.factor)
 }
 
 /// Which of a fold's children, with values within `bounds` (already negated where the fold
@@ -146,7 +147,8 @@ pub fn keep_bounded(way: Way, k: f64, bounds: &[(f64, f64)]) -> (Vec<usize>, (f6
 /// 64, 32, 16, 8, 4), 326 ms with 4 (64, 16, 4).
 pub const SPLIT: usize = 2;
 
-/// `made` of each cell's tree (and the cell's centre) for the grid from `lo` of `n` cells of edge `size`, x fastest
+/// `made` of each cell's tree (with the cell's centre and the tree's lower bound over the
+/// cell, [`prune_bounded`]) for the grid from `lo` of `n` cells of edge `size`, x fastest
 /// (the fine cells' trees are not kept: a grid of millions of cells holds only what `made`
 /// makes of them). Pruned hierarchically, as the paper does (§4.2): where the grid is larger
 /// than `2 · SPLIT` cells a side, each cell is pruned from the tree of the coarser cell,
@@ -157,7 +159,7 @@ pub fn map_grid<R: Send>(
     scene: &Scene,
     part: &Part,
     (lo, size, n): (DVec3, f64, [usize; 3]),
-    made: impl Fn(Part, DVec3) -> R + Sync,
+    made: impl Fn(Part, DVec3, Option<f64>) -> R + Sync,
 ) -> Vec<R> {
     let radius = size * 3f64.sqrt() / 2.0;
     let cells: Vec<usize> = (0..n[0] * n[1] * n[2]).collect();
@@ -167,7 +169,8 @@ pub fn map_grid<R: Send>(
     let Some(up) = coarser(n) else {
         return crate::parallel::par_map(&cells, |&i| {
             let c = center(at(i));
-            made(prune(scene, part, c, radius), c)
+            let (pruned, lower) = prune_bounded(scene, part, c, radius);
+            made(pruned, c, lower)
         });
     };
     let coarse = map_grid(scene, part, (lo, size * SPLIT as f64, up), the_tree);
@@ -175,12 +178,13 @@ pub fn map_grid<R: Send>(
         let [x, y, z] = at(i);
         let parent = &coarse[x / SPLIT + up[0] * (y / SPLIT + up[1] * (z / SPLIT))];
         let c = center([x, y, z]);
-        made(prune(scene, parent, c, radius), c)
+        let (pruned, lower) = prune_bounded(scene, parent, c, radius);
+        made(pruned, c, lower)
     })
 }
 
 /// A cell's tree as [`map_grid`] makes it.
-fn the_tree(part: Part, _centre: DVec3) -> Part {
+fn the_tree(part: Part, _centre: DVec3, _lower: Option<f64>) -> Part {
     part
 }
 

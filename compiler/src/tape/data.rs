@@ -379,11 +379,8 @@ pub fn data(scene: &Scene, tree: &Part, layout: &Layout) -> Result<Data, Why> {
     // A cell far from every surface is marked with a bound of the field over it (for the
     // camera's trace, `far_count`): the root fold's result's bounds, as the pruning ends with
     // them.
-    let radius = layout.size * 3f64.sqrt() / 2.0;
-    let codes = map_grid(scene, tree, grid, |part, centre| {
-        let code = program::encode(&table, &part)?;
-        let lower = super::cells::lower_bound(scene, &part, centre, radius);
-        Ok::<_, Refused>((code, lower))
+    let codes = map_grid(scene, tree, grid, |part, _, lower| {
+        Ok::<_, Refused>((program::encode(&table, &part)?, lower))
     });
     let count = codes.len();
     let mut code = Vec::new();
