@@ -1,5 +1,6 @@
 //! Control flow and memory the generic evaluators need beyond `if` and `loop`: a `switch` on a
-//! u32, indexing by a run-time value, reinterpreting bits, and atomic additions.
+//! u32, indexing by a run-time value, reinterpreting bits, popping a stack's height, and atomic
+//! additions.
 
 use super::builder::{Ex, FnBuilder};
 use naga::{Expression, ScalarKind, Span, Statement, SwitchCase, SwitchValue};
@@ -49,6 +50,15 @@ impl<'a> FnBuilder<'a> {
             kind,
             convert: None,
         })
+    }
+
+    /// `*pointer -= 1u` on a u32 variable (a stack's height, popped); the new value.
+    pub fn decrement(&mut self, pointer: Ex) -> Ex {
+        let v = self.load(pointer);
+        let one = self.u(1);
+        let v1 = self.sub(v, one);
+        self.store(pointer, v1);
+        v1
     }
 
     /// `atomicAdd(pointer, value)` on an `atomic<u32>`: the value it held before.

@@ -255,9 +255,7 @@ fn instruction(
                 return started(b);
             };
             b.if_(first, started, |b| {
-                let sp = b.load(stack.sp);
-                let sp = b.sub(sp, one);
-                b.store(stack.sp, sp);
+                let sp = b.decrement(stack.sp);
                 let below = stack.entry(b, sp).map(|e| b.load(e));
                 let x = fold_in(b, below, (v, tag), head);
                 set(b, at.running, x);

@@ -74,10 +74,7 @@ pub(super) fn walk(
             is_end,
             |b| {
                 // A fold's children are done: its value, and its first child's start.
-                let sp = b.load(frames.sp);
-                let one = b.u(1);
-                let sp = b.sub(sp, one);
-                b.store(frames.sp, sp);
+                let sp = b.decrement(frames.sp);
                 let p = b.index(frames.value, sp);
                 let x = b.load(p);
                 let x = b.mul(x, factor);

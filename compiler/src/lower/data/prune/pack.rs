@@ -43,10 +43,7 @@ pub(super) fn walk(b: &mut FnBuilder, walk: Walk, height: usize) -> (Ex, Ex) {
                 b.if_(
                     is_end,
                     |b| {
-                        let sp = b.load(open.sp);
-                        let one = b.u(1);
-                        let sp = b.sub(sp, one);
-                        b.store(open.sp, sp);
+                        let sp = b.decrement(open.sp);
                         let p = b.index(open.first, sp);
                         let f = b.load(p);
                         b.store(first, f);
