@@ -3,9 +3,9 @@
 //! give them, as JSON, through plain WebAssembly exports (`sdfc_alloc`, `sdfc_compile`,
 //! `sdfc_free`, `sdfc_volume`, `sdfc_data`, `sdfc_seed` and the memory) that `web/sdfc.mjs`
 //! wraps; a scene of many parts compiles to the data form for WebGPU, its buffers made at the
-//! page's values by `sdfc_data`, or pruned by the page's device from `sdfc_seed`. No wasm-bindgen: a string in and
-//! a string out need no generated glue, and the build needs no tool beyond cargo (our choice;
-//! issue 36 suggested wasm-bindgen).
+//! page's values by `sdfc_data`, or pruned by the page's device from `sdfc_seed`. No
+//! wasm-bindgen: a string in and a string out need no generated glue, and the build needs no
+//! tool beyond cargo (our choice; issue 36 suggested wasm-bindgen).
 //!
 //! Imports resolve against the built-in standard library only (`std/…`): the page has no files.
 
@@ -393,12 +393,8 @@ pub extern "C" fn sdfc_volume(index: usize) -> *mut u8 {
 /// `at` must point at `len` readable bytes.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sdfc_data(at: *const u8, len: usize) -> *mut u8 {
-    // SAFETY: the caller wrote `len` bytes at `at`.
-    let request = unsafe { std::slice::from_raw_parts(at, len) };
-    match data_at(&String::from_utf8_lossy(request)) {
-        Some(bytes) => handed_over(&bytes),
-        None => std::ptr::null_mut(),
-    }
+    // SAFETY: the caller's promise, passed on.
+    unsafe { answered(at, len, data_at) }
 }
 
 /// [`seed_at`] for the values of the request of `len` bytes at `at` (UTF-8 JSON), handed over
@@ -408,9 +404,19 @@ pub unsafe extern "C" fn sdfc_data(at: *const u8, len: usize) -> *mut u8 {
 /// `at` must point at `len` readable bytes.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sdfc_seed(at: *const u8, len: usize) -> *mut u8 {
+    // SAFETY: the caller's promise, passed on.
+    unsafe { answered(at, len, seed_at) }
+}
+
+/// `answer` of the request of `len` bytes at `at` (UTF-8 JSON), handed over as
+/// [`sdfc_compile`] hands over its response; null where there is none.
+///
+/// # Safety
+/// `at` must point at `len` readable bytes.
+unsafe fn answered(at: *const u8, len: usize, answer: fn(&str) -> Option<Vec<u8>>) -> *mut u8 {
     // SAFETY: the caller wrote `len` bytes at `at`.
     let request = unsafe { std::slice::from_raw_parts(at, len) };
-    match seed_at(&String::from_utf8_lossy(request)) {
+    match answer(&String::from_utf8_lossy(request)) {
         Some(bytes) => handed_over(&bytes),
         None => std::ptr::null_mut(),
     }
