@@ -93,7 +93,14 @@ impl Live {
     /// Compiles and prepares `scene` for a window of `size`.
     pub fn new(gpu: Gpu, scene: Scene, options: Options, size: (u32, u32)) -> Result<Live, Error> {
         let orbit = Orbit::new(&scene.camera);
-        let (full, coarse, pruner) = prepare(&gpu, &scene, &options, size, &HashMap::new())?;
+        let pruner = crate::cli::pruner(&gpu, &scene, &options)?;
+        let (full, coarse) = prepare(
+            &gpu,
+            (&scene, &options),
+            size,
+            &HashMap::new(),
+            pruner.as_ref(),
+        )?;
         Ok(Live {
             gpu,
             full,
@@ -124,8 +131,15 @@ impl Live {
     /// A new scene (a reload that checked): compiled and prepared; the camera stays where the
     /// user turned it.
     pub fn replace(&mut self, scene: Scene, options: Options) -> Result<(), Error> {
-        let (full, coarse, pruner) =
-            prepare(&self.gpu, &scene, &options, self.size, &HashMap::new())?;
+        let pruner = crate::cli::pruner(&self.gpu, &scene, &options)?;
+        let none = HashMap::new();
+        let (full, coarse) = prepare(
+            &self.gpu,
+            (&scene, &options),
+            self.size,
+            &none,
+            pruner.as_ref(),
+        )?;
         self.tape_values.clear();
         self.tape_follows_time = follows_time(&scene, &options);
         self.tape_cells = (options.cells, None);
@@ -154,8 +168,9 @@ impl Live {
     pub fn resize(&mut self, size: (u32, u32)) -> Result<(), Error> {
         let size = (size.0.clamp(1, MAX_SIDE), size.1.clamp(1, MAX_SIDE));
         let values = &self.tape_values;
-        (self.full, self.coarse, self.pruner) =
-            prepare(&self.gpu, &self.scene, &self.options, size, values)?;
+        // (The same scene: its pre-pass's pipeline is kept.)
+        let scene = (&self.scene, &self.options);
+        (self.full, self.coarse) = prepare(&self.gpu, scene, size, values, self.pruner.as_ref())?;
         self.size = size;
         self.restart();
         Ok(())
@@ -400,23 +415,22 @@ fn coarse_size((w, h): (u32, u32)) -> (u32, u32) {
 }
 
 /// The compute module of `scene`, prepared at `size` and at a quarter of it (one dispatch
-/// each: a frame is one submission); the data form's buffers made at `values`, by the
-/// pre-pass returned where it runs on the device.
+/// each: a frame is one submission); the data form's buffers made at `values`, by `pruner`
+/// on the device where given.
 fn prepare(
     gpu: &Gpu,
-    scene: &Scene,
-    options: &Options,
+    (scene, options): (&Scene, &Options),
     size: (u32, u32),
     values: &HashMap<String, Vec<f64>>,
-) -> Result<(Prepared, Prepared, Option<Pruner>), Error> {
+    pruner: Option<&Pruner>,
+) -> Result<(Prepared, Prepared), Error> {
     let (module, _) =
         emit::module(scene, Entry::Compute, options).map_err(|e| Error::Compiler(e.0))?;
     gpu.set_params(&bytes(&scene.params));
     gpu.set_volumes(&scene.volumes());
-    let pruner = crate::cli::pruner(gpu, scene, options)?;
     if options.form == sdfc_compiler::lower::tracer::Form::Data {
         let valued = scene.with_values(values);
-        crate::cli::set_tape(gpu, (scene, &valued), options.cells, pruner.as_ref())?;
+        crate::cli::set_tape(gpu, (scene, &valued), options.cells, pruner)?;
     } else {
         gpu.set_tape(None)?;
     }
@@ -427,6 +441,5 @@ fn prepare(
     Ok((
         gpu.prepare(Source::Module(&module), layout, &full, None, u32::MAX)?,
         gpu.prepare(Source::Module(&module), layout, &small, None, u32::MAX)?,
-        pruner,
     ))
 }
