@@ -53,16 +53,14 @@ pub fn seed(scene: &Scene, tree: &Part, layout: &Layout) -> Result<Option<Seed>,
     let whole = program::encode(&table, tree).map_err(Why::Program)?.words;
     let beyond = beyond(scene, tree, layout, &table)?;
     let w = whole.len() as u32;
-    let mut size = layout.size * (super::cells::SPLIT as f64).powi(-1);
-    let mut levels: Vec<([usize; 3], f64)> = super::cells::levels(layout.n)
-        .into_iter()
-        .rev()
-        .map(|n| {
-            size *= super::cells::SPLIT as f64;
-            (n, size)
-        })
+    // (Grid i of m has cells SPLIT^(m − 1 − i) times the layout's: powers of two, exact.)
+    let grids = super::cells::levels(layout.n);
+    let coarser = |i: usize| (super::cells::SPLIT as f64).powi((grids.len() - 1 - i) as i32);
+    let levels: Vec<([usize; 3], f64)> = grids
+        .iter()
+        .enumerate()
+        .map(|(i, &n)| (n, layout.size * coarser(i)))
         .collect();
-    levels.reverse();
     Ok(Some(Seed {
         nodes: table.to_gpu(),
         meta: table.meta(tree),
