@@ -64,13 +64,15 @@ pub struct TapeMade {
 /// or `auto` for a tree of at least `tape::data::GPU_PREPASS_FROM` leaves — (`None` for the
 /// CPU, or where the scene has no data form).
 pub fn pruner(gpu: &Gpu, scene: &Scene, options: &Options) -> Result<Option<Pruner>, Error> {
-    let device = match options.prepass {
-        Prepass::Gpu => true,
-        Prepass::Cpu => false,
-        Prepass::Auto => sdfc_compiler::tape::build(scene)
-            .is_ok_and(|tree| tree.leaves() >= data::GPU_PREPASS_FROM),
-    };
-    if options.form != sdfc_compiler::lower::tracer::Form::Data || !device {
+    // (The form first: an inline scene's tree is not built to count its leaves.)
+    let device = options.form == sdfc_compiler::lower::tracer::Form::Data
+        && match options.prepass {
+            Prepass::Gpu => true,
+            Prepass::Cpu => false,
+            Prepass::Auto => sdfc_compiler::tape::build(scene)
+                .is_ok_and(|tree| tree.leaves() >= data::GPU_PREPASS_FROM),
+        };
+    if !device {
         return Ok(None);
     }
     Ok(gpu.pruner(scene)?)
