@@ -178,10 +178,13 @@ pub fn seed_at(request: &str) -> Option<Vec<u8>> {
 
 /// The data form's pre-pass for the device (`lower::prune`) as WGSL, with what a page needs to
 /// run it (docs/playground.md): its workgroup, bindings, the level uniform's words and where
-/// the host's rooms go in it, and the overflow count of a cell that found no scratch.
+/// the host's rooms go in it, the overflow count of a cell that found no scratch, and the
+/// rooms `sdfc render` gives (cells a dispatch, words a cell).
 fn prune_shader(scene: &Scene) -> Result<Option<Value>, String> {
     use sdfc_compiler::layout::{PRUNE_BINDINGS, PRUNE_SCRATCH_MISSED, PRUNE_WORKGROUP};
-    use sdfc_compiler::tape::seed::{LEVEL_WORDS, ROOM_WORDS};
+    use sdfc_compiler::tape::seed::{
+        CHUNK, LEVEL_WORDS, ROOM_PER_CELL, ROOM_WORDS, SCRATCH_PER_CELL,
+    };
     let Some((module, info, _)) = emit::prune_module(scene).map_err(|e| e.0)? else {
         return Ok(None);
     };
@@ -197,6 +200,9 @@ fn prune_shader(scene: &Scene) -> Result<Option<Value>, String> {
         "level_words": LEVEL_WORDS,
         "room_words": ROOM_WORDS,
         "scratch_missed": PRUNE_SCRATCH_MISSED,
+        "chunk": CHUNK,
+        "room_per_cell": ROOM_PER_CELL,
+        "scratch_per_cell": SCRATCH_PER_CELL,
     })))
 }
 

@@ -74,6 +74,17 @@ pub fn seed(scene: &Scene, tree: &Part, layout: &Layout) -> Result<Option<Seed>,
     }))
 }
 
+/// Words of room in the programs' buffer a host gives each cell of every level at first (more
+/// where the counter says so).
+pub const ROOM_PER_CELL: u64 = 24;
+
+/// Cells a dispatch of the pre-pass prunes at first (they share the scratch, which the host
+/// empties between dispatches).
+pub const CHUNK: usize = 1 << 14;
+
+/// Words of scratch a host gives each cell of a dispatch at first: its parent's program.
+pub const SCRATCH_PER_CELL: u64 = 512;
+
 /// Words of a level's uniform (`layout::PRUNE_LEVEL_FIELDS`).
 pub const LEVEL_WORDS: usize = crate::layout::PRUNE_LEVEL_BYTES as usize / 4;
 

@@ -145,20 +145,21 @@ function uploaded(device, manifest, bytes) {
 /**
  * The data form's pre-pass on `device` (docs/data-form.md): `shader` is a compile's `prune`
  * (the playground's compiler gives it: `{code, workgroup, bindings, level_words, room_words,
- * scratch_missed}`). `run(seed)` prunes every cell of a seed's grid (`sdfc.seed(values)`:
- * the table, what the pre-pass knows of its parts, the whole and outside programs, the ranges'
- * first contents, and each level's cells and uniform), grid by grid in one submission, and
- * returns the three buffers the library reads (nodes, code, ranges) with a promise of whether
- * every cell found room (else the host makes the buffers in WebAssembly).
+ * scratch_missed, chunk, room_per_cell, scratch_per_cell}`). `run(seed)` prunes every cell of
+ * a seed's grid (`sdfc.seed(values)`: the table, what the pre-pass knows of its parts, the
+ * whole and outside programs, the ranges' first contents, and each level's cells and
+ * uniform), grid by grid in one submission, and returns the three buffers the library reads
+ * (nodes, code, ranges) with a promise of whether every cell found room (else the host makes
+ * the buffers in WebAssembly).
  */
 function devicePruner(device, shader) {
   const module = device.createShaderModule({ code: shader.code });
   const pipeline = device.createComputePipeline({ layout: "auto", compute: { module, entryPoint: "main" } });
   const limit = Math.min(device.limits.maxStorageBufferBindingSize, device.limits.maxBufferSize);
   // Cells a dispatch prunes (they share the scratch, emptied between dispatches), and words of
-  // room a cell is given in the programs' buffer and the scratch — as `sdfc render` gives them.
-  const chunk = 16384;
-  const [codePerCell, scratchPerCell] = [24, 512];
+  // room a cell is given in the programs' buffer and the scratch — the compiler's, as `sdfc
+  // render` gives them.
+  const { chunk, room_per_cell: codePerCell, scratch_per_cell: scratchPerCell } = shader;
   const { STORAGE, COPY_DST, COPY_SRC, UNIFORM, MAP_READ } = GPUBufferUsage;
   const buffer = (size, usage, bytes = null) => {
     const b = device.createBuffer({ size: Math.max(16, Math.ceil(size / 4) * 4), usage });

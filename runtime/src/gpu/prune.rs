@@ -7,7 +7,7 @@ use super::{Error, Gpu, lock};
 use sdfc_compiler::layout::{PRUNE_BINDINGS, PRUNE_SCRATCH_MISSED, PRUNE_WORKGROUP};
 use sdfc_compiler::scene::Scene;
 use sdfc_compiler::tape::data::HEADER;
-use sdfc_compiler::tape::seed::Seed;
+use sdfc_compiler::tape::seed::{CHUNK, ROOM_PER_CELL, SCRATCH_PER_CELL, Seed};
 use wgpu::util::DeviceExt;
 
 /// The pre-pass's pipeline for a scene, compiled once for every new set of parameters.
@@ -26,21 +26,12 @@ pub struct Pruned {
     pub mean_leaves: f64,
     /// The bytes of the three buffers the tracer reads (the programs' as used, not as held).
     pub bytes: usize,
-    /// How many times the programs' buffer was made larger and the pass run again.
+    /// How many times the pass ran again with a larger programs' buffer or scratch.
     pub retries: u32,
 }
 
-/// Words of room for programs a cell is given at first (more where the counter says so).
-const FIRST_ROOM_PER_CELL: u64 = 24;
-
-/// Cells a dispatch prunes at first (fewer where the scratch runs out).
-const CHUNK: usize = 1 << 14;
-
-/// The fewest cells a dispatch prunes.
+/// The fewest cells a dispatch prunes (where the scratch runs out, fewer than `seed::CHUNK`).
 const FEWEST: usize = 1024;
-
-/// Words of scratch a cell of a dispatch is given at first: its parent's program.
-const SCRATCH_PER_CELL: u64 = 512;
 
 impl Gpu {
     /// The pre-pass's pipeline for `scene` compiled at its defaults; none where the scene has
@@ -76,7 +67,7 @@ impl Gpu {
         }
         let cells: u64 = seed.levels.iter().map(|(n, _)| cells_of(*n) as u64).sum();
         let mut room = Room {
-            code: (seed.code.len() as u64 + FIRST_ROOM_PER_CELL * cells).min(limit),
+            code: (seed.code.len() as u64 + ROOM_PER_CELL * cells).min(limit),
             scratch: (CHUNK as u64 * SCRATCH_PER_CELL).min(limit),
             chunk: CHUNK,
         };
