@@ -152,3 +152,49 @@ impl Grid {
         c.x as u64 + m.x * (c.y as u64 + m.y * c.z as u64)
     }
 }
+
+/// A face of the grid: its lowest corner and the axis it is normal to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Face {
+    /// The lowest corner.
+    pub base: IVec3,
+    /// The axis the face is normal to (0, 1, 2).
+    pub axis: usize,
+}
+
+impl Face {
+    /// The two axes spanning the face, in the order that makes them right-handed with its
+    /// normal (u × v = the normal).
+    pub fn span(self) -> (usize, usize) {
+        ((self.axis + 1) % 3, (self.axis + 2) % 3)
+    }
+
+    /// The face's four corners, counter-clockwise seen from the normal's positive side.
+    pub fn corners(self) -> [IVec3; 4] {
+        let (u, v) = self.span();
+        let (eu, ev) = (IVec3::AXES[u], IVec3::AXES[v]);
+        [
+            self.base,
+            self.base + eu,
+            self.base + eu + ev,
+            self.base + ev,
+        ]
+    }
+
+    /// Face `i` (0..6) of cell `c`, and whether it is the cell's far side along its axis (its
+    /// outward normal is then the axis; else the opposite).
+    pub fn of_cell(c: IVec3, i: i32) -> (Face, bool) {
+        let axis = (i / 2) as usize;
+        let far = i % 2 == 1;
+        let base = if far { c + IVec3::AXES[axis] } else { c };
+        (Face { base, axis }, far)
+    }
+
+    /// Its four edges in the same order (edge i from corner i to corner i + 1), each as the
+    /// grid edge's lowest end and axis.
+    pub fn edges(self) -> [(IVec3, usize); 4] {
+        let (u, v) = self.span();
+        let c = self.corners();
+        [(c[0], u), (c[1], v), (c[3], u), (c[0], v)]
+    }
+}

@@ -6,8 +6,11 @@
 //! triangle; `measure` says how far the mesh is from the surface and whether it is closed and
 //! manifold, `formats` writes STL, OBJ, PLY and glTF.
 
+mod bends;
 mod cells;
 mod contour;
+mod creases;
+mod edges;
 mod faces;
 pub mod field;
 pub mod formats;
@@ -74,6 +77,8 @@ pub struct Stats {
     pub cell: f64,
     /// Cells along each axis.
     pub grid: [i32; 3],
+    /// Cells along the box's longest side (the resolution asked for).
+    pub resolution: u32,
     /// Cells the surface may cross (the rest were pruned by the bound).
     pub active_cells: usize,
     /// Cells the surface crosses that the bound had pruned, added back so that the mesh stays
@@ -83,6 +88,8 @@ pub struct Stats {
     pub evaluations: usize,
     /// Cells whose polygons did not close (see `contour::Contour::broken`).
     pub broken_cells: usize,
+    /// Grid edges the surface crosses twice (a crease or a thin part between their ends).
+    pub dipped_edges: usize,
 }
 
 /// Why a mesh was not made.
@@ -179,10 +186,12 @@ pub fn mesh_with(
         stats: Stats {
             cell: grid.h,
             grid: grid.n.to_array(),
+            resolution: options.resolution,
             active_cells: active.cells.len(),
             added_cells: c.added,
             evaluations: active.evaluations + c.evaluations + c.triangles.len(),
             broken_cells: c.broken,
+            dipped_edges: c.dipped,
         },
         positions: c.positions,
         triangles: c.triangles,

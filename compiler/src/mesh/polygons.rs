@@ -1,7 +1,9 @@
 //! Each cell's polygons: its faces' segments chained into closed rings, one per surface sheet,
 //! each fanned around a vertex the QEF places and a Newton step settles on the surface.
 
-use super::faces::{self, Face};
+use super::creases;
+use super::faces;
+use super::field::Face;
 use super::field::{Field, Grid};
 use super::qef;
 use super::search::{self, Search};
@@ -35,6 +37,16 @@ pub fn fan(
         let positions = &*positions;
         par_map(cells, |&c| {
             let rings = polygons(c, segments)?;
+            let rings = match sharp {
+                true => rings
+                    .into_iter()
+                    .flat_map(|ring| {
+                        let lo = grid.point(c);
+                        creases::split(ring, positions, normals, (lo, lo + grid.h))
+                    })
+                    .collect(),
+                false => rings,
+            };
             let starts = rings
                 .into_iter()
                 .map(|ring| {
@@ -55,7 +67,7 @@ pub fn fan(
                 let lo = grid.point(*c);
                 rings
                     .iter()
-                    .map(move |(_, p)| Settle::new(field, *p, lo, grid.h))
+                    .map(move |&(_, (p, or))| Settle::new(field, (p, or), lo, grid.h))
             })
             .collect(),
     };
@@ -72,8 +84,8 @@ pub fn fan(
             .iter()
             .map(|(ring, start)| {
                 let centre = match sharp {
-                    true => settled.next().unwrap_or(*start),
-                    false => *start,
+                    true => settled.next().unwrap_or(start.0),
+                    false => start.0,
                 };
                 away(centre, ring, positions, grid.h)
             })
@@ -106,7 +118,7 @@ fn start(
     ring: &[u32],
     (positions, normals): (&[DVec3], &[DVec3]),
     sharp: bool,
-) -> DVec3 {
+) -> (DVec3, Option<DVec3>) {
     let lo = grid.point(c);
     let sheet: Vec<(DVec3, DVec3)> = ring
         .iter()
@@ -114,11 +126,45 @@ fn start(
         .collect();
     if sharp {
         let mass = ring.iter().map(|&v| positions[v as usize]).sum::<DVec3>() / ring.len() as f64;
-        qef::solve(&sheet, mass)
+        let found = qef::solve(&sheet, mass);
+        match found.crease {
+            Some(along) => {
+                let on = onto_crease(found.point, along, lo, lo + grid.h);
+                (on, (on != found.point).then_some(found.point))
+            }
+            None => (found.point, None),
+        }
     } else {
         let mean = sheet.iter().map(|s| s.0).sum::<DVec3>() / sheet.len().max(1) as f64;
-        mean.clamp(lo, lo + grid.h)
+        (mean.clamp(lo, lo + grid.h), None)
     }
+}
+
+/// The point of the crease's line through `p` along `along` nearest `p` within the cell from
+/// `lo` to `hi`, a twentieth of the line's stretch in the cell off its ends (`p` itself inside
+/// them, or where the line misses the cell, for [`Settle`] to clamp). Clamped coordinate by
+/// coordinate, a point outside would leave the crease, and the fan around it would cut across
+/// the crease; moved along the line it stays on both planes.
+fn onto_crease(p: DVec3, along: DVec3, lo: DVec3, hi: DVec3) -> DVec3 {
+    let (mut t0, mut t1) = (f64::NEG_INFINITY, f64::INFINITY);
+    for k in 0..3 {
+        if along[k].abs() < 1e-12 {
+            if p[k] < lo[k] || p[k] > hi[k] {
+                return p;
+            }
+            continue;
+        }
+        let (a, b) = ((lo[k] - p[k]) / along[k], (hi[k] - p[k]) / along[k]);
+        t0 = t0.max(a.min(b));
+        t1 = t1.min(a.max(b));
+    }
+    if t0 > t1 {
+        return p;
+    }
+    // Kept off the line's ends a little: an end on the cell's side is a face's sharp point of
+    // the ring, which the vertex must not meet (`away` would move it off the crease).
+    let margin = 0.05 * (t1 - t0);
+    p + along * 0.0f64.clamp(t0 + margin, t1 - margin)
 }
 
 /// The polygons of cell `c`: its faces' segments, oriented as seen from outside the cell, chained
@@ -181,6 +227,12 @@ struct Settle {
     /// The gradient's sample distance.
     step: f64,
     phase: Phase,
+    /// Where to start again should this start not reach the surface (the QEF's own point,
+    /// where a crease's point was tried first: the crease's line leaves the surface past a
+    /// corner).
+    or: Option<DVec3>,
+    /// The point nearest the surface so far, and the field there.
+    best: Option<(DVec3, f64)>,
 }
 
 /// What a [`Settle`] asks for next.
@@ -193,25 +245,70 @@ enum Phase {
 }
 
 impl Settle {
-    fn new(field: &Field, p: DVec3, lo: DVec3, h: f64) -> Settle {
-        let hi = lo + h;
-        Settle {
-            free: DVec3::select(p.cmplt(lo) | p.cmpgt(hi), DVec3::ZERO, DVec3::ONE),
-            p: p.clamp(lo, hi),
+    fn new(field: &Field, (p, or): (DVec3, Option<DVec3>), lo: DVec3, h: f64) -> Settle {
+        let mut settle = Settle {
+            free: DVec3::ONE,
+            p,
             d: f64::NAN,
             lo,
-            hi,
+            hi: lo + h,
             steps: 0,
             tol: (1e-7 * h).max(field.resolution()),
             step: field.gradient_step(h),
             phase: Phase::Value,
+            or,
+            best: None,
+        };
+        settle.from(p);
+        settle
+    }
+
+    /// Starts from `p`, clamped to the cell.
+    fn from(&mut self, p: DVec3) {
+        let (lo, hi) = (self.lo, self.hi);
+        self.free = DVec3::select(p.cmplt(lo) | p.cmpgt(hi), DVec3::ZERO, DVec3::ONE);
+        self.p = p.clamp(lo, hi);
+        self.steps = 0;
+        self.phase = Phase::Value;
+    }
+
+    /// Done: or, off the surface with another start left, that start next; the point nearest
+    /// the surface is kept.
+    fn done(&mut self) -> Phase {
+        if self.best.is_none_or(|(_, d)| self.d.abs() < d.abs()) {
+            self.best = Some((self.p, self.d));
+        }
+        // (NaN is off the surface.)
+        let on = self.d.abs() <= self.tol;
+        match self.or.take() {
+            Some(q) if !on => {
+                self.from(q);
+                Phase::Value
+            }
+            _ => {
+                (self.p, self.d) = self.best.unwrap_or((self.p, self.d));
+                Phase::Done
+            }
+        }
+    }
+
+    /// Where steps within the cell's side no longer bring the point nearer the surface (the
+    /// surface does not meet that side near it: a crease leaving the cell elsewhere), the steps
+    /// go on along every axis; else done.
+    fn unfreeze(&mut self) -> Phase {
+        match self.free == DVec3::ONE {
+            true => self.done(),
+            false => {
+                self.free = DVec3::ONE;
+                Phase::Normal
+            }
         }
     }
 
     /// After a value: done, or the gradient next.
     fn next(&mut self) {
         let stop = self.steps == PROJECTION_STEPS || self.d.is_nan() || self.d.abs() <= self.tol;
-        self.phase = if stop { Phase::Done } else { Phase::Normal };
+        self.phase = if stop { self.done() } else { Phase::Normal };
     }
 }
 
@@ -235,7 +332,7 @@ impl Search for Settle {
                 let n = search::unit_gradient(values) * self.free;
                 let g = n.length_squared();
                 self.phase = match g < 1e-6 {
-                    true => Phase::Done,
+                    true => self.unfreeze(),
                     false => Phase::Try((self.p - n * (self.d / g)).clamp(self.lo, self.hi)),
                 };
             }
@@ -243,7 +340,7 @@ impl Search for Settle {
                 let dq = values[0];
                 self.steps += 1;
                 if dq.is_nan() || dq.abs() >= self.d.abs() {
-                    self.phase = Phase::Done;
+                    self.phase = self.unfreeze();
                 } else {
                     (self.p, self.d) = (q, dq);
                     self.next();

@@ -9,11 +9,21 @@ use glam::{DMat3, DVec3};
 /// values below 0.1 of the largest: eigenvalues of AᵀA are their squares.
 const TRUNCATE: f64 = 0.01;
 
+/// What [`solve`] finds.
+#[derive(Clone, Copy, Debug)]
+pub struct Solution {
+    /// The point.
+    pub point: DVec3,
+    /// Where the planes leave exactly one direction free (a crease), that direction: every
+    /// point of the line through `point` along it is as good.
+    pub crease: Option<DVec3>,
+}
+
 /// The point minimising Σ (nᵢ·(x − pᵢ))² over the sheet's surface points `pᵢ` and unit normals
 /// `nᵢ`, nearest `mass` among the minimisers (the pseudo-inverse around the mass point). A
 /// corner where three planes meet is found exactly, a crease's line is kept and the point
 /// slides along it to the mass point, a flat sheet gives the mass point.
-pub fn solve(points: &[(DVec3, DVec3)], mass: DVec3) -> DVec3 {
+pub fn solve(points: &[(DVec3, DVec3)], mass: DVec3) -> Solution {
     let mut ata = DMat3::ZERO;
     let mut atb = DVec3::ZERO;
     for &(p, n) in points {
@@ -26,17 +36,20 @@ pub fn solve(points: &[(DVec3, DVec3)], mass: DVec3) -> DVec3 {
     }
     let (values, vectors) = eigen(ata);
     let largest = values.abs().max_element();
-    if largest <= 0.0 {
-        return mass;
-    }
     let mut x = DVec3::ZERO;
+    let mut free = Vec::with_capacity(3);
     for i in 0..3 {
-        if values[i].abs() > TRUNCATE * largest {
-            let v = vectors.col(i);
+        let v = vectors.col(i);
+        if largest > 0.0 && values[i].abs() > TRUNCATE * largest {
             x += v * (v.dot(atb) / values[i]);
+        } else {
+            free.push(v);
         }
     }
-    mass + x
+    Solution {
+        point: mass + x,
+        crease: (free.len() == 1).then(|| free[0]),
+    }
 }
 
 /// The matrix a·bᵀ.
@@ -121,7 +134,8 @@ mod tests {
             (corner + DVec3::new(0.01, 0.04, 0.0), DVec3::Z),
             (corner + DVec3::new(0.0, 0.02, 0.09), DVec3::X),
         ];
-        assert!(solve(&points, mean(&points)).abs_diff_eq(corner, 1e-12));
+        let found = solve(&points, mean(&points));
+        assert!(found.point.abs_diff_eq(corner, 1e-12) && found.crease.is_none());
     }
 
     #[test]
@@ -131,11 +145,17 @@ mod tests {
         // Two planes through the z axis at y = 1: the crease is (0, 1, z).
         let on = |x: f64, z: f64| DVec3::new(x, 1.0 - x.abs(), z);
         let pts = [(on(0.2, 0.1), n1), (on(-0.3, 0.5), n2)];
-        let x = solve(&pts, mean(&pts));
+        let found = solve(&pts, mean(&pts));
+        let x = found.point;
+        assert!(
+            found
+                .crease
+                .is_some_and(|d| d.cross(DVec3::Z).length() < 1e-12)
+        );
         assert!((x.x).abs() < 1e-12 && (x.y - 1.0).abs() < 1e-12, "{x}");
         assert!((x.z - 0.3).abs() < 1e-12);
         let pts = [(DVec3::new(0.0, 0.0, 0.0), DVec3::Y), (DVec3::X, DVec3::Y)];
-        let flat = solve(&pts, mean(&pts));
+        let flat = solve(&pts, mean(&pts)).point;
         assert!(flat.abs_diff_eq(DVec3::new(0.5, 0.0, 0.0), 1e-12));
     }
 }

@@ -79,10 +79,11 @@ fn mesh_scene(args: &MeshArgs) -> Result<(), Error> {
     if args.stats {
         let s = mesh.stats;
         say!(
-            "           {} cells contoured ({} of them the bound had pruned wrongly), {} field \
-             evaluations",
+            "           {} cells contoured ({} of them the bound had pruned wrongly), {} edges \
+             crossed twice, {} field evaluations",
             s.active_cells,
             s.added_cells,
+            s.dipped_edges,
             s.evaluations
         );
     }
@@ -145,12 +146,17 @@ fn gpu_field(
 /// Coarsest and finest resolutions `--triangles` chooses from.
 const COUNT_RESOLUTIONS: (u32, u32) = (4, 4096);
 
+/// Meshes `--triangles` makes at most after its probe.
+const COUNT_RUNS: usize = 3;
+
 /// Resolution of the probe mesh `--triangles` counts first.
 const PROBE: u32 = 24;
 
-/// The mesh nearest `target` triangles: a probe at [`PROBE`] cells, then the resolution whose
-/// count the probe's predicts (triangles grow with its square), corrected once more when the
-/// count is more than 10 % off. `options.resolution` is left at the one used.
+/// The mesh nearest `target` triangles: a probe at [`PROBE`] cells, then, while the nearest
+/// count is more than 10 % off (at most [`COUNT_RUNS`] meshes), the resolution the nearest
+/// count predicts (triangles grow with its square) — or, where that one was tried (counts jump
+/// between coarse resolutions), an untried one between the nearest tried below and above the
+/// target. `options.resolution` is left at the one used.
 fn toward_count(
     scene: &Scene,
     options: &mut mesh::Options,
@@ -177,12 +183,38 @@ fn toward_count(
     if probe.triangles.is_empty() {
         return Ok(probe);
     }
-    let mut r = next(PROBE, probe.triangles.len());
-    let mut mesh = if r == PROBE { probe } else { run(r)? };
     let off = |m: &Mesh| (m.triangles.len() as f64 / target as f64 - 1.0).abs();
-    let again = next(r, mesh.triangles.len());
-    if off(&mesh) > 0.1 && again != r {
+    // Every resolution tried and its count; the mesh nearest the target so far.
+    let mut tried: Vec<(u32, usize)> = vec![(PROBE, probe.triangles.len())];
+    let (mut mesh, mut r) = (probe, PROBE);
+    for _ in 0..COUNT_RUNS {
+        if off(&mesh) <= 0.1 {
+            break;
+        }
+        let mut again = next(r, mesh.triangles.len());
+        if tried.iter().any(|&(t, _)| t == again) {
+            // Counts jump between coarse resolutions: the untried one between the nearest
+            // tried below and above the target.
+            let below = tried
+                .iter()
+                .filter(|t| t.1 < target as usize)
+                .map(|t| t.0)
+                .max();
+            let above = tried
+                .iter()
+                .filter(|t| t.1 > target as usize)
+                .map(|t| t.0)
+                .min();
+            let (Some(lo), Some(hi)) = (below, above) else {
+                break;
+            };
+            match (lo + 1..hi).min_by_key(|&k| k.abs_diff(again)) {
+                Some(k) => again = k,
+                None => break,
+            }
+        }
         let other = run(again)?;
+        tried.push((again, other.triangles.len()));
         if off(&other) < off(&mesh) {
             (mesh, r) = (other, again);
         }
@@ -327,7 +359,7 @@ fn success(
     let asked = match args.triangles {
         Some(n) => format!(
             " ({n} asked for: resolution {} chosen)",
-            g.iter().max().copied().unwrap_or(0)
+            mesh.stats.resolution
         ),
         None => String::new(),
     };
