@@ -49,6 +49,9 @@ struct Shape {
 }
 
 const BOX: [f64; 3] = [0.8, 0.48, 0.64];
+/// The same box smaller, its corners (0.99 from the centre) inside [-1, 1]³: no cut, so
+/// neither mesher meets the box's sides (sdfc caps a cut; fidget's mesh stops open there).
+const WHOLE: [f64; 3] = [0.7, 0.42, 0.56];
 const A: f64 = 30.0 * std::f64::consts::PI / 180.0;
 const B: f64 = 20.0 * std::f64::consts::PI / 180.0;
 
@@ -56,6 +59,7 @@ fn shapes() -> Vec<Shape> {
     let (x, y, z) = (Tree::x(), Tree::y(), Tree::z());
     let r = (x.clone().square() + y.clone().square() + z.clone().square()).sqrt();
     let (tx, ty, tz) = turn_tree(A, B);
+    let (tx2, ty2, tz2) = turn_tree(A, B);
     let ring = (x.clone().square() + z.clone().square()).sqrt() - 0.8;
     vec![
         Shape {
@@ -67,6 +71,11 @@ fn shapes() -> Vec<Shape> {
             name: "turned box",
             tree: tree_box(tx, ty, tz, BOX),
             exact: |p| box_exact(unturn(p, A, B), BOX),
+        },
+        Shape {
+            name: "whole turned box",
+            tree: tree_box(tx2, ty2, tz2, WHOLE),
+            exact: |p| box_exact(unturn(p, A, B), WHOLE),
         },
         Shape {
             name: "box less a ball",

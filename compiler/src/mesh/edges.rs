@@ -73,44 +73,37 @@ pub fn crossings(
     at: &(impl Fn(IVec3) -> f64 + Sync),
     dips: bool,
 ) -> Crossings {
-    let mut edges: Vec<(IVec3, usize)> = cells
+    // Each edge with the field at its ends: those that change side, and with `dips` those the
+    // field may dip across, |d(a)| + |d(b)| < h (d is 1-Lipschitz) — the rest dropped before
+    // sorting (most edges of a fine grid).
+    let mut edges: Vec<((IVec3, usize), (f64, f64))> = cells
         .iter()
         .flat_map(|&c| (0..12).map(move |i| cell_edge(c, i)))
+        .filter_map(|(p, a)| {
+            let (fa, fb) = (at(p), at(p + IVec3::AXES[a]));
+            let keep = inside(fa) != inside(fb) || (dips && fa.abs() + fb.abs() < grid.h);
+            keep.then_some(((p, a), (fa, fb)))
+        })
         .collect();
-    edges.sort_unstable_by_key(|&(p, a)| edge_key(grid, p, a));
-    edges.dedup();
-    let ends = |(p, a): (IVec3, usize)| (at(p), at(p + IVec3::AXES[a]));
+    edges.sort_unstable_by_key(|&((p, a), _)| edge_key(grid, p, a));
+    edges.dedup_by_key(|&mut (e, _)| e);
     let (changes, same): (Vec<_>, Vec<_>) = edges
         .into_iter()
-        .partition(|&e| inside(ends(e).0) != inside(ends(e).1));
-    // The edges the field may dip across: |d(a)| + |d(b)| < h (d is 1-Lipschitz), all four
-    // cells around them there.
-    let mut dipping: Vec<Dip> = match dips {
-        false => Vec::new(),
-        true => same
-            .into_iter()
-            .filter(|&e| {
-                let (fa, fb) = ends(e);
-                fa.abs() + fb.abs() < grid.h && around(e).iter().all(|c| listed.contains(c))
-            })
-            .map(|(p, a)| {
-                let (fa, fb) = ends((p, a));
-                Dip::new(
-                    field,
-                    grid.point(p),
-                    DVec3::AXES[a] * grid.h,
-                    (fa, fb),
-                    (p, a),
-                )
-            })
-            .collect(),
-    };
+        .partition(|&(_, (fa, fb))| inside(fa) != inside(fb));
+    // The edges the field may dip across with all four cells around them there.
+    let mut dipping: Vec<Dip> = same
+        .into_iter()
+        .filter(|&(e, _)| around(e).iter().all(|c| listed.contains(c)))
+        .map(|((p, a), ends)| {
+            let along = DVec3::AXES[a] * grid.h;
+            Dip::new(field, grid.point(p), along, ends, (p, a))
+        })
+        .collect();
     let mut evaluations = search::run(field, &mut dipping);
     // One search per crossing: a changing edge's, and a dipped edge's two halves.
     let mut keys: Vec<u64> = Vec::with_capacity(changes.len());
     let mut searches: Vec<Root> = Vec::with_capacity(changes.len());
-    for &(p, a) in &changes {
-        let (fa, fb) = ends((p, a));
+    for &((p, a), (fa, fb)) in &changes {
         let along = DVec3::AXES[a] * grid.h;
         searches.push(Root::new(field, grid.h, (grid.point(p), fa), along, fb));
         keys.push(edge_key(grid, p, a));
@@ -181,15 +174,17 @@ fn cell_edge(c: IVec3, i: i32) -> (IVec3, usize) {
     (p, axis)
 }
 
-/// The evaluations a [`Dip`] spends at most on one edge: the dip is then located to within
-/// 1/64 of the edge where the field along it has one minimum (a crease across it, a thin part).
+/// The evaluations a [`Dip`] spends at most on one edge.
 const DIP_STEPS: usize = 8;
 
 /// The search, along an edge whose ends lie on the same side, for a point on the other side:
-/// the field being 1-Lipschitz, a stretch from s to t can hold such a point only if
-/// |d(s)| + |d(t)| < t − s; the stretch least far from that bound is halved next, the others
-/// kept, those the bound rules out dropped, until a point is found, none is left or
-/// [`DIP_STEPS`] are spent.
+/// the field being 1-Lipschitz, |d| over a stretch from s to t is at least the lower of the
+/// two cones |d(s)| − (x − s) and |d(t)| − (t − x), lowest where they meet, at
+/// (|d(s)| + |d(t)| − (t − s)) / 2. The stretch of the lowest such bound is sampled next where
+/// its cones meet (Piyavskii's and Shubert's search for a Lipschitz function's minimum), the
+/// stretches the bound keeps on the ends' side dropped, until a point on the other side is
+/// found, none is left or [`DIP_STEPS`] are spent. (Halving the stretches instead missed the
+/// dip of a crease passing 0.04 of a cell from an edge: the smaller end drew the search away.)
 struct Dip {
     /// The edge's start, extent, and the field at its ends.
     a: DVec3,
@@ -226,9 +221,16 @@ impl Dip {
     /// The open stretch nearest to holding a dip (its ends' distances least over its length).
     fn next(&self) -> Option<usize> {
         let len = self.along.length();
-        let slack =
-            |&(t0, d0, t1, d1): &(f64, f64, f64, f64)| (d0.abs() + d1.abs()) / ((t1 - t0) * len);
-        (0..self.open.len()).min_by(|&i, &j| slack(&self.open[i]).total_cmp(&slack(&self.open[j])))
+        let low = |&(t0, d0, t1, d1): &(f64, f64, f64, f64)| d0.abs() + d1.abs() - (t1 - t0) * len;
+        (0..self.open.len()).min_by(|&i, &j| low(&self.open[i]).total_cmp(&low(&self.open[j])))
+    }
+
+    /// Where the cones of the stretch from `t0` to `t1` meet, kept a twentieth of it off its
+    /// ends.
+    fn apex(&self, (t0, d0, t1, d1): (f64, f64, f64, f64)) -> f64 {
+        let meet = 0.5 * (t0 + t1) + (d0.abs() - d1.abs()) / (2.0 * self.along.length());
+        let margin = 0.05 * (t1 - t0);
+        meet.clamp(t0 + margin, t1 - margin)
     }
 }
 
@@ -238,15 +240,14 @@ impl Search for Dip {
             return;
         }
         if let Some(i) = self.next() {
-            let (t0, _, t1, _) = self.open[i];
-            points.push(self.a + self.along * (0.5 * (t0 + t1)));
+            points.push(self.a + self.along * self.apex(self.open[i]));
         }
     }
 
     fn tell(&mut self, values: &[f64]) {
         let Some(i) = self.next() else { return };
         let (t0, d0, t1, d1) = self.open.swap_remove(i);
-        let (tm, dm) = (0.5 * (t0 + t1), values[0]);
+        let (tm, dm) = (self.apex((t0, d0, t1, d1)), values[0]);
         self.steps += 1;
         if inside(dm) != self.side && !dm.is_nan() {
             self.found = Some((tm, dm));
