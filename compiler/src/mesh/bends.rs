@@ -82,15 +82,17 @@ pub fn bends(
     evaluations: &mut usize,
 ) -> Bends {
     match meet(face, grid, a, b) {
-        None => return Bends::Found(Vec::new()),
         Some(Meet::Inside(p)) => {
             return Bends::Pending(Bisect::new(field, grid, p, 0.5 * (a.0 + b.0), (a.0, b.0)));
         }
         // Two faces of a corner meet at a wide angle; a rough surface (a fractal) bends between
         // every two crossings by less, and sampling each of its faces would cost a dozen
-        // evaluations and six vertices for nothing a chord does not do.
-        Some(Meet::Outside) if a.1.dot(b.1) > CORNER_COSINE => return Bends::Found(Vec::new()),
-        Some(Meet::Outside) => {}
+        // evaluations and six vertices for nothing a chord does not do. Tangent lines that do
+        // not meet (parallel in the face) with normals that far apart turn back: the trace
+        // crosses a third plane between them (a box's corner, its crease parallel to the face)
+        // and is sampled too.
+        _ if a.1.dot(b.1) > CORNER_COSINE => return Bends::Found(Vec::new()),
+        _ => {}
     }
     let field = &field.on_cpu();
     let (u, v) = face.span();
