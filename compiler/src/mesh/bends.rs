@@ -11,6 +11,19 @@ use glam::DVec3;
 /// which their meeting point is taken as a crease (about 3°).
 const CREASE_SINE: f64 = 0.05;
 
+/// The normals of the two planes whose crease a sharp point lies on.
+pub type Planes = (DVec3, DVec3);
+
+/// A point where a face's trace bends, or one it passes through.
+#[derive(Clone, Copy, Debug)]
+pub struct Sharp {
+    /// Where.
+    pub at: DVec3,
+    /// Where the tangent lines of two surface points with these normals met there (a crease),
+    /// those normals; `None` for a point sampled on the trace.
+    pub planes: Option<Planes>,
+}
+
 /// How close to the surface (in cells) a face's sharp point must come to be kept.
 const ON_SURFACE: f64 = 1e-7;
 
@@ -25,20 +38,22 @@ pub fn apex(
     (face, edge): (Face, usize),
     (x, y): (Crossing, Crossing),
     spent: &mut usize,
-) -> Option<DVec3> {
+) -> Option<Sharp> {
     let mid = 0.5 * (x.position + y.position);
     if let Some(Meet::Inside(p)) = meet(face, grid, (x.position, x.normal), (y.position, y.normal))
-        && let Some(found) = between(field, grid, p, mid, spent)
+        && let Some(at) = between(field, grid, p, mid, spent)
     {
-        return Some(found);
+        let planes = Some((x.normal, y.normal));
+        return Some(Sharp { at, planes });
     }
-    march(
+    let at = march(
         field,
         grid,
         mid,
         mid + into_face(face, edge) * grid.h,
         spent,
-    )
+    )?;
+    Some(Sharp { at, planes: None })
 }
 
 /// The direction from `face`'s edge `edge` (0..4, as [`Face::edges`]) into the face.
@@ -83,7 +98,9 @@ pub fn bends(
 ) -> Bends {
     match meet(face, grid, a, b) {
         Some(Meet::Inside(p)) => {
-            return Bends::Pending(Bisect::new(field, grid, p, 0.5 * (a.0 + b.0), (a.0, b.0)));
+            let mut search = Bisect::new(field, grid, p, 0.5 * (a.0 + b.0), (a.0, b.0));
+            search.planes = Some((a.1, b.1));
+            return Bends::Pending(search);
         }
         // Two faces of a corner meet at a wide angle; a rough surface (a fractal) bends between
         // every two crossings by less, and sampling each of its faces would cost a dozen
@@ -118,11 +135,17 @@ pub fn bends(
     let mut out = Vec::new();
     for (k, pair) in samples.windows(2).enumerate() {
         let (p, q) = (pair[0], pair[1]);
-        if let Some(Meet::Inside(m)) = meet(face, grid, p, q) {
-            out.extend(between(field, grid, m, 0.5 * (p.0 + q.0), evaluations));
+        if let Some(Meet::Inside(m)) = meet(face, grid, p, q)
+            && let Some(at) = between(field, grid, m, 0.5 * (p.0 + q.0), evaluations)
+        {
+            let planes = Some((p.1, q.1));
+            out.push(Sharp { at, planes });
         }
         if k + 2 < samples.len() {
-            out.push(q.0);
+            out.push(Sharp {
+                at: q.0,
+                planes: None,
+            });
         }
     }
     Bends::Found(out)
@@ -131,7 +154,7 @@ pub fn bends(
 /// What [`bends`] finds.
 pub enum Bends {
     /// The bends, in order from `a` to `b`.
-    Found(Vec<DVec3>),
+    Found(Vec<Sharp>),
     /// The one bend, once this search has run.
     Pending(Bisect),
 }
@@ -195,6 +218,8 @@ pub struct Bisect {
     done: bool,
     /// The point found.
     pub found: Option<DVec3>,
+    /// The planes whose crease it is sought on, if a crease's.
+    pub planes: Option<Planes>,
     /// The trace's segment this point lies on.
     pub ends: (DVec3, DVec3),
 }
@@ -211,6 +236,7 @@ impl Bisect {
             started: false,
             done: false,
             found: None,
+            planes: None,
             ends,
         }
     }

@@ -4,7 +4,7 @@
 //! 2005: crossings and face segments shared by neighbours make the mesh closed and 2-manifold
 //! by construction; the QEF vertex and the faces' sharp points keep corners and creases).
 
-use super::bends::Bisect;
+use super::bends::{Bisect, Planes, Sharp};
 use super::edges;
 use super::faces::{self, Segment};
 use super::field::Face;
@@ -81,21 +81,8 @@ pub fn contour(field: &Field, grid: &Grid, cells: &[IVec3], sharp: bool) -> Cont
         faces::segments(field, grid, f, at, crossing_at, sharp)
     });
     // The faces' sharp points inside them, in lockstep batches.
-    let mut owners = Vec::new();
-    let mut pending: Vec<Bisect> = Vec::new();
-    for (i, (list, _)) in drawn.iter_mut().enumerate() {
-        for (j, s) in list.iter_mut().enumerate() {
-            if let Some(b) = s.pending.take() {
-                owners.push((i, j));
-                pending.push(b);
-            }
-        }
-    }
-    evaluations += search::run(field, &mut pending);
-    for ((i, j), b) in owners.into_iter().zip(pending) {
-        let (a, e) = b.ends;
-        drawn[i].0[j].sharp = faces::apart(a, b.found.into_iter().collect(), e, grid.h);
-    }
+    evaluations += settle_pending(field, grid, &mut drawn);
+    let mut planes: Vec<Option<Planes>> = Vec::new();
     let mut segments: HashMap<Face, Vec<Vec<u32>>> =
         HashMap::with_capacity_and_hasher(face_list.len(), Default::default());
     for (&f, (list, spent)) in face_list.iter().zip(drawn) {
@@ -103,7 +90,10 @@ pub fn contour(field: &Field, grid: &Grid, cells: &[IVec3], sharp: bool) -> Cont
         if list.is_empty() {
             continue;
         }
-        let paths = list.iter().map(|s| path(s, &mut positions)).collect();
+        let paths = list
+            .iter()
+            .map(|s| path(s, &mut positions, &mut planes))
+            .collect();
         segments.insert(f, paths);
     }
     // One polygon per sheet in each cell, fanned around its QEF vertex.
@@ -112,7 +102,7 @@ pub fn contour(field: &Field, grid: &Grid, cells: &[IVec3], sharp: bool) -> Cont
         grid,
         cells,
         &segments,
-        &normals,
+        (&normals, &planes),
         &mut positions,
         sharp,
     );
@@ -198,12 +188,40 @@ struct Closed {
     evaluations: usize,
 }
 
+/// Runs the faces' pending searches for their sharp points in lockstep batches and puts what
+/// they find (kept [`faces::MIN_GAP`] off the segments' ends) in their segments; returns the
+/// evaluations spent.
+fn settle_pending(field: &Field, grid: &Grid, drawn: &mut [(Vec<Segment>, usize)]) -> usize {
+    let mut owners = Vec::new();
+    let mut pending: Vec<Bisect> = Vec::new();
+    for (i, (list, _)) in drawn.iter_mut().enumerate() {
+        for (j, s) in list.iter_mut().enumerate() {
+            if let Some(b) = s.pending.take() {
+                owners.push((i, j));
+                pending.push(b);
+            }
+        }
+    }
+    let evaluations = search::run(field, &mut pending);
+    for ((i, j), b) in owners.into_iter().zip(pending) {
+        let (a, e) = b.ends;
+        let found = b.found.map(|at| Sharp {
+            at,
+            planes: b.planes,
+        });
+        drawn[i].0[j].sharp = faces::apart(a, found.into_iter().collect(), e, grid.h);
+    }
+    evaluations
+}
+
 /// A segment as a path of vertices (from, its sharp points given indices, to).
-fn path(s: &Segment, positions: &mut Vec<DVec3>) -> Vec<u32> {
+/// A sharp point's planes go to `planes` (by its index less the crossings' count).
+fn path(s: &Segment, positions: &mut Vec<DVec3>, planes: &mut Vec<Option<Planes>>) -> Vec<u32> {
     let mut out = vec![s.from];
     for &p in &s.sharp {
         out.push(positions.len() as u32);
-        positions.push(p);
+        positions.push(p.at);
+        planes.push(p.planes);
     }
     out.push(s.to);
     out

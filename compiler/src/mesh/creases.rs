@@ -7,34 +7,25 @@ use glam::DVec3;
 /// The cosine above which two crease points' planes count as the same plane.
 const SAME_PLANE: f64 = 0.999;
 
-/// The cosine below which the planes of a crease point's two neighbouring crossings meet at a
-/// crease (about 25°).
+/// The cosine below which a sharp point's two planes meet at a crease (about 25°).
 const CREASE: f64 = 0.9;
 
-/// `ring` (a cell's polygon: vertex `v` is a crossing of normal `normals[v]` if `v <
-/// normals.len()`) cut into smaller rings along chords between its crease points that lie on
-/// one crease — a face's sharp point between two crossings whose normals differ, its crease
-/// named by those two normals — where the ring crosses two creases or more, no two chords cross
-/// and no chord lies in one face of the cell from `lo` to `hi` (a neighbour could cut along
-/// it too). Each part
-/// then lies along one side of each crease; the ring is given back whole otherwise.
+/// `ring` (a cell's polygon) cut into smaller rings along chords between its crease points that
+/// lie on one crease — the faces' sharp points where two tangent lines met, `crease` giving
+/// their planes' normals, which name the crease — where the ring crosses two creases or more,
+/// no two chords cross and no chord lies in one face of the cell from `lo` to `hi` (a neighbour
+/// could cut along it too). Each part then lies along one side of each crease; the ring is
+/// given back whole otherwise.
 pub fn split(
     ring: Vec<u32>,
     positions: &[DVec3],
-    normals: &[DVec3],
+    crease: impl Fn(u32) -> Option<(DVec3, DVec3)>,
     (lo, hi): (DVec3, DVec3),
 ) -> Vec<Vec<u32>> {
-    let n = ring.len();
-    let normal = |v: u32| normals.get(v as usize).copied();
     // (index in the ring, the crease's two normals)
-    let creases: Vec<(usize, DVec3, DVec3)> = (0..n)
+    let creases: Vec<(usize, DVec3, DVec3)> = (0..ring.len())
         .filter_map(|k| {
-            let v = ring[k];
-            if normal(v).is_some() {
-                return None;
-            }
-            let a = normal(ring[(k + n - 1) % n])?;
-            let b = normal(ring[(k + 1) % n])?;
+            let (a, b) = crease(ring[k])?;
             (a.dot(b) < CREASE).then_some((k, a, b))
         })
         .collect();
@@ -109,18 +100,19 @@ mod tests {
     /// used once each way (so the mesh stays manifold).
     #[test]
     fn two_creases_make_three_parts() {
-        // Crossings 0..6 on three planes: a (x), b (y), c (z); crease points 6..10.
+        // Crossings 0..6 on three planes, a (x), b (y), c (z); crease points 6..10.
         let (a, b, c) = (DVec3::X, DVec3::Y, DVec3::Z);
-        let normals = vec![a, a, b, b, c, c];
         let positions: Vec<DVec3> = (0..10).map(|i| DVec3::splat(i as f64 * 0.1)).collect();
         // a a | ab | b b | bc | c c | cb ... : creases ab (6, 9) and bc (7, 8)
         let ring = vec![0, 6, 2, 7, 4, 5, 8, 3, 9, 1];
-        let parts = split(
-            ring,
-            &positions,
-            &normals,
-            (DVec3::splat(-1.0), DVec3::splat(2.0)),
-        );
+        let crease = |v: u32| match v {
+            6 | 9 => Some((a, b)),
+            7 => Some((b, c)),
+            8 => Some((c, b)),
+            _ => None,
+        };
+        let cell = (DVec3::splat(-1.0), DVec3::splat(2.0));
+        let parts = split(ring, &positions, crease, cell);
         assert_eq!(parts.len(), 3, "{parts:?}");
         let mut edges = std::collections::HashMap::new();
         for p in &parts {

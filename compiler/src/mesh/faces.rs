@@ -2,7 +2,7 @@
 //! deciding an ambiguous face, so that both cells sharing it draw the same segments, and a
 //! sharp point where the two tangent lines of a crease meet inside the face (`bends`).
 
-use super::bends::{self, Bends, Bisect};
+use super::bends::{self, Bends, Bisect, Sharp};
 use super::edges::{Crossed, Crossing};
 use super::field::{Face, Field, Grid, inside};
 use glam::{DVec3, IVec3};
@@ -12,8 +12,8 @@ use glam::{DVec3, IVec3};
 pub struct Segment {
     /// The crossing it starts at.
     pub from: u32,
-    /// The sharp points in between, in order (positions; their indices are given later).
-    pub sharp: Vec<DVec3>,
+    /// The sharp points in between, in order (their indices are given later).
+    pub sharp: Vec<Sharp>,
     /// The crossing it ends at.
     pub to: u32,
     /// The search for its sharp point, where one runs in the next batches (its result, kept
@@ -81,7 +81,10 @@ pub fn segments(
                 // just inside the face, so that the chord is not shared by more than two
                 // triangles.
                 let mid = 0.5 * (x.position + y.position);
-                segment.sharp = vec![mid + bends::into_face(face, edge) * (4.0 * MIN_GAP * grid.h)];
+                segment.sharp = vec![Sharp {
+                    at: mid + bends::into_face(face, edge) * (4.0 * MIN_GAP * grid.h),
+                    planes: None,
+                }];
             }
         } else if sharp && n == 2 {
             let ends = ((x.position, x.normal), (y.position, y.normal));
@@ -148,13 +151,13 @@ pub const MIN_GAP: f64 = 1e-4;
 
 /// The points of `found` (a path from `a` to `b`) at least [`MIN_GAP`] cells from the point
 /// before them and from `b`.
-pub fn apart(a: DVec3, found: Vec<DVec3>, b: DVec3, h: f64) -> Vec<DVec3> {
+pub fn apart(a: DVec3, found: Vec<Sharp>, b: DVec3, h: f64) -> Vec<Sharp> {
     let mut last = a;
     let mut out = Vec::with_capacity(found.len());
     for p in found {
-        if (p - last).length() >= MIN_GAP * h && (p - b).length() >= MIN_GAP * h {
+        if (p.at - last).length() >= MIN_GAP * h && (p.at - b).length() >= MIN_GAP * h {
             out.push(p);
-            last = p;
+            last = p.at;
         }
     }
     out

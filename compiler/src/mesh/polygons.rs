@@ -1,6 +1,7 @@
 //! Each cell's polygons: its faces' segments chained into closed rings, one per surface sheet,
 //! each fanned around a vertex the QEF places and a Newton step settles on the surface.
 
+use super::bends::Planes;
 use super::creases;
 use super::faces;
 use super::field::Face;
@@ -22,14 +23,15 @@ pub struct Fans {
 }
 
 /// Fans every polygon of `cells` around its vertex, appended to `positions`; `segments` are
-/// the faces' paths and `normals` the crossings' (vertex `v < normals.len()` is a crossing).
+/// the faces' paths, `normals` the crossings' (vertex `v < normals.len()` is a crossing) and
+/// `planes` the sharp points' after them (their creases' two planes, where they are a crease's).
 /// Then moves apart vertices that came too near (`separate`).
 pub fn fan(
     field: &Field,
     grid: &Grid,
     cells: &[IVec3],
     segments: &HashMap<Face, Vec<Vec<u32>>>,
-    normals: &[DVec3],
+    (normals, planes): (&[DVec3], &[Option<Planes>]),
     positions: &mut Vec<DVec3>,
     sharp: bool,
 ) -> Fans {
@@ -42,7 +44,11 @@ pub fn fan(
                     .into_iter()
                     .flat_map(|ring| {
                         let lo = grid.point(c);
-                        creases::split(ring, positions, normals, (lo, lo + grid.h))
+                        let crease = |v: u32| {
+                            let k = (v as usize).checked_sub(normals.len())?;
+                            planes.get(k).copied().flatten()
+                        };
+                        creases::split(ring, positions, crease, (lo, lo + grid.h))
                     })
                     .collect(),
                 false => rings,
