@@ -96,7 +96,8 @@ pub fn bends(
     (a, b): (Point, Point),
     evaluations: &mut usize,
 ) -> Bends {
-    match meet(face, grid, a, b) {
+    let found = meet(face, grid, a, b);
+    match found {
         Some(Meet::Inside(p)) => {
             let mut search = Bisect::new(field, grid, p, 0.5 * (a.0 + b.0), (a.0, b.0));
             search.planes = Some((a.1, b.1));
@@ -105,10 +106,11 @@ pub fn bends(
         // Two faces of a corner meet at a wide angle; a rough surface (a fractal) bends between
         // every two crossings by less, and sampling each of its faces would cost a dozen
         // evaluations and six vertices for nothing a chord does not do. Tangent lines that do
-        // not meet (parallel in the face) with normals that far apart turn back: the trace
-        // crosses a third plane between them (a box's corner, its crease parallel to the face)
-        // and is sampled too.
+        // not meet (parallel in the face) with normals that far apart and opposite in the face
+        // turn back: the trace crosses a third plane between them (a box's corner, its crease
+        // parallel to the face) and is sampled too.
         _ if a.1.dot(b.1) > CORNER_COSINE => return Bends::Found(Vec::new()),
+        None if !opposite(face, a.1, b.1) => return Bends::Found(Vec::new()),
         _ => {}
     }
     let field = &field.on_cpu();
@@ -149,6 +151,14 @@ pub fn bends(
         }
     }
     Bends::Found(out)
+}
+
+/// Whether the normals `a` and `b`, seen within `face`'s plane, point about opposite ways (a
+/// trace that turns back between them; a rough surface's traces, parallel by chance, do not).
+fn opposite(face: Face, a: DVec3, b: DVec3) -> bool {
+    let (u, v) = face.span();
+    let flat = |n: DVec3| glam::DVec2::new(n[u], n[v]).try_normalize();
+    matches!((flat(a), flat(b)), (Some(p), Some(q)) if p.dot(q) < -0.9)
 }
 
 /// What [`bends`] finds.
