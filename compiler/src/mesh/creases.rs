@@ -46,8 +46,11 @@ pub fn split(
         let others: Vec<usize> = (0..creases.len())
             .filter(|&y| y != x && same(s, creases[y]))
             .collect();
+        // (Ends next to each other on the ring would cut off a part of two vertices.)
+        let apart = |i: usize, j: usize| j - i > 1 && !(i == 0 && j == ring.len() - 1);
         if let [y] = others[..]
             && x < y
+            && apart(s.0, creases[y].0)
             && !on_one_face(s.0, creases[y].0)
         {
             chords.push((s.0, creases[y].0));
