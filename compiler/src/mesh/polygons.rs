@@ -4,8 +4,7 @@
 use super::bends::Planes;
 use super::creases;
 use super::faces;
-use super::field::Face;
-use super::field::{Field, Grid};
+use super::field::{Face, Field, Grid};
 use super::qef;
 use super::search::{self, Search};
 use crate::parallel::par_map;
@@ -39,17 +38,16 @@ pub fn fan(
         let positions = &*positions;
         par_map(cells, |&c| {
             let rings = polygons(c, segments)?;
+            // A sharp point's crease: vertices after the crossings index `planes`.
+            let crease = |v: u32| {
+                let k = (v as usize).checked_sub(normals.len())?;
+                planes.get(k).copied().flatten()
+            };
+            let cell = (grid.point(c), grid.point(c) + grid.h);
             let rings = match sharp {
                 true => rings
                     .into_iter()
-                    .flat_map(|ring| {
-                        let lo = grid.point(c);
-                        let crease = |v: u32| {
-                            let k = (v as usize).checked_sub(normals.len())?;
-                            planes.get(k).copied().flatten()
-                        };
-                        creases::split(ring, positions, crease, (lo, lo + grid.h))
-                    })
+                    .flat_map(|ring| creases::split(ring, positions, crease, cell))
                     .collect(),
                 false => rings,
             };

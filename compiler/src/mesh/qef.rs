@@ -37,18 +37,19 @@ pub fn solve(points: &[(DVec3, DVec3)], mass: DVec3) -> Solution {
     let (values, vectors) = eigen(ata);
     let largest = values.abs().max_element();
     let mut x = DVec3::ZERO;
-    let mut free = Vec::with_capacity(3);
+    // The directions left free: how many, and the last.
+    let (mut free, mut along) = (0, DVec3::ZERO);
     for i in 0..3 {
         let v = vectors.col(i);
         if largest > 0.0 && values[i].abs() > TRUNCATE * largest {
             x += v * (v.dot(atb) / values[i]);
         } else {
-            free.push(v);
+            (free, along) = (free + 1, v);
         }
     }
     Solution {
         point: mass + x,
-        crease: (free.len() == 1).then(|| free[0]),
+        crease: (free == 1).then_some(along),
     }
 }
 
