@@ -86,6 +86,12 @@ impl Checker<'_> {
         }
         let key = self.bake_key(child, &grid);
         self.count_map(key, span)?;
+        // With an error found already there is no scene to bake for, and the shape may be
+        // one the limits refused (a `repeat` of millions of copies): baking it could take
+        // hours.
+        if self.diags.iter().any(Diagnostic::is_error) {
+            return None;
+        }
         let nodes = self.nodes_for_baking(&subtree);
         let field = |p: DVec3| crate::reference::eval::raw(&nodes, child, p);
         let lambda = match self.proven_bound(&subtree) {
