@@ -86,9 +86,7 @@ impl Checker<'_> {
         }
         let key = self.bake_key(child, &grid);
         self.count_map(key, span)?;
-        // With an error found already there is no scene to bake for, and the shape may be
-        // one the limits refused (a `repeat` of millions of copies): baking it could take
-        // hours.
+        // No scene comes of it after an error, and the shape may be one the limits refused.
         if self.diags.iter().any(Diagnostic::is_error) {
             return None;
         }

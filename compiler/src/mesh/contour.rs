@@ -4,13 +4,14 @@
 //! 2005: crossings and face segments shared by neighbours make the mesh closed and 2-manifold
 //! by construction; the QEF vertex and the faces' sharp points keep corners and creases).
 
-use super::bends::{Bisect, Planes, Sharp};
+use super::bends::{self, Planes, Sharp};
 use super::edges;
 use super::faces::{self, Segment};
 use super::field::Face;
 use super::field::{Field, Grid, corner, inside};
 use super::polygons;
 use super::search;
+use super::trace::{self, Bisect};
 use crate::parallel::par_map;
 use glam::{DVec3, IVec3};
 use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
@@ -81,7 +82,7 @@ pub fn contour(field: &Field, grid: &Grid, cells: &[IVec3], sharp: bool) -> Cont
         faces::segments(field, grid, f, at, crossing_at, sharp)
     });
     // The faces' sharp points inside them, in lockstep batches.
-    evaluations += settle_pending(field, grid, &mut drawn);
+    evaluations += settle_pending(field, grid, &face_list, &mut drawn);
     let mut planes: Vec<Option<Planes>> = Vec::new();
     let mut segments: HashMap<Face, Vec<Vec<u32>>> =
         HashMap::with_capacity_and_hasher(face_list.len(), Default::default());
@@ -191,7 +192,12 @@ struct Closed {
 /// Runs the faces' pending searches for their sharp points in lockstep batches and puts what
 /// they find (kept [`faces::MIN_GAP`] off the segments' ends) in their segments; returns the
 /// evaluations spent.
-fn settle_pending(field: &Field, grid: &Grid, drawn: &mut [(Vec<Segment>, usize)]) -> usize {
+fn settle_pending(
+    field: &Field,
+    grid: &Grid,
+    faces: &[Face],
+    drawn: &mut [(Vec<Segment>, usize)],
+) -> usize {
     let mut owners = Vec::new();
     let mut pending: Vec<Bisect> = Vec::new();
     for (i, (list, _)) in drawn.iter_mut().enumerate() {
@@ -202,14 +208,23 @@ fn settle_pending(field: &Field, grid: &Grid, drawn: &mut [(Vec<Segment>, usize)
             }
         }
     }
-    let evaluations = search::run(field, &mut pending);
+    let mut evaluations = search::run(field, &mut pending);
     for ((i, j), b) in owners.into_iter().zip(pending) {
         let (a, e) = b.ends;
-        let found = b.found.map(|at| Sharp {
-            at,
-            planes: b.planes,
-        });
-        drawn[i].0[j].sharp = faces::apart(a, found.into_iter().collect(), e, grid.h);
+        let found = match (b.found, b.planes) {
+            // The tangent lines' meeting point on the surface: a crease.
+            (Some(at), planes) if trace::at_meet(at, b.from, grid) => vec![Sharp { at, planes }],
+            // A surface point short of it: the trace bends more than once (a corner).
+            (Some(at), Some((na, nb))) if !b.only_crease && na.dot(nb) <= bends::CORNER_COSINE => {
+                let ends = ((a, na), at, (e, nb));
+                let depth = bends::DEPTH - 1;
+                bends::either_side(field, grid, faces[i], ends, depth, &mut evaluations)
+            }
+            // A point of a smooth trace, or too little turned to follow.
+            (Some(at), _) if !b.only_crease => vec![Sharp { at, planes: None }],
+            _ => Vec::new(),
+        };
+        drawn[i].0[j].sharp = faces::apart(a, found, e, grid.h);
     }
     evaluations
 }

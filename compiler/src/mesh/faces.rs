@@ -2,9 +2,10 @@
 //! deciding an ambiguous face, so that both cells sharing it draw the same segments, and a
 //! sharp point where the two tangent lines of a crease meet inside the face (`bends`).
 
-use super::bends::{self, Bends, Bisect, Sharp};
+use super::bends::{self, Bends, Sharp};
 use super::edges::{Crossed, Crossing};
 use super::field::{Face, Field, Grid, inside};
+use super::trace::{self, Bisect};
 use glam::{DVec3, IVec3};
 
 /// A path across a face from one crossing to another, through a sharp point or not.
@@ -26,10 +27,11 @@ pub struct Segment {
 /// the crossings on a grid edge. Going round the face's border counter-clockwise, each crossing
 /// that leaves the inside (an exit) is joined to the next crossing where the inside regions
 /// meet across the face, else to the one before (a face of more than two crossings decides by
-/// the field at its centre, `centre`, from [`centre`]'s point). With `sharp`, a face of two
-/// crossings whose tangent lines meet at an angle, inside the face and on the surface, gets
-/// that point (a [`Bisect`] left pending in the segment; where they meet outside, the trace's
-/// bends are searched here on the CPU). Returns the segments and the evaluations spent.
+/// the field at its centre, `centre`, from [`centre`]'s point). With `sharp`, a segment whose
+/// crossings' tangent lines meet at an angle, inside the face and on the surface, gets that
+/// point (a [`Bisect`] left pending in the segment; on a face of two crossings, where they
+/// meet outside or off the surface, the trace's bends are searched: [`bends::bends`]).
+/// Returns the segments and the evaluations spent.
 pub fn segments(
     field: &Field,
     grid: &Grid,
@@ -75,24 +77,24 @@ pub fn segments(
             // Both ends on one edge, crossed twice: the trace dips into the face between them.
             let field = &field.on_cpu();
             let found = bends::apex(field, grid, (face, edge), (x, y), &mut evaluations);
-            segment.sharp = apart(x.position, found.into_iter().collect(), y.position, grid.h);
+            segment.sharp = apart(x.position, found, y.position, grid.h);
             if segment.sharp.is_empty() {
                 // No surface point found (a field that is no bound, a dip too shallow): a point
                 // just inside the face, so that the chord is not shared by more than two
                 // triangles.
                 let mid = 0.5 * (x.position + y.position);
                 segment.sharp = vec![Sharp {
-                    at: mid + bends::into_face(face, edge) * (4.0 * MIN_GAP * grid.h),
+                    at: mid + trace::into_face(face, edge) * (4.0 * MIN_GAP * grid.h),
                     planes: None,
                 }];
             }
-        } else if sharp && n == 2 {
+        } else if sharp {
             let ends = ((x.position, x.normal), (y.position, y.normal));
-            match bends::bends(field, grid, face, ends, &mut evaluations) {
+            match bends::bends(field, grid, (face, n > 2), ends, &mut evaluations) {
                 Bends::Found(found) => {
                     segment.sharp = apart(x.position, found, y.position, grid.h);
                 }
-                Bends::Pending(search) => segment.pending = Some(search),
+                Bends::Pending(search) => segment.pending = Some(*search),
             }
         }
         out.push(segment);

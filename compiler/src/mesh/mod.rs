@@ -9,6 +9,7 @@
 mod bends;
 mod cells;
 mod contour;
+mod corners;
 mod creases;
 mod edges;
 mod faces;
@@ -18,6 +19,8 @@ pub mod measure;
 mod polygons;
 mod qef;
 mod search;
+mod settle;
+mod trace;
 
 use crate::parallel::par_map;
 use crate::reference::eval;

@@ -2,14 +2,16 @@
 //! each fanned around a vertex the QEF places and a Newton step settles on the surface.
 
 use super::bends::Planes;
+use super::corners::{self, Corner};
 use super::creases;
 use super::faces;
 use super::field::{Face, Field, Grid};
 use super::qef;
-use super::search::{self, Search};
+use super::search;
+use super::settle::{self, Settle};
 use crate::parallel::par_map;
 use glam::{DVec3, IVec3};
-use rustc_hash::FxHashMap as HashMap;
+use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
 
 /// The fans of every cell.
 pub struct Fans {
@@ -34,34 +36,19 @@ pub fn fan(
     positions: &mut Vec<DVec3>,
     sharp: bool,
 ) -> Fans {
-    let starts = {
+    let mut starts = {
         let positions = &*positions;
         par_map(cells, |&c| {
-            let rings = polygons(c, segments)?;
-            // A sharp point's crease: vertices after the crossings index `planes`.
-            let crease = |v: u32| {
-                let k = (v as usize).checked_sub(normals.len())?;
-                planes.get(k).copied().flatten()
-            };
-            let cell = (grid.point(c), grid.point(c) + grid.h);
-            let rings = match sharp {
-                true => rings
-                    .into_iter()
-                    .flat_map(|ring| creases::split(ring, positions, crease, cell))
-                    .collect(),
-                false => rings,
-            };
-            let starts = rings
-                .into_iter()
-                .map(|ring| {
-                    let centre = start(grid, c, &ring, (positions, normals), sharp);
-                    (ring, centre)
-                })
-                .collect::<Vec<_>>();
+            let starts = cell_starts(grid, c, segments, (positions, normals, planes), sharp)?;
             Some((c, starts))
         })
     };
-    // Sharp vertices settle on the surface, all cells' searches in lockstep.
+    let mut evaluations = match sharp {
+        true => keep_corners(field, grid, cells, &mut starts),
+        false => 0,
+    };
+    // Sharp vertices settle on the surface, all cells' searches in lockstep (but those at a
+    // corner outside their cell, on it already).
     let mut settles: Vec<Settle> = match sharp {
         false => Vec::new(),
         true => starts
@@ -71,11 +58,12 @@ pub fn fan(
                 let lo = grid.point(*c);
                 rings
                     .iter()
-                    .map(move |&(_, (p, or))| Settle::new(field, (p, or), lo, grid.h))
+                    .filter(|(_, s)| s.corner.is_none())
+                    .map(move |(_, s)| Settle::new(field, (s.p, s.or), lo, grid.h))
             })
             .collect(),
     };
-    let evaluations = search::run(field, &mut settles);
+    evaluations += search::run(field, &mut settles);
     let mut settled = settles.into_iter().map(|s| s.p);
     let mut triangles = Vec::new();
     let mut broken = 0;
@@ -87,9 +75,10 @@ pub fn fan(
         let centres: Vec<DVec3> = rings
             .iter()
             .map(|(ring, start)| {
-                let centre = match sharp {
-                    true => settled.next().unwrap_or(start.0),
-                    false => start.0,
+                let centre = match (sharp, start.corner) {
+                    (_, Some(corner)) => corner.at,
+                    (true, None) => settled.next().unwrap_or(start.p),
+                    (false, None) => start.p,
                 };
                 away(centre, ring, positions, grid.h)
             })
@@ -111,36 +100,135 @@ pub fn fan(
     }
 }
 
+/// Cell `c`'s rings (with `sharp`, split along creases: [`creases::split`]) and where each
+/// one's vertex starts; `None` where its segments do not close.
+fn cell_starts(
+    grid: &Grid,
+    c: IVec3,
+    segments: &HashMap<Face, Vec<Vec<u32>>>,
+    (positions, normals, planes): (&[DVec3], &[DVec3], &[Option<Planes>]),
+    sharp: bool,
+) -> Option<Vec<(Vec<u32>, Start)>> {
+    let rings = polygons(c, segments)?;
+    // A sharp point's crease: vertices after the crossings index `planes`.
+    let crease = |v: u32| {
+        let k = (v as usize).checked_sub(normals.len())?;
+        planes.get(k).copied().flatten()
+    };
+    let cell = (grid.point(c), grid.point(c) + grid.h);
+    // Each ring, and whether it is whole (not a part split off along a crease).
+    let rings: Vec<(Vec<u32>, bool)> = match sharp {
+        true => rings
+            .into_iter()
+            .flat_map(|ring| {
+                let parts = creases::split(ring, positions, crease, cell);
+                let whole = parts.len() == 1;
+                parts.into_iter().map(move |part| (part, whole))
+            })
+            .collect(),
+        false => rings.into_iter().map(|ring| (ring, true)).collect(),
+    };
+    // (A part's crease points lie on planes beyond it: not in its QEF.)
+    let none = |_: u32| None;
+    let starts = rings
+        .into_iter()
+        .map(|(ring, whole)| {
+            let planes: &CreaseOf = match whole {
+                true => &crease,
+                false => &none,
+            };
+            let centre = start(grid, c, &ring, (positions, normals, planes), sharp);
+            (ring, centre)
+        })
+        .collect();
+    Some(starts)
+}
+
+/// The planes of a sharp point's crease, by vertex (`None`: a crossing, or no crease's).
+type CreaseOf<'a> = dyn Fn(u32) -> Option<Planes> + 'a;
+
+/// Where a ring's vertex starts.
+struct Start {
+    /// The point.
+    p: DVec3,
+    /// Where to start again, should `p` not reach the surface ([`Settle`]'s `or`).
+    or: Option<DVec3>,
+    /// The corner outside the cell the vertex goes to instead, where [`corners`] allows it.
+    corner: Option<Corner>,
+}
+
+/// A cell and its rings with their vertices' starts (`None`: its segments did not close).
+type CellStarts = Option<(IVec3, Vec<(Vec<u32>, Start)>)>;
+
+/// Keeps the corners outside their cells that [`corners::keep`] allows, of the rings in
+/// `starts` (by cell, `cells`' order; `None`: a cell whose segments did not close, which
+/// counts as drawn); returns the evaluations spent.
+fn keep_corners(field: &Field, grid: &Grid, cells: &[IVec3], starts: &mut [CellStarts]) -> usize {
+    let drawn: HashSet<IVec3> = cells
+        .iter()
+        .zip(starts.iter())
+        .filter(|(_, s)| s.as_ref().is_none_or(|(_, rings)| !rings.is_empty()))
+        .map(|(&c, _)| c)
+        .collect();
+    let mut claims: Vec<&mut Option<Corner>> = starts
+        .iter_mut()
+        .flatten()
+        .flat_map(|(_, rings)| rings.iter_mut().map(|(_, s)| &mut s.corner))
+        .collect();
+    corners::keep(
+        field,
+        &mut claims,
+        &drawn,
+        settle::on_surface(field, grid.h),
+    )
+}
+
 /// Where the vertex of `ring` (a polygon of cell `c`) starts: sharp, where the QEF of its
-/// crossings puts it (around the mass point of all its vertices: a face's sharp points lie on
-/// the creases inside the cell, so a crease's line is followed to them), to be settled on the
-/// surface by a [`Settle`]; plain, the mean of its crossings. Vertex `v` of `positions` is a
-/// crossing of normal `normals[v]` if `v < normals.len()`.
+/// crossings' tangent planes and its sharp points' two planes puts it (around the mass point of
+/// all its vertices: a face's sharp points lie on the creases inside the cell, so a crease's
+/// line is followed to them), to be settled on the surface by a [`Settle`]; plain, the mean of
+/// its crossings. Vertex `v` of `positions` is a crossing of normal `normals[v]` if
+/// `v < normals.len()`, else a sharp point whose planes `crease(v)` gives, if it is a crease's.
+/// (A corner whose third plane no crossing of the cell lies on — its trace on the cell's faces
+/// runs between two sharp points — is still found: those points carry that plane.)
 fn start(
     grid: &Grid,
     c: IVec3,
     ring: &[u32],
-    (positions, normals): (&[DVec3], &[DVec3]),
+    (positions, normals, crease): (&[DVec3], &[DVec3], &CreaseOf<'_>),
     sharp: bool,
-) -> (DVec3, Option<DVec3>) {
+) -> Start {
     let lo = grid.point(c);
-    let sheet: Vec<(DVec3, DVec3)> = ring
+    let mut sheet: Vec<(DVec3, DVec3)> = ring
         .iter()
         .filter_map(|&v| normals.get(v as usize).map(|&n| (positions[v as usize], n)))
         .collect();
     if sharp {
+        for &v in ring {
+            if let Some((a, b)) = crease(v) {
+                let p = positions[v as usize];
+                sheet.extend([(p, a), (p, b)]);
+            }
+        }
         let mass = ring.iter().map(|&v| positions[v as usize]).sum::<DVec3>() / ring.len() as f64;
         let found = qef::solve(&sheet, mass);
-        match found.crease {
+        let corner = corners::outside(&found, &sheet, grid, c);
+        let (p, or) = match found.crease {
             Some(along) => {
                 let on = onto_crease(found.point, along, lo, lo + grid.h);
                 (on, (on != found.point).then_some(found.point))
             }
             None => (found.point, None),
-        }
+        };
+        Start { p, or, corner }
     } else {
         let mean = sheet.iter().map(|s| s.0).sum::<DVec3>() / sheet.len().max(1) as f64;
-        (mean.clamp(lo, lo + grid.h), None)
+        let p = mean.clamp(lo, lo + grid.h);
+        Start {
+            p,
+            or: None,
+            corner: None,
+        }
     }
 }
 
@@ -210,151 +298,6 @@ fn polygons(c: IVec3, segments: &HashMap<Face, Vec<Vec<u32>>>) -> Option<Vec<Vec
     Some(rings)
 }
 
-/// Newton steps of the QEF's point onto the surface (p − d·∇d, the nearest surface point for
-/// an exact field), kept in the cell: where the sheet in a cell shows only two of a corner's
-/// three faces, the QEF puts the point on the crease's line past the corner, and the step
-/// brings it back to the corner. A point the QEF put outside the cell is clamped to the cell's
-/// side and moves within that side (the surface's point there nearest a corner just outside).
-/// A point already on the surface does not move; a step that does not bring it nearer ends.
-struct Settle {
-    /// The point and the field there.
-    p: DVec3,
-    d: f64,
-    /// The cell.
-    lo: DVec3,
-    hi: DVec3,
-    /// 1 along the axes the point may move on, 0 along those it was clamped on.
-    free: DVec3,
-    steps: usize,
-    /// On the surface below this |d|.
-    tol: f64,
-    /// The gradient's sample distance.
-    step: f64,
-    phase: Phase,
-    /// Where to start again should this start not reach the surface (the QEF's own point,
-    /// where a crease's point was tried first: the crease's line leaves the surface past a
-    /// corner).
-    or: Option<DVec3>,
-    /// The point nearest the surface so far, and the field there.
-    best: Option<(DVec3, f64)>,
-}
-
-/// What a [`Settle`] asks for next.
-#[derive(Clone, Copy)]
-enum Phase {
-    Value,
-    Normal,
-    Try(DVec3),
-    Done,
-}
-
-impl Settle {
-    fn new(field: &Field, (p, or): (DVec3, Option<DVec3>), lo: DVec3, h: f64) -> Settle {
-        let mut settle = Settle {
-            free: DVec3::ONE,
-            p,
-            d: f64::NAN,
-            lo,
-            hi: lo + h,
-            steps: 0,
-            tol: (1e-7 * h).max(field.resolution()),
-            step: field.gradient_step(h),
-            phase: Phase::Value,
-            or,
-            best: None,
-        };
-        settle.from(p);
-        settle
-    }
-
-    /// Starts from `p`, clamped to the cell.
-    fn from(&mut self, p: DVec3) {
-        let (lo, hi) = (self.lo, self.hi);
-        self.free = DVec3::select(p.cmplt(lo) | p.cmpgt(hi), DVec3::ZERO, DVec3::ONE);
-        self.p = p.clamp(lo, hi);
-        self.steps = 0;
-        self.phase = Phase::Value;
-    }
-
-    /// Done: or, off the surface with another start left, that start next; the point nearest
-    /// the surface is kept.
-    fn done(&mut self) -> Phase {
-        if self.best.is_none_or(|(_, d)| self.d.abs() < d.abs()) {
-            self.best = Some((self.p, self.d));
-        }
-        // (NaN is off the surface.)
-        let on = self.d.abs() <= self.tol;
-        match self.or.take() {
-            Some(q) if !on => {
-                self.from(q);
-                Phase::Value
-            }
-            _ => {
-                (self.p, self.d) = self.best.unwrap_or((self.p, self.d));
-                Phase::Done
-            }
-        }
-    }
-
-    /// Where steps within the cell's side no longer bring the point nearer the surface (the
-    /// surface does not meet that side near it: a crease leaving the cell elsewhere), the steps
-    /// go on along every axis; else done.
-    fn unfreeze(&mut self) -> Phase {
-        match self.free == DVec3::ONE {
-            true => self.done(),
-            false => {
-                self.free = DVec3::ONE;
-                Phase::Normal
-            }
-        }
-    }
-
-    /// After a value: done, or the gradient next.
-    fn next(&mut self) {
-        let stop = self.steps == PROJECTION_STEPS || self.d.is_nan() || self.d.abs() <= self.tol;
-        self.phase = if stop { self.done() } else { Phase::Normal };
-    }
-}
-
-impl Search for Settle {
-    fn ask(&self, points: &mut Vec<DVec3>) {
-        match self.phase {
-            Phase::Value => points.push(self.p),
-            Phase::Normal => search::gradient_points(self.p, self.step, points),
-            Phase::Try(q) => points.push(q),
-            Phase::Done => {}
-        }
-    }
-
-    fn tell(&mut self, values: &[f64]) {
-        match self.phase {
-            Phase::Value => {
-                self.d = values[0];
-                self.next();
-            }
-            Phase::Normal => {
-                let n = search::unit_gradient(values) * self.free;
-                let g = n.length_squared();
-                self.phase = match g < 1e-6 {
-                    true => self.unfreeze(),
-                    false => Phase::Try((self.p - n * (self.d / g)).clamp(self.lo, self.hi)),
-                };
-            }
-            Phase::Try(q) => {
-                let dq = values[0];
-                self.steps += 1;
-                if dq.is_nan() || dq.abs() >= self.d.abs() {
-                    self.phase = self.unfreeze();
-                } else {
-                    (self.p, self.d) = (q, dq);
-                    self.next();
-                }
-            }
-            Phase::Done => {}
-        }
-    }
-}
-
 /// The polygon's vertex `centre`, moved toward the ring's mean while it lies within
 /// `faces::MIN_GAP` cells of one of the ring's vertices (a corner of the shape on a cell's face
 /// is both a face's sharp point and the QEF's answer), so that no two vertices share a position.
@@ -374,9 +317,6 @@ fn away(centre: DVec3, ring: &[u32], positions: &[DVec3], h: f64) -> DVec3 {
     }
     mean
 }
-
-/// The Newton steps [`onto_surface`] takes at most.
-const PROJECTION_STEPS: usize = 8;
 
 /// Moves apart vertices nearer each other than `gap`: two polygons' vertices clamped to one
 /// cell corner, or two parts that touch at a point (the primitives example's octahedron tip on

@@ -17,6 +17,9 @@ pub struct Solution {
     /// Where the planes leave exactly one direction free (a crease), that direction: every
     /// point of the line through `point` along it is as good.
     pub crease: Option<DVec3>,
+    /// Whether the planes leave no direction free (three independent normals): `point` is
+    /// then their one common point, a corner.
+    pub corner: bool,
 }
 
 /// The point minimising Σ (nᵢ·(x − pᵢ))² over the sheet's surface points `pᵢ` and unit normals
@@ -50,6 +53,7 @@ pub fn solve(points: &[(DVec3, DVec3)], mass: DVec3) -> Solution {
     Solution {
         point: mass + x,
         crease: (free == 1).then_some(along),
+        corner: free == 0,
     }
 }
 
@@ -136,7 +140,7 @@ mod tests {
             (corner + DVec3::new(0.0, 0.02, 0.09), DVec3::X),
         ];
         let found = solve(&points, mean(&points));
-        assert!(found.point.abs_diff_eq(corner, 1e-12) && found.crease.is_none());
+        assert!(found.point.abs_diff_eq(corner, 1e-12) && found.crease.is_none() && found.corner);
     }
 
     #[test]
