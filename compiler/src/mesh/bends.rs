@@ -6,7 +6,7 @@ use super::edges::Crossing;
 use super::field::{Face, Field, Grid};
 pub use super::trace::Planes;
 use super::trace::{
-    Bisect, Meet, Point, at_meet, between, into_face, march, meet, opposite, to_edge,
+    Bisect, Meet, Point, at_meet, between, into_face, march, meet, opposite, simple, to_edge,
 };
 use glam::DVec3;
 
@@ -65,7 +65,32 @@ pub fn bends(
             Bends::Pending(Box::new(search))
         }
         _ if shares => Bends::Found(Vec::new()),
-        _ => Bends::Found(pair(field, grid, face, (a, b), DEPTH, evaluations)),
+        _ => {
+            let found = pair(field, grid, face, (a, b), DEPTH, evaluations);
+            Bends::Found(untangled(face, a.0, found, b.0))
+        }
+    }
+}
+
+/// The trace from `a` through `found` to `b` if it does not cross or fold back on itself
+/// within the face; else its crease points alone if they do not, else nothing. A bend just
+/// past the face's edge (a crease's wedge poking through it by less than the edge's search
+/// finds) makes the trace turn outside the face, and the points followed toward it from both
+/// sides overlap.
+pub fn untangled(face: Face, a: DVec3, found: Vec<Sharp>, b: DVec3) -> Vec<Sharp> {
+    let path = |points: &[Sharp]| {
+        let mut path = vec![a];
+        path.extend(points.iter().map(|s| s.at));
+        path.push(b);
+        path
+    };
+    if simple(face, &path(&found)) {
+        return found;
+    }
+    let creases: Vec<Sharp> = found.into_iter().filter(|s| s.planes.is_some()).collect();
+    match simple(face, &path(&creases)) {
+        true => creases,
+        false => Vec::new(),
     }
 }
 
@@ -99,7 +124,10 @@ pub fn apex(
     let dir = dip(face, edge, x.1, y.1);
     let into = mid + dir * to_edge(grid, face, mid, dir).unwrap_or(grid.h);
     match found.or_else(|| march(field, grid, mid, into, spent)) {
-        Some(at) => either_side(field, grid, face, (x, at, y), DEPTH - 1, spent),
+        Some(at) => {
+            let found = either_side(field, grid, face, (x, at, y), DEPTH - 1, spent);
+            untangled(face, x.0, found, y.0)
+        }
         None => Vec::new(),
     }
 }
@@ -124,8 +152,7 @@ pub fn either_side(
     out
 }
 
-/// Where the trace of `face` bends strictly between its surface points `p` and `q`, in order,
-/// where their normals lie more than 45° apart ([`CORNER_COSINE`]), followed `depth` levels:
+/// Where the trace of `face` bends strictly between its surface points `p` and `q`, in order:
 /// - tangent lines meeting inside the face: their meeting point, settled on the surface (a
 ///   crease); a surface point short of it (a third plane cuts the meeting point off) is
 ///   followed on either side;
@@ -134,6 +161,9 @@ pub fn either_side(
 /// - parallel and facing opposite ways: the trace turns back through a third plane (a U: a
 ///   box's corner whose crease runs along the face); its bottom, the first surface point from
 ///   the chord's middle along the lines, is followed on either side (sampled if not found).
+///
+/// All but the first only where the normals lie more than 45° apart ([`CORNER_COSINE`]), and
+/// `depth` levels deep.
 fn pair(
     field: &Field,
     grid: &Grid,
@@ -142,10 +172,8 @@ fn pair(
     depth: usize,
     spent: &mut usize,
 ) -> Vec<Sharp> {
-    if depth == 0 || p.1.dot(q.1) > CORNER_COSINE {
-        return Vec::new();
-    }
     let field = &field.on_cpu();
+    let follow = depth > 0 && p.1.dot(q.1) <= CORNER_COSINE;
     let mid = 0.5 * (p.0 + q.0);
     match meet(face, grid, p, q) {
         Some(Meet::Inside(c)) => match between(field, grid, c, mid, spent) {
@@ -153,15 +181,18 @@ fn pair(
                 at,
                 planes: Some((p.1, q.1)),
             }],
-            Some(at) => either_side(field, grid, face, (p, at, q), depth - 1, spent),
+            Some(at) if follow => either_side(field, grid, face, (p, at, q), depth - 1, spent),
+            Some(at) => vec![Sharp { at, planes: None }],
             None => Vec::new(),
         },
-        Some(Meet::Outside) => sampled(field, grid, face, (p, q), depth - 1, spent),
-        None if opposite(face, p.1, q.1) => match bottom(field, grid, face, (p, q), spent) {
-            Some(at) => either_side(field, grid, face, (p, at, q), depth - 1, spent),
-            None => sampled(field, grid, face, (p, q), depth - 1, spent),
-        },
-        None => Vec::new(),
+        Some(Meet::Outside) if follow => sampled(field, grid, face, (p, q), depth - 1, spent),
+        None if follow && opposite(face, p.1, q.1) => {
+            match bottom(field, grid, face, (p, q), spent) {
+                Some(at) => either_side(field, grid, face, (p, at, q), depth - 1, spent),
+                None => sampled(field, grid, face, (p, q), depth - 1, spent),
+            }
+        }
+        _ => Vec::new(),
     }
 }
 

@@ -218,7 +218,9 @@ fn settle_pending(
             (Some(at), Some((na, nb))) if !b.only_crease && na.dot(nb) <= bends::CORNER_COSINE => {
                 let ends = ((a, na), at, (e, nb));
                 let depth = bends::DEPTH - 1;
-                bends::either_side(field, grid, faces[i], ends, depth, &mut evaluations)
+                let found =
+                    bends::either_side(field, grid, faces[i], ends, depth, &mut evaluations);
+                bends::untangled(faces[i], a, found, e)
             }
             // A point of a smooth trace, or too little turned to follow.
             (Some(at), _) if !b.only_crease => vec![Sharp { at, planes: None }],

@@ -1,6 +1,6 @@
 //! A cell's polygon split along the creases that cross it without meeting inside it (two
-//! parallel edges of a part, a chamfer or a cut narrower than a cell): one vertex cannot lie
-//! on two creases, and a fan around it would cut across one of them.
+//! parallel edges of a part, a chamfer or a cut narrower than a cell, a crease passing a
+//! corner): one vertex cannot lie on two creases, and a fan around it would cut across one.
 
 use glam::DVec3;
 
@@ -12,10 +12,10 @@ const CREASE: f64 = 0.9;
 
 /// `ring` (a cell's polygon) cut into smaller rings along chords between its crease points that
 /// lie on one crease — the faces' sharp points where two tangent lines met, `crease` giving
-/// their planes' normals, which name the crease — where the ring crosses two creases or more,
-/// no two chords cross and no chord lies in one face of the cell from `lo` to `hi` (a neighbour
-/// could cut along it too). Each part then lies along one side of each crease; the ring is
-/// given back whole otherwise.
+/// their planes' normals, which name the crease — where the ring crosses two creases or more
+/// (or one, and a corner's creases end in the cell beside it), no two chords cross and no chord
+/// lies in one face of the cell from `lo` to `hi` (a neighbour could cut along it too). Each
+/// part then lies along one side of each crease; the ring is given back whole otherwise.
 pub fn split(
     ring: Vec<u32>,
     positions: &[DVec3],
@@ -62,7 +62,11 @@ pub fn split(
         let within = |k: usize| a < k && k < b;
         within(c) != within(d) && ![a, b].contains(&c) && ![a, b].contains(&d)
     };
-    if chords.len() < 2
+    // One chord alone: a crease the QEF's line follows, unless the ring's other crease points
+    // (a corner in the cell: a box's corner cut off by a plane) lie beside it.
+    let others = creases.len() - 2 * chords.len();
+    if chords.is_empty()
+        || (chords.len() == 1 && others < 2)
         || chords
             .iter()
             .enumerate()

@@ -116,28 +116,24 @@ fn cell_starts(
         planes.get(k).copied().flatten()
     };
     let cell = (grid.point(c), grid.point(c) + grid.h);
-    // Each ring, and whether it is whole (not a part split off along a crease).
-    let rings: Vec<(Vec<u32>, bool)> = match sharp {
+    let rings: Vec<Vec<u32>> = match sharp {
         true => rings
             .into_iter()
-            .flat_map(|ring| {
-                let parts = creases::split(ring, positions, crease, cell);
-                let whole = parts.len() == 1;
-                parts.into_iter().map(move |part| (part, whole))
-            })
+            .flat_map(|ring| creases::split(ring, positions, crease, cell))
             .collect(),
-        false => rings.into_iter().map(|ring| (ring, true)).collect(),
+        false => rings,
     };
-    // (A part's crease points lie on planes beyond it: not in its QEF.)
-    let none = |_: u32| None;
+    // The ends of a chord a ring was split along lie in two parts, and on a plane beyond each:
+    // their planes are not in the parts' QEFs.
+    let mut parts: HashMap<u32, u32> = HashMap::default();
+    for &v in rings.iter().flatten() {
+        *parts.entry(v).or_default() += 1;
+    }
+    let within = |v: u32| crease(v).filter(|_| parts[&v] == 1);
     let starts = rings
         .into_iter()
-        .map(|(ring, whole)| {
-            let planes: &CreaseOf = match whole {
-                true => &crease,
-                false => &none,
-            };
-            let centre = start(grid, c, &ring, (positions, normals, planes), sharp);
+        .map(|ring| {
+            let centre = start(grid, c, &ring, (positions, normals, &within), sharp);
             (ring, centre)
         })
         .collect();

@@ -219,3 +219,35 @@ pub fn to_edge(grid: &Grid, face: Face, p: DVec3, dir: DVec3) -> Option<f64> {
     }
     (reach.is_finite() && reach > 0.0).then_some(reach)
 }
+
+/// Whether the path through `points` (in `face`'s plane) is simple: no two of its segments
+/// cross or overlap, and none turns straight back on the one before.
+pub fn simple(face: Face, points: &[DVec3]) -> bool {
+    let (u, v) = face.span();
+    let p: Vec<glam::DVec2> = points
+        .iter()
+        .map(|p| glam::DVec2::new(p[u], p[v]))
+        .collect();
+    let n = p.len().saturating_sub(1);
+    let side = |a: glam::DVec2, b: glam::DVec2, c: glam::DVec2| (b - a).perp_dot(c - a);
+    for i in 0..n {
+        let (a, b) = (p[i], p[i + 1]);
+        if i + 2 <= n {
+            // Straight back: the next segment runs along this one the other way.
+            let c = p[i + 2];
+            let (d1, d2) = (b - a, c - b);
+            if d1.perp_dot(d2).abs() <= 1e-9 * d1.length() * d2.length() && d1.dot(d2) < 0.0 {
+                return false;
+            }
+        }
+        for j in i + 2..n {
+            let (c, d) = (p[j], p[j + 1]);
+            let crosses =
+                side(a, b, c) * side(a, b, d) < 0.0 && side(c, d, a) * side(c, d, b) < 0.0;
+            if crosses {
+                return false;
+            }
+        }
+    }
+    true
+}
