@@ -126,7 +126,11 @@ pub fn apex(
     match found.or_else(|| march(field, grid, mid, into, spent)) {
         Some(at) => {
             let found = either_side(field, grid, face, (x, at, y), DEPTH - 1, spent);
-            untangled(face, x.0, found, y.0)
+            match untangled(face, x.0, found, y.0) {
+                // (The dip's one point, rather than none: the chord needs one.)
+                found if found.is_empty() => vec![Sharp { at, planes: None }],
+                found => found,
+            }
         }
         None => Vec::new(),
     }
