@@ -309,32 +309,60 @@ fn a_gltf_loads_and_draws_in_three_js() {
 }
 
 /// `--triangles N` comes near N: a scene I did not write for it (the composition example, its
-/// floor cut by a box) asked for 2 000, 20 000 and 200 000 triangles gets each within 20 %.
+/// floor cut by a box) asked for 2 000, 20 000 and 200 000 triangles gets each within 20 %, or,
+/// where no whole resolution does (the counts jump between coarse ones: at 2 000, resolutions 6
+/// and 7 make 1 246 and 2 402 since stop 50 followed creases on the GPU), the resolution whose
+/// count is nearest of it and its two neighbours, which bracket N.
 #[test]
 fn a_triangle_count_is_met_within_a_fifth() {
     let dir = scratch("mesh-count");
     let scene = root().join("examples/composition.sdf");
-    for target in [2_000u64, 20_000, 200_000] {
-        let out = dir.join(format!("{target}.stl"));
-        let run = sdfc(&[
+    let count = |args: &[&str], out: &std::path::Path| {
+        let mut all = vec![
             "mesh",
             scene.to_str().unwrap(),
             "--bounds",
             "-3,-0.5,-3,3,3,3",
-            "--triangles",
-            &target.to_string(),
-            "-o",
-            out.to_str().unwrap(),
-        ]);
-        let said = String::from_utf8_lossy(&run.stderr);
+        ];
+        all.extend_from_slice(args);
+        all.extend(["-o", out.to_str().unwrap()]);
+        let run = sdfc(&all);
+        let said = String::from_utf8_lossy(&run.stderr).into_owned();
         assert!(run.status.success(), "{said}");
         // A binary STL's triangle count: the little-endian u32 after its 80-byte header.
-        let bytes = std::fs::read(&out).unwrap();
-        let got = u32::from_le_bytes(bytes[80..84].try_into().unwrap());
+        let bytes = std::fs::read(out).unwrap();
+        (u32::from_le_bytes(bytes[80..84].try_into().unwrap()), said)
+    };
+    for target in [2_000u64, 20_000, 200_000] {
+        let out = dir.join(format!("{target}.stl"));
+        let (got, said) = count(&["--triangles", &target.to_string()], &out);
         println!("{target} asked: {got} triangles");
-        let off = (f64::from(got) / target as f64 - 1.0).abs();
-        assert!(off <= 0.2, "{target} asked, {got} made: {said}");
         assert!(said.contains(&format!("{target} asked for")), "{said}");
+        let off = |n: u32| (f64::from(n) / target as f64 - 1.0).abs();
+        if off(got) <= 0.2 {
+            continue;
+        }
+        let r: u32 = said
+            .split("resolution ")
+            .nth(1)
+            .and_then(|t| t.split(' ').next())
+            .and_then(|t| t.parse().ok())
+            .unwrap_or_else(|| panic!("no resolution named: {said}"));
+        let (below, _) = count(&["--resolution", &(r - 1).to_string()], &out);
+        let (above, _) = count(&["--resolution", &(r + 1).to_string()], &out);
+        println!(
+            "  resolutions {}, {r}, {}: {below}, {got}, {above}",
+            r - 1,
+            r + 1
+        );
+        assert!(
+            u64::from(below) < target && u64::from(above) > target,
+            "{target} asked, {got} made at {r}; its neighbours {below}, {above}: {said}"
+        );
+        assert!(
+            off(got) <= off(below) && off(got) <= off(above),
+            "{target}: {got}, {below}, {above}"
+        );
     }
 }
 
@@ -342,13 +370,13 @@ fn a_triangle_count_is_met_within_a_fifth() {
 /// reference does: examples whose field is costly (the GPU's purpose), a hand-written blob of
 /// 60 balls and a turned box (creases), each closed and 2-manifold, its triangle count and
 /// volume near the reference's, and its distance to the surface — measured by the f64 field,
-/// not by the GPU — within a fiftieth of a cell of the reference mesh's at the vertices and a
-/// quarter of a cell at the faces' centroids: the GPU's gradients sample a hundredth of a cell
-/// apart, and a crossing nearer a crease than that gets a blend of its two planes' normals, so
-/// that the fans there follow creases and corners less closely. Turned box at 48 cells, faces
-/// in cells: the reference 1.2e-3 since it follows a trace across a corner's faces (stop 50;
-/// 0.12 before, 0.23 before edges crossed twice), the GPU 0.21 (0.21, 0.23): the crease
-/// following needs normals the f32 gradient does not give, so the GPU has not gained.
+/// not by the GPU — within a fiftieth of a cell of the reference mesh's at the vertices and at
+/// the faces' centroids. The GPU's gradients sample a hundredth of a cell apart, and a crossing
+/// nearer a crease than that gets a blend of its two planes' normals: the crossings on faces
+/// where normals turn by more than 20° take theirs again in f64 (`edges::sharpen`; the 200-ball
+/// fluid at 96 cells: 183 of them, +0.01 % evaluations). Turned box at 48 cells, faces in
+/// cells: 1.2e-3 on the GPU as in the reference (stop 50; before, the GPU 0.21 while the
+/// reference had come to 1.2e-3 by following corners, and 0.21 and 0.12 before that).
 #[test]
 fn the_gpu_field_meshes_as_the_f64_reference_does() {
     use sdfc::mesh_gpu::GpuField;
@@ -428,7 +456,7 @@ fn the_gpu_field_meshes_as_the_f64_reference_does() {
             "{name}: {dg:?} {dc:?}"
         );
         assert!(
-            dg.face_max <= dc.face_max + 0.25 * h,
+            dg.face_max <= dc.face_max + 0.02 * h,
             "{name}: {dg:?} {dc:?}"
         );
     }

@@ -46,25 +46,30 @@ pub fn contour(field: &Field, grid: &Grid, cells: &[IVec3], sharp: bool) -> Cont
     let cells = &cells[..];
     let at = |p: IVec3| value.get(&grid.key(p)).copied().unwrap_or(f64::NAN);
 
-    // Where the surface crosses every edge of an active cell.
-    let edges::Crossings {
-        mut positions,
-        normals,
-        by_edge,
-        dipped,
-        evaluations: spent,
-    } = edges::crossings(field, grid, (cells, &listed), &at, sharp);
-    evaluations += spent;
-    let crossing_at = |(p, a): (IVec3, usize)| by_edge.get(&edges::edge_key(grid, p, a)).copied();
-
-    // The segments on every face of an active cell.
-    // Each face once: a cell's near faces, and its far ones where no active cell lies beyond.
+    // Each face of an active cell once: a cell's near faces, and its far ones where no active
+    // cell lies beyond.
     let face_list: Vec<Face> = cells
         .iter()
         .flat_map(|&c| (0..6).map(move |i| (c, Face::of_cell(c, i))))
         .filter(|&(c, (f, far))| !far || !listed.contains(&(c + IVec3::AXES[f.axis])))
         .map(|(_, (f, _))| f)
         .collect();
+    // Where the surface crosses every edge of an active cell.
+    let mut crossings = edges::crossings(field, grid, (cells, &listed), &at, sharp);
+    if sharp {
+        evaluations += edges::sharpen(field, grid, &face_list, &mut crossings);
+    }
+    let edges::Crossings {
+        mut positions,
+        normals,
+        by_edge,
+        dipped,
+        evaluations: spent,
+    } = crossings;
+    evaluations += spent;
+    let crossing_at = |(p, a): (IVec3, usize)| by_edge.get(&edges::edge_key(grid, p, a)).copied();
+
+    // The segments on every face of an active cell.
     // The ambiguous faces' centres, in one batch.
     let mut centres: Vec<(Face, f64)> = face_list.iter().map(|&f| (f, f64::NAN)).collect();
     let ambiguous: Vec<usize> = (0..face_list.len())
