@@ -210,14 +210,25 @@ fn bottom(
     spent: &mut usize,
 ) -> Option<DVec3> {
     let mid = 0.5 * (p.0 + q.0);
-    let along = along_trace(face, p.1);
-    [along, -along]
+    nearest_along(field, grid, face, (mid, along_trace(face, p.1)), spent)
+}
+
+/// The surface point nearest `from` along the line through it in direction `dir` (either way),
+/// within `face`: the first point of a march each way to the face's edge.
+fn nearest_along(
+    field: &Field,
+    grid: &Grid,
+    face: Face,
+    (from, dir): (DVec3, DVec3),
+    spent: &mut usize,
+) -> Option<DVec3> {
+    [dir, -dir]
         .into_iter()
-        .filter_map(|dir| {
-            let reach = to_edge(grid, face, mid, dir)?;
-            march(field, grid, mid, mid + dir * reach, spent)
+        .filter_map(|d| {
+            let reach = to_edge(grid, face, from, d)?;
+            march(field, grid, from, from + d * reach, spent)
         })
-        .min_by(|a, b| (*a - mid).length().total_cmp(&(*b - mid).length()))
+        .min_by(|a, b| (*a - from).length().total_cmp(&(*b - from).length()))
 }
 
 /// The direction within `face` of the tangent line of a surface point of normal `n` (unit, or
@@ -248,14 +259,7 @@ fn sampled(
     let mut samples = vec![a];
     for k in 1..=STATIONS {
         let station = a.0 + (b.0 - a.0) * (k as f64 / (STATIONS + 1) as f64);
-        let nearest = [across, -across]
-            .into_iter()
-            .filter_map(|dir| {
-                let reach = to_edge(grid, face, station, dir)?;
-                march(field, grid, station, station + dir * reach, evaluations)
-            })
-            .min_by(|p, q| (*p - station).length().total_cmp(&(*q - station).length()));
-        if let Some(p) = nearest {
+        if let Some(p) = nearest_along(field, grid, face, (station, across), evaluations) {
             *evaluations += 4;
             samples.push((p, field.normal(p, field.gradient_step(grid.h))));
         }
