@@ -119,15 +119,9 @@ fn a_turned_box_keeps_its_corners_wherever_the_grid_lies() {
         d.max(DVec3::ZERO).length() + d.max_element().min(0.0)
     };
     let size = 1.6;
-    // Placements of the grid: a fixed sequence of shifts within ±0.05 (a sixth of a coarse
-    // cell), from a linear congruential generator.
-    let mut state: u64 = 35;
-    let mut shift = || {
-        state = state
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (state >> 11) as f64 / (1u64 << 53) as f64 * 0.1 - 0.05
-    };
+    // Placements of the grid: shifts within ±0.05 (a sixth of a coarse cell), seeded.
+    let mut rng = sdfc_tests::Rng::new(35);
+    let mut shift = || rng.range(-0.05, 0.05);
     let mut worst: f64 = 0.0;
     for _ in 0..12 {
         let s = DVec3::new(shift(), shift(), shift());

@@ -4,21 +4,12 @@
 
 use super::edges::Crossing;
 use super::field::{Face, Field, Grid};
-pub use super::trace::Planes;
 use super::trace::{
     Bisect, Meet, Point, at_meet, between, into_face, march, meet, opposite, simple, to_edge,
 };
+pub use super::trace::{Planes, Sharp};
+use super::walk::walk;
 use glam::DVec3;
-
-/// A point where a face's trace bends, or one it passes through.
-#[derive(Clone, Copy, Debug)]
-pub struct Sharp {
-    /// Where.
-    pub at: DVec3,
-    /// Where the tangent lines of two surface points with these normals met there (a crease),
-    /// those normals; `None` for a point sampled on the trace.
-    pub planes: Option<Planes>,
-}
 
 /// What [`bends`] finds.
 pub enum Bends {
@@ -189,8 +180,12 @@ fn pair(
             Some(at) => vec![Sharp { at, planes: None }],
             None => Vec::new(),
         },
-        Some(Meet::Outside) if follow => sampled(field, grid, face, (p, q), depth - 1, spent),
+        Some(Meet::Outside) if follow => walk(field, grid, face, (p, q), spent)
+            .unwrap_or_else(|| sampled(field, grid, face, (p, q), depth - 1, spent)),
         None if follow && opposite(face, p.1, q.1) => {
+            if let Some(found) = walk(field, grid, face, (p, q), spent) {
+                return found;
+            }
             match bottom(field, grid, face, (p, q), spent) {
                 Some(at) => either_side(field, grid, face, (p, at, q), depth - 1, spent),
                 None => sampled(field, grid, face, (p, q), depth - 1, spent),

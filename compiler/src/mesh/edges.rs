@@ -225,7 +225,7 @@ fn cell_edge(c: IVec3, i: i32) -> (IVec3, usize) {
 /// The evaluations a [`Dip`] spends at most on one edge (8 missed a box's crease poking a
 /// hundredth of a cell through an edge near its end, which 16 finds; 32 found no more on the
 /// turned box at 24 placements of the grid).
-const DIP_STEPS: usize = 16;
+const DIP_STEPS: usize = 32;
 
 /// The search, along an edge whose ends lie on the same side, for a point on the other side:
 /// the field being 1-Lipschitz, |d| over a stretch from s to t is at least the lower of the

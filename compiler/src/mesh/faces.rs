@@ -49,16 +49,14 @@ pub fn segments(
         // Four crossings, two of them on an edge crossed twice: the pairing whose segments join
         // crossings of the most alike normals (a crease or a thin part's two sides cross the
         // face as two traces, each along one sheet; the face's centre can lie either side of a
-        // thin dip, and a straight search from the dip can meet the other trace).
-        (4, true) => {
-            let alike = |step: usize| -> f64 {
-                (0..n)
-                    .filter(|&k| border[k].1)
-                    .map(|k| border[k].0.normal.dot(border[(k + step) % n].0.normal))
-                    .sum()
-            };
-            alike(1) >= alike(n - 1)
-        }
+        // thin dip, and a straight search from the dip can meet the other trace). Six: a
+        // corner's tip through a face near the face's corner crosses it as three straight
+        // traces, one per plane, and the centre can lie just outside all of them.
+        (4, true) => alike(&border, 1) >= alike(&border, n - 1),
+        // More: only where one pairing joins crossings of one plane each (a corner's tip), as
+        // a rough surface's traces join crossings of normals alike by chance.
+        (_, true) if planar(&border, 1) => true,
+        (_, true) if planar(&border, n - 1) => false,
         _ => inside(centre),
     };
     let mut out = Vec::with_capacity(n / 2);
@@ -101,6 +99,26 @@ pub fn segments(
     }
     (out, evaluations)
 }
+
+/// How alike the normals of the crossings each exit of `border` is joined to are, joining it
+/// to the crossing `step` places on: the sum of their cosines.
+fn alike(border: &[(Crossing, bool, usize)], step: usize) -> f64 {
+    let n = border.len();
+    (0..n)
+        .filter(|&k| border[k].1)
+        .map(|k| border[k].0.normal.dot(border[(k + step) % n].0.normal))
+        .sum()
+}
+
+/// Whether joining each exit of `border` to the crossing `step` places on joins crossings of
+/// one plane each (normals within about 2.5°).
+fn planar(border: &[(Crossing, bool, usize)], step: usize) -> bool {
+    let pairs = border.len() / 2;
+    alike(border, step) > pairs as f64 * SAME_PLANE
+}
+
+/// The cosine above which two crossings' normals are taken as one plane's.
+const SAME_PLANE: f64 = 0.999;
 
 /// The crossings on `face`'s border in counter-clockwise order, each with whether it leaves
 /// the inside (the side changes at every crossing, starting from the first corner's) and the

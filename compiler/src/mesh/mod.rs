@@ -21,6 +21,7 @@ mod qef;
 mod search;
 mod settle;
 mod trace;
+mod walk;
 
 use crate::parallel::par_map;
 use crate::reference::eval;

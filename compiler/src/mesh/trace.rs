@@ -6,6 +6,16 @@ use super::field::{Face, Field, Grid, inside};
 use super::search::{self, Search};
 use glam::DVec3;
 
+/// A point where a face's trace bends, or one it passes through.
+#[derive(Clone, Copy, Debug)]
+pub struct Sharp {
+    /// Where.
+    pub at: DVec3,
+    /// Where the tangent lines of two surface points with these normals met there (a crease),
+    /// those normals; `None` for a point sampled on the trace.
+    pub planes: Option<Planes>,
+}
+
 /// The smallest sine of the angle between the tangent lines of a face's two crossings at
 /// which their meeting point is taken as a crease (about 3°).
 const CREASE_SINE: f64 = 0.05;
