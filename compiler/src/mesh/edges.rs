@@ -223,8 +223,8 @@ fn cell_edge(c: IVec3, i: i32) -> (IVec3, usize) {
 }
 
 /// The evaluations a [`Dip`] spends at most on one edge (8 missed a box's crease poking a
-/// hundredth of a cell through an edge near its end, which 16 finds; 32 found no more on the
-/// turned box at 24 placements of the grid).
+/// hundredth of a cell through an edge near its end, which 16 finds; 16 missed one 0.003 of a
+/// cell through, which 32 finds; 64 found no more on the turned box at 168 placements).
 const DIP_STEPS: usize = 32;
 
 /// The search, along an edge whose ends lie on the same side, for a point on the other side:
