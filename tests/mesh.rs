@@ -9,7 +9,7 @@ use sdfc_compiler::scene::Scene;
 /// Meshes `scene` in `bounds` at `resolution` cells.
 fn mesh_in(scene: &Scene, bounds: (DVec3, DVec3), resolution: u32, sharp: bool) -> Mesh {
     let options = Options {
-        resolution,
+        resolution: f64::from(resolution),
         bounds,
         sharp,
         prune: true,

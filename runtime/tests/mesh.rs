@@ -309,60 +309,35 @@ fn a_gltf_loads_and_draws_in_three_js() {
 }
 
 /// `--triangles N` comes near N: a scene I did not write for it (the composition example, its
-/// floor cut by a box) asked for 2 000, 20 000 and 200 000 triangles gets each within 20 %, or,
-/// where no whole resolution does (the counts jump between coarse ones: at 2 000, resolutions 6
-/// and 7 make 1 246 and 2 402 since stop 50 followed creases on the GPU), the resolution whose
-/// count is nearest of it and its two neighbours, which bracket N.
+/// floor cut by a box) asked for 2 000, 20 000 and 200 000 triangles gets each within 20 %.
+/// Whole resolutions could not (at 2 000, 6 and 7 cells make 1 246 and 2 402 since stop 50
+/// followed creases on the GPU); the resolution chosen need not be whole (stop 51).
 #[test]
 fn a_triangle_count_is_met_within_a_fifth() {
     let dir = scratch("mesh-count");
     let scene = root().join("examples/composition.sdf");
-    let count = |args: &[&str], out: &std::path::Path| {
-        let mut all = vec![
+    for target in [2_000u64, 20_000, 200_000] {
+        let out = dir.join(format!("{target}.stl"));
+        let run = sdfc(&[
             "mesh",
             scene.to_str().unwrap(),
             "--bounds",
             "-3,-0.5,-3,3,3,3",
-        ];
-        all.extend_from_slice(args);
-        all.extend(["-o", out.to_str().unwrap()]);
-        let run = sdfc(&all);
+            "--triangles",
+            &target.to_string(),
+            "-o",
+            out.to_str().unwrap(),
+        ]);
         let said = String::from_utf8_lossy(&run.stderr).into_owned();
         assert!(run.status.success(), "{said}");
-        // A binary STL's triangle count: the little-endian u32 after its 80-byte header.
-        let bytes = std::fs::read(out).unwrap();
-        (u32::from_le_bytes(bytes[80..84].try_into().unwrap()), said)
-    };
-    for target in [2_000u64, 20_000, 200_000] {
-        let out = dir.join(format!("{target}.stl"));
-        let (got, said) = count(&["--triangles", &target.to_string()], &out);
-        println!("{target} asked: {got} triangles");
         assert!(said.contains(&format!("{target} asked for")), "{said}");
-        let off = |n: u32| (f64::from(n) / target as f64 - 1.0).abs();
-        if off(got) <= 0.2 {
-            continue;
-        }
-        let r: u32 = said
-            .split("resolution ")
-            .nth(1)
-            .and_then(|t| t.split(' ').next())
-            .and_then(|t| t.parse().ok())
-            .unwrap_or_else(|| panic!("no resolution named: {said}"));
-        let (below, _) = count(&["--resolution", &(r - 1).to_string()], &out);
-        let (above, _) = count(&["--resolution", &(r + 1).to_string()], &out);
-        println!(
-            "  resolutions {}, {r}, {}: {below}, {got}, {above}",
-            r - 1,
-            r + 1
-        );
-        assert!(
-            u64::from(below) < target && u64::from(above) > target,
-            "{target} asked, {got} made at {r}; its neighbours {below}, {above}: {said}"
-        );
-        assert!(
-            off(got) <= off(below) && off(got) <= off(above),
-            "{target}: {got}, {below}, {above}"
-        );
+        // A binary STL's triangle count: the little-endian u32 after its 80-byte header.
+        let bytes = std::fs::read(&out).unwrap();
+        let got = u32::from_le_bytes(bytes[80..84].try_into().unwrap());
+        let chosen = said.split("resolution ").nth(1).unwrap_or("?");
+        println!("{target} asked: {got} triangles (resolution {chosen}");
+        let off = (f64::from(got) / target as f64 - 1.0).abs();
+        assert!(off <= 0.2, "{target} asked, {got} made: {said}");
     }
 }
 
@@ -412,7 +387,7 @@ fn the_gpu_field_meshes_as_the_f64_reference_does() {
         let scene = compile(&source);
         let bounds = meshed_box(&scene, box_of(&scene));
         let options = mesh::Options {
-            resolution: RESOLUTION,
+            resolution: f64::from(RESOLUTION),
             bounds,
             sharp: true,
             prune: true,

@@ -131,11 +131,12 @@ pub struct Grid {
 const SHIFT: DVec3 = DVec3::new(0.013_1, 0.017_3, 0.010_9);
 
 impl Grid {
-    /// A grid of `resolution` cells along the box's longest side, one more cell and a little
-    /// around it (the clipped field's surface lies inside).
-    pub fn over(lo: DVec3, hi: DVec3, resolution: u32) -> Grid {
+    /// A grid of `resolution` cells along the box's longest side (not always a whole number:
+    /// the cell is that side over it), one more cell and a little around it (the clipped
+    /// field's surface lies inside).
+    pub fn over(lo: DVec3, hi: DVec3, resolution: f64) -> Grid {
         let size = hi - lo;
-        let h = size.max_element() / resolution as f64;
+        let h = size.max_element() / resolution;
         let origin = lo - h * (DVec3::ONE + SHIFT);
         let n = ((size / h) + 2.0 + 2.0 * SHIFT).ceil().as_ivec3();
         Grid { origin, h, n }

@@ -32,8 +32,9 @@ use glam::DVec3;
 /// What to mesh and how.
 #[derive(Clone, Debug)]
 pub struct Options {
-    /// Cells along the longest side of the box.
-    pub resolution: u32,
+    /// Cells along the longest side of the box: the cell is that side over it, so it need not
+    /// be whole (a cell size asked for, a triangle count aimed at).
+    pub resolution: f64,
     /// The box meshed (lowest and highest corner); the surface is clipped to it and capped.
     pub bounds: (DVec3, DVec3),
     /// Place each polygon's vertex by the QEF and add the faces' sharp points (corners and
@@ -82,7 +83,7 @@ pub struct Stats {
     /// Cells along each axis.
     pub grid: [i32; 3],
     /// Cells along the box's longest side (the resolution asked for).
-    pub resolution: u32,
+    pub resolution: f64,
     /// Cells the surface may cross (the rest were pruned by the bound).
     pub active_cells: usize,
     /// Cells the surface crosses that the bound had pruned, added back so that the mesh stays
@@ -99,8 +100,8 @@ pub struct Stats {
 /// Why a mesh was not made.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Error {
-    /// The resolution is 0 or above [`MAX_RESOLUTION`].
-    Resolution(u32),
+    /// The resolution is below 1, above [`MAX_RESOLUTION`] or not a number.
+    Resolution(f64),
     /// The box is empty, inverted or not finite.
     Bounds,
     /// The estimated memory passes the limit: (estimate, limit) in bytes.
@@ -151,7 +152,7 @@ pub fn mesh_with(
     evaluator: Option<&dyn field::Evaluator>,
     stage: &dyn Fn(&str),
 ) -> Result<Mesh, Error> {
-    if options.resolution == 0 || options.resolution > MAX_RESOLUTION {
+    if !(options.resolution >= 1.0 && options.resolution <= f64::from(MAX_RESOLUTION)) {
         return Err(Error::Resolution(options.resolution));
     }
     let (lo, hi) = options.bounds;

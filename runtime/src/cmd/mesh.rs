@@ -42,9 +42,20 @@ fn mesh_scene(args: &MeshArgs) -> Result<(), Error> {
     };
     let longest = (bounds.1 - bounds.0).max_element();
     let resolution = match args.cell {
-        Some(c) if c.is_finite() && c > 0.0 => (longest / c).ceil().min(u32::MAX as f64) as u32,
+        Some(c) if c.is_finite() && c > 0.0 => {
+            let r = longest / c;
+            if !(1.0..=f64::from(mesh::MAX_RESOLUTION)).contains(&r) {
+                return Err(format!(
+                    "error: `--cell {c}`: {r:.0} cells along the box's longest side ({longest}); \
+                     give a size from {:.3e} to {longest}",
+                    longest / f64::from(mesh::MAX_RESOLUTION)
+                )
+                .into());
+            }
+            r
+        }
         Some(c) => return Err(format!("error: `--cell {c}`: give a size above 0").into()),
-        None => args.resolution,
+        None => f64::from(args.resolution),
     };
     if !(args.max_memory.is_finite() && args.max_memory > 0.0) {
         return Err("error: `--max-memory`: give a size above 0 (GiB)".into());
@@ -144,19 +155,21 @@ fn gpu_field(
 }
 
 /// Coarsest and finest resolutions `--triangles` chooses from.
-const COUNT_RESOLUTIONS: (u32, u32) = (4, 4096);
+const COUNT_RESOLUTIONS: (f64, f64) = (4.0, 4096.0);
 
 /// Meshes `--triangles` makes at most after its probe.
 const COUNT_RUNS: usize = 3;
 
 /// Resolution of the probe mesh `--triangles` counts first.
-const PROBE: u32 = 24;
+const PROBE: f64 = 24.0;
 
 /// The mesh nearest `target` triangles: a probe at [`PROBE`] cells, then, while the nearest
 /// count is more than 10 % off (at most [`COUNT_RUNS`] meshes), the resolution the nearest
-/// count predicts (triangles grow with its square) — or, where that one was tried (counts jump
-/// between coarse resolutions), an untried one between the nearest tried below and above the
-/// target. `options.resolution` is left at the one used.
+/// count predicts (triangles grow with its square; a resolution need not be whole, the cell
+/// being the box's longest side over it) — kept between the nearest resolutions tried below and
+/// above the target, their geometric mean where the prediction falls outside (counts jump
+/// between coarse resolutions, where the grid's placement decides which cells a small part
+/// crosses). `options.resolution` is left at the one used.
 fn toward_count(
     scene: &Scene,
     options: &mut mesh::Options,
@@ -168,50 +181,43 @@ fn toward_count(
         return Err(format!("error: `--triangles {target}`: a closed mesh has at least 4").into());
     }
     let (least, most) = COUNT_RESOLUTIONS;
-    let run = |resolution: u32| {
+    let run = |resolution: f64| {
         let o = mesh::Options {
             resolution,
             ..*options
         };
         mesh::mesh_with(scene, &o, evaluator, stage).map_err(|e| Error::from(format!("error: {e}")))
     };
-    let next = |r: u32, got: usize| -> u32 {
-        let k = (target as f64 / got.max(1) as f64).sqrt();
-        ((f64::from(r) * k).round() as u32).clamp(least, most)
-    };
+    let predict =
+        |r: f64, got: usize| (r * (target as f64 / got.max(1) as f64).sqrt()).clamp(least, most);
     let probe = run(PROBE)?;
     if probe.triangles.is_empty() {
         return Ok(probe);
     }
     let off = |m: &Mesh| (m.triangles.len() as f64 / target as f64 - 1.0).abs();
     // Every resolution tried and its count; the mesh nearest the target so far.
-    let mut tried: Vec<(u32, usize)> = vec![(PROBE, probe.triangles.len())];
+    let mut tried: Vec<(f64, usize)> = vec![(PROBE, probe.triangles.len())];
     let (mut mesh, mut r) = (probe, PROBE);
     for _ in 0..COUNT_RUNS {
         if off(&mesh) <= 0.1 {
             break;
         }
-        let mut again = next(r, mesh.triangles.len());
+        let mut again = predict(r, mesh.triangles.len());
+        let side = |below: bool| {
+            tried
+                .iter()
+                .filter(move |t| (t.1 < target as usize) == below && t.1 != target as usize)
+                .map(|t| t.0)
+        };
+        let below = side(true).max_by(f64::total_cmp);
+        let above = side(false).min_by(f64::total_cmp);
+        if let (Some(lo), Some(hi)) = (below, above)
+            && !(again > lo.min(hi) && again < lo.max(hi))
+        {
+            again = (lo * hi).sqrt();
+        }
         if tried.iter().any(|&(t, _)| t == again) {
-            // Counts jump between coarse resolutions: the untried one between the nearest
-            // tried below and above the target.
-            let below = tried
-                .iter()
-                .filter(|t| t.1 < target as usize)
-                .map(|t| t.0)
-                .max();
-            let above = tried
-                .iter()
-                .filter(|t| t.1 > target as usize)
-                .map(|t| t.0)
-                .min();
-            let (Some(lo), Some(hi)) = (below, above) else {
-                break;
-            };
-            match (lo + 1..hi).min_by_key(|&k| k.abs_diff(again)) {
-                Some(k) => again = k,
-                None => break,
-            }
+            break;
         }
         let other = run(again)?;
         tried.push((again, other.triangles.len()));
@@ -358,7 +364,7 @@ fn success(
     };
     let asked = match args.triangles {
         Some(n) => format!(
-            " ({n} asked for: resolution {} chosen)",
+            " ({n} asked for: resolution {:.2} chosen)",
             mesh.stats.resolution
         ),
         None => String::new(),
