@@ -7,13 +7,18 @@ use glam::DVec3;
 /// The cosine above which two crease points' planes count as the same plane.
 const SAME_PLANE: f64 = 0.999;
 
+/// The crease's stretch within a cell (in cells) below which the cell's ring is split along
+/// it even where no other crease crosses the cell.
+const GRAZE: f64 = 0.1;
+
 /// The cosine below which a sharp point's two planes meet at a crease (about 25°).
 const CREASE: f64 = 0.9;
 
 /// `ring` (a cell's polygon) cut into smaller rings along chords between its crease points that
 /// lie on one crease — the faces' sharp points where two tangent lines met, `crease` giving
 /// their planes' normals, which name the crease — where the ring crosses two creases or more
-/// (or one, and a corner's creases end in the cell beside it), no two chords cross and no chord
+/// (or one, and a corner's creases end in the cell beside it; or one that only grazes the
+/// cell, its chord shorter than [`GRAZE`]), no two chords cross and no chord
 /// lies in one face of the cell from `lo` to `hi` (a neighbour could cut along it too). Each
 /// part then lies along one side of each crease; the ring is given back whole otherwise.
 pub fn split(
@@ -29,7 +34,7 @@ pub fn split(
             (a.dot(b) < CREASE).then_some((k, a, b))
         })
         .collect();
-    if creases.len() < 4 {
+    if creases.len() < 2 {
         return vec![ring];
     }
     let same = |(_, a, b): (usize, DVec3, DVec3), (_, c, d): (usize, DVec3, DVec3)| {
@@ -63,10 +68,16 @@ pub fn split(
         within(c) != within(d) && ![a, b].contains(&c) && ![a, b].contains(&d)
     };
     // One chord alone: a crease the QEF's line follows, unless the ring's other crease points
-    // (a corner in the cell: a box's corner cut off by a plane) lie beside it.
+    // (a corner in the cell: a box's corner cut off by a plane) lie beside it, or the crease
+    // only grazes the cell (past a grid edge by less than a tenth of a cell: a vertex on its
+    // short stretch would meet its ends, and moved off them it leaves the crease).
     let others = creases.len() - 2 * chords.len();
+    let short = |(i, j): (usize, usize)| {
+        let (p, q) = (positions[ring[i] as usize], positions[ring[j] as usize]);
+        (p - q).length() < GRAZE * (hi.x - lo.x)
+    };
     if chords.is_empty()
-        || (chords.len() == 1 && others < 2)
+        || (chords.len() == 1 && others < 2 && !short(chords[0]))
         || chords
             .iter()
             .enumerate()

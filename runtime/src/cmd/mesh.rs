@@ -73,7 +73,7 @@ fn mesh_scene(args: &MeshArgs) -> Result<(), Error> {
     let t0 = Instant::now();
     let stage = |what: &str| {
         if args.stats {
-            say!("{:7.2} s  {what}", t0.elapsed().as_secs_f64());
+            say!("{:8.3} s  {what}", t0.elapsed().as_secs_f64());
         }
         if let Some(b) = &bar {
             b.set_message(what.to_string());
@@ -157,14 +157,22 @@ fn gpu_field(
 /// Coarsest and finest resolutions `--triangles` chooses from.
 const COUNT_RESOLUTIONS: (f64, f64) = (4.0, 4096.0);
 
-/// Meshes `--triangles` makes at most after its probe.
+/// Meshes `--triangles` makes at most after its probe; more, up to [`CHEAP_RUNS`], while the
+/// resolution is at most [`CHEAP`] cells (milliseconds each, and where counts jump most).
 const COUNT_RUNS: usize = 3;
+
+/// See [`COUNT_RUNS`].
+const CHEAP_RUNS: usize = 8;
+
+/// See [`COUNT_RUNS`].
+const CHEAP: f64 = 32.0;
 
 /// Resolution of the probe mesh `--triangles` counts first.
 const PROBE: f64 = 24.0;
 
 /// The mesh nearest `target` triangles: a probe at [`PROBE`] cells, then, while the nearest
-/// count is more than 10 % off (at most [`COUNT_RUNS`] meshes), the resolution the nearest
+/// count is more than 10 % off (at most [`COUNT_RUNS`] meshes, or [`CHEAP_RUNS`] of at most
+/// [`CHEAP`] cells), the resolution the nearest
 /// count predicts (triangles grow with its square; a resolution need not be whole, the cell
 /// being the box's longest side over it) — kept between the nearest resolutions tried below and
 /// above the target, their geometric mean where the prediction falls outside (counts jump
@@ -198,7 +206,7 @@ fn toward_count(
     // Every resolution tried and its count; the mesh nearest the target so far.
     let mut tried: Vec<(f64, usize)> = vec![(PROBE, probe.triangles.len())];
     let (mut mesh, mut r) = (probe, PROBE);
-    for _ in 0..COUNT_RUNS {
+    for k in 0..CHEAP_RUNS {
         if off(&mesh) <= 0.1 {
             break;
         }
@@ -216,7 +224,7 @@ fn toward_count(
         {
             again = (lo * hi).sqrt();
         }
-        if tried.iter().any(|&(t, _)| t == again) {
+        if tried.iter().any(|&(t, _)| t == again) || (k >= COUNT_RUNS && again > CHEAP) {
             break;
         }
         let other = run(again)?;
