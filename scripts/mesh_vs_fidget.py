@@ -7,6 +7,10 @@ triangles' centroids, both tools' meshes measured by the same exact distance fun
 (here for sdfc's STL, clipped to the box as sdfc caps the cut, in the harness for fidget's). Best of 3. Prints two markdown tables: every
 run, and each fidget run against the fastest sdfc run whose error is no larger (equal error).
 
+With LIBFIVE_MESH set to a built `bench/libfive-mesh` harness (libfive's dual contouring,
+built by hand: bench/libfive-mesh/README.md), libfive's runs are added: a column group in the
+first table and a third table, each libfive run against the fastest sdfc run of no larger error.
+
 Usage: mesh_vs_fidget.py SDFC   (builds bench/fidget-mesh with cargo first; needs numpy)
 """
 import os
@@ -24,7 +28,7 @@ SCENES = {
     "turned box": "box((1.6, 0.96, 1.28)) |> rotate(y, 30deg) |> rotate(x, 20deg)",
     "whole turned box": "box((1.4, 0.84, 1.12)) |> rotate(y, 30deg) |> rotate(x, 20deg)",
     "box less a ball": "subtract { box(1.6) sphere(0.48) }",
-    "torus": "torus(0.8, 0.24)",
+    "torus": "torus(0.72, 0.24)",
 }
 
 
@@ -46,7 +50,7 @@ def unturn(p, a, b):
 
 
 def torus(p):
-    q = np.hypot(p[:, 0], p[:, 2]) - 0.8
+    q = np.hypot(p[:, 0], p[:, 2]) - 0.72
     return np.hypot(q, p[:, 1]) - 0.24
 
 
@@ -82,7 +86,7 @@ def sdfc_run(sdfc, name, scene, res):
             t = float(re.search(r"([0-9.]+) s  measuring", out.stderr).group(1))
             best = t if best is None else min(best, t)
         tris = stl_triangles(stl)
-    # sdfc caps what the box [-1, 1]³ cuts (the torus and the turned box reach past it):
+    # sdfc caps what the box [-1, 1]³ cuts (the turned box reaches past it):
     # measured against the shape clipped to the box, as sdfc meshes it (fidget's mesh stops
     # open at the box; its points inside lie on the shape itself).
     f = lambda p: np.maximum(EXACT[name](p), box_exact(p, 1.0))
@@ -91,36 +95,25 @@ def sdfc_run(sdfc, name, scene, res):
     return best, len(tris), vertex, face
 
 
-def main():
-    sdfc = sys.argv[1]
-    subprocess.run(["cargo", "build", "--release", "--quiet"], cwd=HARNESS, check=True)
-    exe = os.path.join(HARNESS, "target", "release", "fidget-mesh-harness")
-    rows = []
-    for depth in [4, 5, 6, 7, 8]:
-        res = 2 ** depth
-        lines = subprocess.run([exe, str(depth), "3"], capture_output=True, text=True,
-                               check=True).stdout.splitlines()
-        fid = {l.split("\t")[0]: l.split("\t")[1:] for l in lines}
-        for name, scene in SCENES.items():
-            t, tris, vertex, face = sdfc_run(sdfc, name, scene, res)
-            f = fid[name]
-            rows.append((name, res, "sdfc", t, tris, vertex, face))
-            rows.append((name, res, "fidget", float(f[0]), int(f[1]), float(f[3]), float(f[5])))
-    print("| shape | cells a side | sdfc: time (s) | triangles | vertices ≤ | centroids ≤ | "
-          "fidget: time (s) | triangles | vertices ≤ | centroids ≤ |")
-    print("| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
-    for name in SCENES:
-        for res in [16, 32, 64, 128, 256]:
-            s, f = [next(r for r in rows if r[:3] == (name, res, tool))
-                    for tool in ("sdfc", "fidget")]
-            print(f"| {name} | {res} | {s[3]:.3f} | {s[4]:,} | {s[5]:.1e} | {s[6]:.1e} | "
-                  f"{f[3]:.3f} | {f[4]:,} | {f[5]:.1e} | {f[6]:.1e} |")
-    print()
-    print("| shape | fidget: cells, time (s), error | sdfc at no larger error: cells, time (s), "
+def other(exe, depth):
+    """One harness's lines at `depth` (best of 3), by shape: (time, triangles, vertices ≤,
+    centroids ≤)."""
+    lines = subprocess.run([exe, str(depth), "3"], capture_output=True, text=True,
+                           check=True).stdout.splitlines()
+    out = {}
+    for l in lines:
+        f = l.split("\t")
+        out[f[0]] = (float(f[1]), int(f[2]), float(f[4]), float(f[6]))
+    return out
+
+
+def against(rows, tool):
+    """Each of `tool`'s runs against the fastest sdfc run whose error is no larger."""
+    print(f"| shape | {tool}: cells, time (s), error | sdfc at no larger error: cells, time (s), "
           "error | sdfc faster by |")
     print("| --- | --- | --- | ---: |")
     for name in SCENES:
-        for f in [r for r in rows if r[0] == name and r[2] == "fidget"]:
+        for f in [r for r in rows if r[0] == name and r[2] == tool]:
             err = max(f[5], f[6])
             ok = [r for r in rows if r[0] == name and r[2] == "sdfc" and max(r[5], r[6]) <= err]
             if not ok:
@@ -131,6 +124,39 @@ def main():
             s = min(ok, key=lambda r: r[3])
             print(f"| {name} | {f[1]}, {f[3]:.3f}, {err:.1e} | {s[1]}, {s[3]:.3f}, "
                   f"{max(s[5], s[6]):.1e} | {f[3] / max(s[3], 1e-3):.1f}× |")
+    print()
+
+
+def main():
+    sdfc = sys.argv[1]
+    subprocess.run(["cargo", "build", "--release", "--quiet"], cwd=HARNESS, check=True)
+    tools = {"fidget": os.path.join(HARNESS, "target", "release", "fidget-mesh-harness")}
+    if os.environ.get("LIBFIVE_MESH"):
+        tools["libfive"] = os.environ["LIBFIVE_MESH"]
+    rows = []
+    for depth in [4, 5, 6, 7, 8]:
+        res = 2 ** depth
+        got = {tool: other(exe, depth) for tool, exe in tools.items()}
+        for name, scene in SCENES.items():
+            t, tris, vertex, face = sdfc_run(sdfc, name, scene, res)
+            rows.append((name, res, "sdfc", t, tris, vertex, face))
+            for tool in tools:
+                rows.append((name, res, tool) + got[tool][name])
+    head = "| shape | cells a side | sdfc: time (s) | triangles | vertices ≤ | centroids ≤ |"
+    for tool in tools:
+        head += f" {tool}: time (s) | triangles | vertices ≤ | centroids ≤ |"
+    print(head)
+    print("| --- | ---: |" + " ---: |" * (4 * (1 + len(tools))))
+    for name in SCENES:
+        for res in [16, 32, 64, 128, 256]:
+            line = f"| {name} | {res} |"
+            for tool in ["sdfc"] + list(tools):
+                r = next(r for r in rows if r[:3] == (name, res, tool))
+                line += f" {r[3]:.3f} | {r[4]:,} | {r[5]:.1e} | {r[6]:.1e} |"
+            print(line)
+    print()
+    for tool in tools:
+        against(rows, tool)
 
 
 if __name__ == "__main__":

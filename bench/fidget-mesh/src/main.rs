@@ -60,7 +60,7 @@ fn shapes() -> Vec<Shape> {
     let r = (x.clone().square() + y.clone().square() + z.clone().square()).sqrt();
     let (tx, ty, tz) = turn_tree(A, B);
     let (tx2, ty2, tz2) = turn_tree(A, B);
-    let ring = (x.clone().square() + z.clone().square()).sqrt() - 0.8;
+    let ring = (x.clone().square() + z.clone().square()).sqrt() - 0.72;
     vec![
         Shape {
             name: "ball",
@@ -86,7 +86,7 @@ fn shapes() -> Vec<Shape> {
             name: "torus",
             tree: (ring.square() + y.square()).sqrt() - 0.24,
             exact: |p| {
-                let q = (p[0] * p[0] + p[2] * p[2]).sqrt() - 0.8;
+                let q = (p[0] * p[0] + p[2] * p[2]).sqrt() - 0.72;
                 (q * q + p[1] * p[1]).sqrt() - 0.24
             },
         },
