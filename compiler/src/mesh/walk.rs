@@ -16,6 +16,9 @@ const BEYOND: f64 = 1e-3;
 /// The points on the circle around a bend at which the field is asked.
 const AROUND: usize = 16;
 
+/// The shortest stretch (in cells) of a plane's line a walk follows.
+const MIN_RUN: f64 = 1e-2;
+
 /// The most bends a walk takes before it gives up (a trace that curves, not bends).
 const MAX_BENDS: usize = 6;
 
@@ -27,8 +30,9 @@ const SAME_PLANE: f64 = 0.9999;
 /// field stays zero on it (bisection: the field leaves a plane's line at its crease), then
 /// from a surface point just past that bend along the next plane's line, until a line meets
 /// `b`'s inside the face on the surface or is `b`'s own. Every bend is a crease point (its two
-/// planes given). `None` where the walk leaves the face, finds no next plane, or bends more
-/// than [`MAX_BENDS`] times (a curved trace: `bends` samples it instead).
+/// planes given). `None` where the walk leaves the face, finds no next plane, follows a line
+/// less than [`MIN_RUN`] or bends more than [`MAX_BENDS`] times (a curved trace: `bends`
+/// samples it instead).
 pub fn walk(
     field: &Field,
     grid: &Grid,
@@ -60,7 +64,9 @@ pub fn walk(
             *spent += 1;
             field.at(cur.0 + dir * t).abs() <= tol
         };
-        if on(reach, spent) {
+        // (A trace that leaves its tangent line within a hundredth of a cell curves: a rough
+        // surface's, which the stations sample for less.)
+        if on(reach, spent) || !on(reach.min(MIN_RUN * h), spent) {
             return None;
         }
         let (mut lo, mut hi) = (0.0, reach);
