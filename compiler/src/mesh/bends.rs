@@ -5,7 +5,8 @@
 use super::edges::Crossing;
 use super::field::{Face, Field, Grid};
 use super::trace::{
-    Bisect, Meet, Point, at_meet, between, into_face, march, meet, opposite, simple, to_edge,
+    Bisect, Meet, Point, along_trace, at_meet, between, into_face, march, meet, opposite, simple,
+    to_edge,
 };
 pub use super::trace::{Planes, Sharp};
 use super::walk::walk;
@@ -224,15 +225,6 @@ fn nearest_along(
             march(field, grid, from, from + d * reach, spent)
         })
         .min_by(|a, b| (*a - from).length().total_cmp(&(*b - from).length()))
-}
-
-/// The direction within `face` of the tangent line of a surface point of normal `n` (unit, or
-/// zero where `n` is normal to the face).
-fn along_trace(face: Face, n: DVec3) -> DVec3 {
-    let (u, v) = face.span();
-    let mut along = DVec3::ZERO;
-    (along[u], along[v]) = (-n[v], n[u]);
-    along.normalize_or_zero()
 }
 
 /// The trace from `a` to `b` sampled at [`STATIONS`] points across the chord (the nearest

@@ -4,8 +4,9 @@
 
 use glam::DVec3;
 
-/// The cosine above which two crease points' planes count as the same plane.
-const SAME_PLANE: f64 = 0.999;
+/// The cosine above which two normals count as one plane's (two crease points' planes here;
+/// a face's crossings joined by `faces::segments`).
+pub const SAME_PLANE: f64 = 0.999;
 
 /// The crease's stretch within a cell (in cells) below which the cell's ring is split along
 /// it even where no other crease crosses the cell.

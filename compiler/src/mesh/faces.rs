@@ -3,6 +3,7 @@
 //! sharp point where the two tangent lines of a crease meet inside the face (`bends`).
 
 use super::bends::{self, Bends, Sharp};
+use super::creases::SAME_PLANE;
 use super::edges::{Crossed, Crossing};
 use super::field::{Face, Field, Grid, inside};
 use super::trace::{self, Bisect};
@@ -49,12 +50,12 @@ pub fn segments(
         // Four crossings, two of them on an edge crossed twice: the pairing whose segments join
         // crossings of the most alike normals (a crease or a thin part's two sides cross the
         // face as two traces, each along one sheet; the face's centre can lie either side of a
-        // thin dip, and a straight search from the dip can meet the other trace). Six: a
-        // corner's tip through a face near the face's corner crosses it as three straight
-        // traces, one per plane, and the centre can lie just outside all of them.
+        // thin dip, and a straight search from the dip can meet the other trace).
         (4, true) => alike(&border, 1) >= alike(&border, n - 1),
-        // More: only where one pairing joins crossings of one plane each (a corner's tip), as
-        // a rough surface's traces join crossings of normals alike by chance.
+        // Six or more: only where one pairing joins crossings of one plane each, as a rough
+        // surface's traces join crossings of normals alike by chance (a corner's tip through a
+        // face near the face's corner crosses it as three straight traces, one per plane, and
+        // the face's centre can lie just outside all of them).
         (_, true) if planar(&border, 1) => true,
         (_, true) if planar(&border, n - 1) => false,
         _ => inside(centre),
@@ -116,9 +117,6 @@ fn planar(border: &[(Crossing, bool, usize)], step: usize) -> bool {
     let pairs = border.len() / 2;
     alike(border, step) > pairs as f64 * SAME_PLANE
 }
-
-/// The cosine above which two crossings' normals are taken as one plane's.
-const SAME_PLANE: f64 = 0.999;
 
 /// The crossings on `face`'s border in counter-clockwise order, each with whether it leaves
 /// the inside (the side changes at every crossing, starting from the first corner's) and the

@@ -55,6 +55,15 @@ pub fn into_face(face: Face, edge: usize) -> DVec3 {
     into
 }
 
+/// The direction within `face` of the tangent line of a surface point of normal `n` (unit, or
+/// zero where `n` is normal to the face).
+pub fn along_trace(face: Face, n: DVec3) -> DVec3 {
+    let (u, v) = face.span();
+    let mut along = DVec3::ZERO;
+    (along[u], along[v]) = (-n[v], n[u]);
+    along.normalize_or_zero()
+}
+
 /// Whether the normals `a` and `b`, seen within `face`'s plane, point about opposite ways (a
 /// trace that turns back between them; a rough surface's traces, parallel by chance, do not).
 pub fn opposite(face: Face, a: DVec3, b: DVec3) -> bool {

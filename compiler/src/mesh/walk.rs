@@ -3,8 +3,8 @@
 //! line is met — each bend found on its crease, however short the plane between.
 
 use super::field::{Face, Field, Grid, inside};
-use super::trace::{Meet, Point, Sharp, between, meet, to_edge};
-use glam::{DVec2, DVec3};
+use super::trace::{Meet, Point, Sharp, along_trace, between, meet, to_edge};
+use glam::DVec3;
 
 /// How far (in cells) the field may be from zero on a tangent line for the line to lie on
 /// the surface (the normals come from differences a ten-thousandth of a cell apart).
@@ -149,11 +149,8 @@ fn start(grid: &Grid, face: Face, a: Point, b: Point) -> Option<DVec3> {
     })
 }
 
-/// The unit direction within `face` of the tangent line of a surface point of normal `n`.
+/// The unit direction within `face` of the tangent line of a surface point of normal `n`
+/// ([`along_trace`]), if `n` is not normal to the face.
 fn along(face: Face, n: DVec3) -> Option<DVec3> {
-    let (u, v) = face.span();
-    let flat = DVec2::new(n[u], n[v]).try_normalize()?;
-    let mut d = DVec3::ZERO;
-    (d[u], d[v]) = (-flat.y, flat.x);
-    Some(d)
+    Some(along_trace(face, n)).filter(|d| *d != DVec3::ZERO)
 }
