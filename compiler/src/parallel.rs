@@ -1,27 +1,52 @@
-//! A slice mapped on all cores with scoped threads: what the mesher and the ground truth share.
+//! A slice mapped on all cores by rayon's pool: what the mesher and the ground truth share.
+
+use rayon::prelude::*;
 
 /// `f` over `items` on all cores (in order); on one core, or where threads cannot be made
 /// (WebAssembly), in this thread.
 pub fn par_map<T: Sync, R: Send>(items: &[T], f: impl Fn(&T) -> R + Sync) -> Vec<R> {
-    if items.len() < 256 {
+    if items.len() < 64 || threads() == 1 {
         return items.iter().map(f).collect();
     }
-    let threads = threads();
-    if threads == 1 {
-        return items.iter().map(f).collect();
-    }
-    let chunk = items.len().div_ceil(threads);
     let f = &f;
-    std::thread::scope(|s| {
-        let parts: Vec<_> = items
-            .chunks(chunk)
-            .map(|part| s.spawn(move || part.iter().map(f).collect::<Vec<R>>()))
-            .collect();
-        parts
-            .into_iter()
-            .flat_map(|p| p.join().unwrap_or_else(|e| std::panic::resume_unwind(e)))
-            .collect()
-    })
+    items.par_iter().map(f).collect()
+}
+
+/// Everything `f` gives for each of `items`, in order, on all cores.
+pub fn par_flat_map<T: Sync, I: IntoIterator>(
+    items: &[T],
+    f: impl Fn(&T) -> I + Sync,
+) -> Vec<I::Item>
+where
+    I::Item: Send,
+{
+    if items.len() < 64 || threads() == 1 {
+        return items.iter().flat_map(f).collect();
+    }
+    let f = &f;
+    items.par_iter().flat_map_iter(f).collect()
+}
+
+/// Sorts `items` by `key` on all cores (not stable).
+pub fn par_sort_unstable_by_key<T: Send, K: Ord>(items: &mut [T], key: impl Fn(&T) -> K + Sync) {
+    if threads() == 1 {
+        return items.sort_unstable_by_key(key);
+    }
+    items.par_sort_unstable_by_key(key)
+}
+
+/// `f` over the chunks of `items` of `size` (the last may be shorter) on all cores, their
+/// results in order; on one core, in this thread.
+pub fn par_chunks_mut<T: Send, R: Send>(
+    items: &mut [T],
+    size: usize,
+    f: impl Fn(&mut [T]) -> R + Sync,
+) -> Vec<R> {
+    if items.len() <= size || threads() == 1 {
+        return items.chunks_mut(size.max(1)).map(f).collect();
+    }
+    let f = &f;
+    items.par_chunks_mut(size).map(f).collect()
 }
 
 /// The cores to use, asked once (the question reads the cgroup's files each time: tens of

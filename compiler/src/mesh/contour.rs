@@ -8,11 +8,11 @@ use super::bends::{self, Planes, Sharp};
 use super::edges;
 use super::faces::{self, Segment};
 use super::field::Face;
-use super::field::{Field, Grid, corner, inside};
+use super::field::{Field, Grid, corner, inside, local};
 use super::polygons;
 use super::search;
 use super::trace::{self, Bisect};
-use crate::parallel::par_map;
+use crate::parallel::{par_flat_map, par_map};
 use glam::{DVec3, IVec3};
 use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
 
@@ -48,12 +48,13 @@ pub fn contour(field: &Field, grid: &Grid, cells: &[IVec3], sharp: bool) -> Cont
 
     // Each face of an active cell once: a cell's near faces, and its far ones where no active
     // cell lies beyond.
-    let face_list: Vec<Face> = cells
-        .iter()
-        .flat_map(|&c| (0..6).map(move |i| (c, Face::of_cell(c, i))))
-        .filter(|&(c, (f, far))| !far || !listed.contains(&(c + IVec3::AXES[f.axis])))
-        .map(|(_, (f, _))| f)
-        .collect();
+    let listed_ref = &listed;
+    let face_list: Vec<Face> = par_flat_map(cells, |&c| {
+        (0..6)
+            .map(move |i| Face::of_cell(c, i))
+            .filter(move |&(f, far)| !far || !listed_ref.contains(&(c + IVec3::AXES[f.axis])))
+            .map(|(f, _)| f)
+    });
     // Where the surface crosses every edge of an active cell.
     let mut crossings = edges::crossings(field, grid, (cells, &listed), &at, sharp);
     if sharp {
@@ -151,15 +152,20 @@ fn closed(field: &Field, grid: &Grid, cells: &[IVec3]) -> Closed {
         let values = field.many(&at);
         evaluations += points.len();
         value.extend(points.iter().map(|&p| grid.key(p)).zip(values));
-        let inside_at = |p: IVec3| inside(value[&grid.key(p)]);
+        // Which faces of each cell the surface crosses (bit i: face i).
+        let crossed = par_map(&frontier, |&c| {
+            let sides: [bool; 8] =
+                std::array::from_fn(|i| inside(value[&grid.key(c + corner(i as i32))]));
+            (0..6).fold(0u8, |bits, i| {
+                let corners = Face::of_cell(c, i).0.corners().map(|p| sides[local(p - c)]);
+                let mixed = corners.iter().any(|&s| s != corners[0]);
+                bits | ((mixed as u8) << i)
+            })
+        });
         let mut next = Vec::new();
-        for &c in &frontier {
-            for i in 0..6 {
+        for (&c, bits) in frontier.iter().zip(crossed) {
+            for i in (0..6).filter(|i| bits & (1 << i) != 0) {
                 let (face, far) = Face::of_cell(c, i);
-                let sides = face.corners().map(inside_at);
-                if sides.iter().all(|&s| s == sides[0]) {
-                    continue;
-                }
                 let step = IVec3::AXES[face.axis];
                 let across = if far { c + step } else { c - step };
                 if across.cmpge(IVec3::ZERO).all()

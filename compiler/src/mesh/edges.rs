@@ -3,8 +3,9 @@
 //! on the same side but between which the field's bound allows it to dip across (a crease
 //! cutting the edge, a part thinner than a cell), found by a bound-guided search.
 
-use super::field::{Face, Field, Grid, inside};
+use super::field::{Face, Field, Grid, corner, inside, local};
 use super::search::{self, Search};
+use crate::parallel::{par_flat_map, par_sort_unstable_by_key};
 use glam::{DVec3, IVec3};
 use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
 
@@ -76,16 +77,16 @@ pub fn crossings(
     // Each edge with the field at its ends: those that change side, and with `dips` those the
     // field may dip across, |d(a)| + |d(b)| < h (d is 1-Lipschitz) — the rest dropped before
     // sorting (most edges of a fine grid).
-    let mut edges: Vec<((IVec3, usize), (f64, f64))> = cells
-        .iter()
-        .flat_map(|&c| (0..12).map(move |i| cell_edge(c, i)))
-        .filter_map(|(p, a)| {
-            let (fa, fb) = (at(p), at(p + IVec3::AXES[a]));
+    let mut edges: Vec<((IVec3, usize), (f64, f64))> = par_flat_map(cells, |&c| {
+        let value: [f64; 8] = std::array::from_fn(|i| at(c + corner(i as i32)));
+        (0..12).filter_map(move |i| {
+            let (p, a) = cell_edge(c, i);
+            let (fa, fb) = (value[local(p - c)], value[local(p - c + IVec3::AXES[a])]);
             let keep = inside(fa) != inside(fb) || (dips && fa.abs() + fb.abs() < grid.h);
             keep.then_some(((p, a), (fa, fb)))
         })
-        .collect();
-    edges.sort_unstable_by_key(|&((p, a), _)| edge_key(grid, p, a));
+    });
+    par_sort_unstable_by_key(&mut edges, |&((p, a), _)| edge_key(grid, p, a));
     edges.dedup_by_key(|&mut (e, _)| e);
     let (changes, same): (Vec<_>, Vec<_>) = edges
         .into_iter()

@@ -81,6 +81,11 @@ impl<'a> Field<'a> {
         par_map(points, |&p| self.at(p))
     }
 
+    /// Whether batches go to an evaluator (the GPU) rather than the CPU.
+    pub fn batched(&self) -> bool {
+        self.evaluator.is_some()
+    }
+
     /// The smallest difference the batches resolve (0 on the CPU: its own tolerances hold).
     pub fn resolution(&self) -> f64 {
         self.evaluator.map_or(0.0, |e| e.resolution())
@@ -113,6 +118,12 @@ pub fn inside(d: f64) -> bool {
 /// Corner `i` (0..8) of a cell (or of an octree block of side 1), relative to its lowest.
 pub fn corner(i: i32) -> IVec3 {
     IVec3::new(i & 1, (i >> 1) & 1, i >> 2)
+}
+
+/// The index (0..8) of the cell corner at `offset` (each coordinate 0 or 1) from its lowest:
+/// [`corner`]'s inverse.
+pub fn local(offset: IVec3) -> usize {
+    (offset.x + 2 * offset.y + 4 * offset.z) as usize
 }
 
 /// A regular grid of cubic cells: cell (i, j, k) spans origin + h·[i, i+1] × … .

@@ -15,8 +15,29 @@ pub trait Search: Send {
 }
 
 /// Runs every search of `searches` to its end, a round of [`Field::many`] per step; returns
-/// the evaluations spent.
+/// the evaluations spent. On the CPU the searches run in chunks of [`CHUNK`], each chunk's
+/// rounds on one core and the chunks on all (the values are the same: [`Field::many`] on the
+/// CPU is [`Field::at`] at each point), so that their own steps run in parallel too — with a
+/// cheap field those cost more than the evaluations.
 pub fn run<S: Search>(field: &Field, searches: &mut [S]) -> usize {
+    if field.batched() {
+        return lockstep(searches, |points| field.many(points));
+    }
+    let each = |chunk: &mut [S]| {
+        lockstep(chunk, |points| {
+            points.iter().map(|&p| field.at(p)).collect()
+        })
+    };
+    crate::parallel::par_chunks_mut(searches, CHUNK, each)
+        .into_iter()
+        .sum()
+}
+
+/// The searches one core runs in lockstep on the CPU.
+const CHUNK: usize = 64;
+
+/// Runs `searches` to their end in rounds, each round's points evaluated by `many` at once.
+fn lockstep<S: Search>(searches: &mut [S], many: impl Fn(&[DVec3]) -> Vec<f64>) -> usize {
     let mut open: Vec<usize> = (0..searches.len()).collect();
     let mut evaluations = 0;
     let mut points = Vec::new();
@@ -37,7 +58,7 @@ pub fn run<S: Search>(field: &Field, searches: &mut [S]) -> usize {
         if points.is_empty() {
             break;
         }
-        let values = field.many(&points);
+        let values = many(&points);
         evaluations += points.len();
         for &(i, start, end) in &asked {
             searches[i].tell(&values[start..end]);
