@@ -12,7 +12,7 @@ use super::field::{Field, Grid, corner, inside, local};
 use super::polygons;
 use super::search;
 use super::trace::{self, Bisect};
-use crate::parallel::{par_flat_map, par_map};
+use crate::parallel::{par_flat_map, par_map, par_sort_unstable_by_key};
 use glam::{DVec3, IVec3};
 use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
 
@@ -73,9 +73,8 @@ pub fn contour(field: &Field, grid: &Grid, cells: &[IVec3], sharp: bool) -> Cont
     // The segments on every face of an active cell.
     // The ambiguous faces' centres, in one batch.
     let mut centres: Vec<(Face, f64)> = face_list.iter().map(|&f| (f, f64::NAN)).collect();
-    let ambiguous: Vec<usize> = (0..face_list.len())
-        .filter(|&i| faces::ambiguous(face_list[i], crossing_at))
-        .collect();
+    let is_ambiguous = par_map(&face_list, |&f| faces::ambiguous(f, crossing_at));
+    let ambiguous: Vec<usize> = (0..face_list.len()).filter(|&i| is_ambiguous[i]).collect();
     let points: Vec<DVec3> = ambiguous
         .iter()
         .map(|&i| faces::centre(grid, face_list[i]))
@@ -90,18 +89,16 @@ pub fn contour(field: &Field, grid: &Grid, cells: &[IVec3], sharp: bool) -> Cont
     // The faces' sharp points inside them, in lockstep batches.
     evaluations += settle_pending(field, grid, &face_list, &mut drawn);
     let mut planes: Vec<Option<Planes>> = Vec::new();
-    let mut segments: HashMap<Face, Vec<Vec<u32>>> =
-        HashMap::with_capacity_and_hasher(face_list.len(), Default::default());
+    let mut segments = faces::Paths::with_capacity(face_list.len());
     for (&f, (list, spent)) in face_list.iter().zip(drawn) {
         evaluations += spent;
         if list.is_empty() {
             continue;
         }
-        let paths = list
-            .iter()
-            .map(|s| path(s, &mut positions, &mut planes))
-            .collect();
-        segments.insert(f, paths);
+        for s in &list {
+            segments.push(path(s, &mut positions, &mut planes));
+        }
+        segments.finish(f);
     }
     // One polygon per sheet in each cell, fanned around its QEF vertex.
     let fans = polygons::fan(
@@ -137,21 +134,16 @@ fn closed(field: &Field, grid: &Grid, cells: &[IVec3]) -> Closed {
     let mut frontier = cells.to_vec();
     let mut evaluations = 0;
     while !frontier.is_empty() {
-        // The corners not yet known, each once (NaN holds the place until it is evaluated).
-        let mut points: Vec<IVec3> = Vec::new();
-        for &c in &frontier {
-            for i in 0..8 {
-                let p = c + corner(i);
-                if let std::collections::hash_map::Entry::Vacant(e) = value.entry(grid.key(p)) {
-                    e.insert(f64::NAN);
-                    points.push(p);
-                }
-            }
-        }
-        let at: Vec<DVec3> = points.iter().map(|&p| grid.point(p)).collect();
+        // The corners not yet known, each once.
+        let mut points: Vec<u64> =
+            par_flat_map(&frontier, |&c| (0..8).map(move |i| grid.key(c + corner(i))));
+        par_sort_unstable_by_key(&mut points, |&k| k);
+        points.dedup();
+        points.retain(|k| !value.contains_key(k));
+        let at: Vec<DVec3> = par_map(&points, |&k| grid.point(grid.unkey(k)));
         let values = field.many(&at);
         evaluations += points.len();
-        value.extend(points.iter().map(|&p| grid.key(p)).zip(values));
+        value.extend(points.into_iter().zip(values));
         // Which faces of each cell the surface crosses (bit i: face i).
         let crossed = par_map(&frontier, |&c| {
             let sides: [bool; 8] =
@@ -244,13 +236,15 @@ fn settle_pending(
 
 /// A segment as a path of vertices (from, its sharp points given indices, to).
 /// A sharp point's planes go to `planes` (by its index less the crossings' count).
-fn path(s: &Segment, positions: &mut Vec<DVec3>, planes: &mut Vec<Option<Planes>>) -> Vec<u32> {
-    let mut out = vec![s.from];
-    for &p in &s.sharp {
-        out.push(positions.len() as u32);
+fn path<'a>(
+    s: &'a Segment,
+    positions: &'a mut Vec<DVec3>,
+    planes: &'a mut Vec<Option<Planes>>,
+) -> impl Iterator<Item = u32> + 'a {
+    let sharp = s.sharp.iter().map(|p| {
         positions.push(p.at);
         planes.push(p.planes);
-    }
-    out.push(s.to);
-    out
+        positions.len() as u32 - 1
+    });
+    std::iter::once(s.from).chain(sharp).chain([s.to])
 }

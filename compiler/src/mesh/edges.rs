@@ -63,6 +63,9 @@ pub struct Crossings {
     pub evaluations: usize,
 }
 
+/// A grid edge ([`edge_key`], lowest end and axis) and the field at its ends.
+type KeyedEdge = (u64, (IVec3, usize), (f64, f64));
+
 /// The crossings on every edge of `cells` (`at` gives the field at a grid point): once on each
 /// edge that changes side; with `dips`, twice on each edge whose ends lie on the same side but
 /// where the field dips across between them, if all four cells around it are in `listed` (so
@@ -77,19 +80,20 @@ pub fn crossings(
     // Each edge with the field at its ends: those that change side, and with `dips` those the
     // field may dip across, |d(a)| + |d(b)| < h (d is 1-Lipschitz) — the rest dropped before
     // sorting (most edges of a fine grid).
-    let mut edges: Vec<((IVec3, usize), (f64, f64))> = par_flat_map(cells, |&c| {
+    let mut edges: Vec<KeyedEdge> = par_flat_map(cells, |&c| {
         let value: [f64; 8] = std::array::from_fn(|i| at(c + corner(i as i32)));
         (0..12).filter_map(move |i| {
             let (p, a) = cell_edge(c, i);
             let (fa, fb) = (value[local(p - c)], value[local(p - c + IVec3::AXES[a])]);
             let keep = inside(fa) != inside(fb) || (dips && fa.abs() + fb.abs() < grid.h);
-            keep.then_some(((p, a), (fa, fb)))
+            keep.then_some((edge_key(grid, p, a), (p, a), (fa, fb)))
         })
     });
-    par_sort_unstable_by_key(&mut edges, |&((p, a), _)| edge_key(grid, p, a));
-    edges.dedup_by_key(|&mut (e, _)| e);
+    par_sort_unstable_by_key(&mut edges, |e| e.0);
+    edges.dedup_by_key(|e| e.0);
     let (changes, same): (Vec<_>, Vec<_>) = edges
         .into_iter()
+        .map(|(_, e, ends)| (e, ends))
         .partition(|&(_, (fa, fb))| inside(fa) != inside(fb));
     // The edges the field may dip across with all four cells around them there.
     let mut dipping: Vec<Dip> = same

@@ -8,6 +8,7 @@ use super::edges::{Crossed, Crossing};
 use super::field::{Face, Field, Grid, inside};
 use super::trace::{self, Bisect};
 use glam::{DVec3, IVec3};
+use rustc_hash::FxHashMap as HashMap;
 
 /// A path across a face from one crossing to another, through a sharp point or not.
 #[derive(Clone, Debug)]
@@ -179,4 +180,50 @@ pub fn apart(a: DVec3, found: Vec<Sharp>, b: DVec3, h: f64) -> Vec<Sharp> {
         }
     }
     out
+}
+
+/// Every face's segments as paths of mesh vertices (from, sharp points, to), stored flat: one
+/// table entry per face drawn, no allocation per segment.
+pub struct Paths {
+    /// By face: the range of its paths in `paths`.
+    by_face: HashMap<Face, (u32, u32)>,
+    /// Each path's range in `vertices`.
+    paths: Vec<(u32, u32)>,
+    vertices: Vec<u32>,
+    /// The paths before this one belong to faces already finished.
+    finished: u32,
+}
+
+impl Paths {
+    /// Room for `faces` faces.
+    pub fn with_capacity(faces: usize) -> Paths {
+        Paths {
+            by_face: HashMap::with_capacity_and_hasher(faces, Default::default()),
+            paths: Vec::with_capacity(faces),
+            vertices: Vec::with_capacity(2 * faces),
+            finished: 0,
+        }
+    }
+
+    /// Adds a path (a list of vertices) to the face [`Paths::finish`] names next.
+    pub fn push(&mut self, path: impl IntoIterator<Item = u32>) {
+        let start = self.vertices.len() as u32;
+        self.vertices.extend(path);
+        self.paths.push((start, self.vertices.len() as u32));
+    }
+
+    /// The paths pushed since the last call are `face`'s.
+    pub fn finish(&mut self, face: Face) {
+        let end = self.paths.len() as u32;
+        self.by_face.insert(face, (self.finished, end));
+        self.finished = end;
+    }
+
+    /// `face`'s paths (none if it draws none).
+    pub fn of(&self, face: Face) -> impl Iterator<Item = &[u32]> {
+        let (a, b) = self.by_face.get(&face).copied().unwrap_or((0, 0));
+        self.paths[a as usize..b as usize]
+            .iter()
+            .map(|&(s, e)| &self.vertices[s as usize..e as usize])
+    }
 }

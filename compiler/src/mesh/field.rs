@@ -163,6 +163,13 @@ impl Grid {
         let m = self.n.as_u64vec3() + 1;
         c.x as u64 + m.x * (c.y as u64 + m.y * c.z as u64)
     }
+
+    /// The grid point whose [`Grid::key`] is `key`.
+    pub fn unkey(&self, key: u64) -> IVec3 {
+        let m = self.n.as_u64vec3() + 1;
+        let (x, yz) = (key % m.x, key / m.x);
+        IVec3::new(x as i32, (yz % m.y) as i32, (yz / m.y) as i32)
+    }
 }
 
 /// A face of the grid: its lowest corner and the axis it is normal to.

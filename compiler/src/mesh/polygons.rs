@@ -4,7 +4,7 @@
 use super::bends::Planes;
 use super::corners::{self, Corner};
 use super::creases;
-use super::faces;
+use super::faces::{self, Paths};
 use super::field::{Face, Field, Grid};
 use super::qef;
 use super::search;
@@ -31,7 +31,7 @@ pub fn fan(
     field: &Field,
     grid: &Grid,
     cells: &[IVec3],
-    segments: &HashMap<Face, Vec<Vec<u32>>>,
+    segments: &Paths,
     (normals, planes): (&[DVec3], &[Option<Planes>]),
     positions: &mut Vec<DVec3>,
     sharp: bool,
@@ -105,7 +105,7 @@ pub fn fan(
 fn cell_starts(
     grid: &Grid,
     c: IVec3,
-    segments: &HashMap<Face, Vec<Vec<u32>>>,
+    segments: &Paths,
     (positions, normals, planes): (&[DVec3], &[DVec3], &[Option<Planes>]),
     sharp: bool,
 ) -> Option<Vec<(Vec<u32>, Start)>> {
@@ -257,13 +257,13 @@ fn onto_crease(p: DVec3, along: DVec3, lo: DVec3, hi: DVec3) -> DVec3 {
 
 /// The polygons of cell `c`: its faces' segments, oriented as seen from outside the cell, chained
 /// into closed rings of vertices; `None` if they do not close.
-fn polygons(c: IVec3, segments: &HashMap<Face, Vec<Vec<u32>>>) -> Option<Vec<Vec<u32>>> {
+fn polygons(c: IVec3, segments: &Paths) -> Option<Vec<Vec<u32>>> {
     // The paths as they lie (borrowed), and whether this cell walks them backwards (a face on
     // its near side, seen from outside the cell, runs the other way).
     let mut paths: Vec<(&[u32], bool)> = Vec::with_capacity(8);
     for i in 0..6 {
         let (face, far) = Face::of_cell(c, i);
-        for path in segments.get(&face).into_iter().flatten() {
+        for path in segments.of(face) {
             paths.push((path, !far));
         }
     }
