@@ -135,8 +135,10 @@ fn closed(field: &Field, grid: &Grid, cells: &[IVec3]) -> Closed {
     let mut evaluations = 0;
     while !frontier.is_empty() {
         // The corners not yet known, each once.
-        let mut points: Vec<u64> =
-            par_flat_map(&frontier, |&c| (0..8).map(move |i| grid.key(c + corner(i))));
+        let mut points: Vec<u64> = par_map(&frontier, |&c| {
+            std::array::from_fn::<_, 8, _>(|i| grid.key(c + corner(i as i32)))
+        })
+        .into_flattened();
         par_sort_unstable_by_key(&mut points, |&k| k);
         points.dedup();
         points.retain(|k| !value.contains_key(k));
