@@ -3,7 +3,8 @@
 the same five shapes in [-1, 1]³ at 16 to 256 cells a side, as issue 35 asks: time to mesh
 (sdfc: up to its "measuring" step, materials included; fidget: Octree::build and walk_dual),
 triangles, and the largest distance to the exact surface of the vertices and of the
-triangles' centroids, both tools' meshes measured by the same exact distance functions in f64
+triangles' centroids (sdfc also at the resolutions between, a quarter of an octave apart from
+8 cells, so that equal error is matched by the coarsest sdfc grid that reaches it), both tools' meshes measured by the same exact distance functions in f64
 (here for sdfc's STL, clipped to the box as sdfc caps the cut, in the harness for fidget's). Best of 3. Prints two markdown tables: every
 run, and each fidget run against the fastest sdfc run whose error is no larger (equal error).
 
@@ -79,7 +80,7 @@ def sdfc_run(sdfc, name, scene, res):
         best = None
         for _ in range(3):
             out = subprocess.run(
-                [sdfc, "mesh", src, "-o", stl, "--resolution", str(res),
+                [sdfc, "mesh", src, "-o", stl, "--cell", repr(2.0 / res),
                  "--bounds=-1,-1,-1,1,1,1", "--stats"], capture_output=True, text=True)
             if out.returncode:
                 sys.exit(out.stderr)
@@ -122,7 +123,7 @@ def against(rows, tool):
                       f" | — |")
                 continue
             s = min(ok, key=lambda r: r[3])
-            print(f"| {name} | {f[1]}, {f[3]:.3f}, {err:.1e} | {s[1]}, {s[3]:.3f}, "
+            print(f"| {name} | {f[1]}, {f[3]:.3f}, {err:.1e} | {s[1]:.3g}, {s[3]:.3f}, "
                   f"{max(s[5], s[6]):.1e} | {f[3] / max(s[3], 1e-3):.1f}× |")
     print()
 
@@ -137,11 +138,17 @@ def main():
     for depth in [4, 5, 6, 7, 8]:
         res = 2 ** depth
         got = {tool: other(exe, depth) for tool, exe in tools.items()}
-        for name, scene in SCENES.items():
-            t, tris, vertex, face = sdfc_run(sdfc, name, scene, res)
-            rows.append((name, res, "sdfc", t, tris, vertex, face))
+        for name in SCENES:
             for tool in tools:
                 rows.append((name, res, tool) + got[tool][name])
+    # sdfc's resolutions need not be powers of two (fidget's octree's are; libfive's here
+    # are kept so): a quarter of an octave apart from 8 to 256 cells, so that "at no larger
+    # error" finds the coarsest sdfc grid that is as exact, not the next power of two.
+    for name, scene in SCENES.items():
+        for k in range(12, 33):
+            res = 2 ** (k / 4)
+            t, tris, vertex, face = sdfc_run(sdfc, name, scene, res)
+            rows.append((name, res, "sdfc", t, tris, vertex, face))
     head = "| shape | cells a side | sdfc: time (s) | triangles | vertices ≤ | centroids ≤ |"
     for tool in tools:
         head += f" {tool}: time (s) | triangles | vertices ≤ | centroids ≤ |"
@@ -154,6 +161,12 @@ def main():
                 r = next(r for r in rows if r[:3] == (name, res, tool))
                 line += f" {r[3]:.3f} | {r[4]:,} | {r[5]:.1e} | {r[6]:.1e} |"
             print(line)
+    print()
+    print("| shape | sdfc: cells a side | time (s) | triangles | vertices ≤ | centroids ≤ |")
+    print("| --- | ---: | ---: | ---: | ---: | ---: |")
+    for r in rows:
+        if r[2] == "sdfc" and r[1] not in (16, 32, 64, 128, 256):
+            print(f"| {r[0]} | {r[1]:.3g} | {r[3]:.3f} | {r[4]:,} | {r[5]:.1e} | {r[6]:.1e} |")
     print()
     for tool in tools:
         against(rows, tool)

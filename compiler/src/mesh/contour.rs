@@ -57,6 +57,14 @@ pub fn contour(field: &Field, grid: &Grid, cells: &[IVec3], sharp: bool) -> Cont
     });
     // Where the surface crosses every edge of an active cell.
     let mut crossings = edges::crossings(field, grid, (cells, &listed), &at, sharp);
+    // Only the faces with a crossing on an edge draw anything.
+    let drawing = par_map(&face_list, |f| {
+        (f.edges().iter())
+            .any(|&(p, a)| crossings.by_edge.contains_key(&edges::edge_key(grid, p, a)))
+    });
+    let face_list: Vec<Face> = (face_list.into_iter().zip(drawing))
+        .filter_map(|(f, d)| d.then_some(f))
+        .collect();
     if sharp {
         evaluations += edges::sharpen(field, grid, &face_list, &mut crossings);
     }
