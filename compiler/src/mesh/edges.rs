@@ -5,7 +5,7 @@
 
 use super::field::{Face, Field, Grid, corner, inside, local};
 use super::search::{self, Search};
-use crate::parallel::{par_flat_map, par_sort_unstable_by_key};
+use crate::parallel::{par_flat_map, par_map, par_sort_unstable_by_key};
 use glam::{DVec3, IVec3};
 use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
 
@@ -63,8 +63,8 @@ pub struct Crossings {
     pub evaluations: usize,
 }
 
-/// A grid edge ([`edge_key`], lowest end and axis) and the field at its ends.
-type KeyedEdge = (u64, (IVec3, usize), (f64, f64));
+/// A grid edge: its [`edge_key`], and the cell (its index) and the cell's edge (0..12) it is.
+type KeyedEdge = (u64, (u32, u8));
 
 /// The crossings on every edge of `cells` (`at` gives the field at a grid point): once on each
 /// edge that changes side; with `dips`, twice on each edge whose ends lie on the same side but
@@ -80,25 +80,38 @@ pub fn crossings(
     // Each edge with the field at its ends: those that change side, and with `dips` those the
     // field may dip across, |d(a)| + |d(b)| < h (d is 1-Lipschitz) — the rest dropped before
     // sorting (most edges of a fine grid).
-    let mut edges: Vec<KeyedEdge> = par_flat_map(cells, |&c| {
-        let value: [f64; 8] = std::array::from_fn(|i| at(c + corner(i as i32)));
-        (0..12).filter_map(move |i| {
-            let (p, a) = cell_edge(c, i);
-            let (fa, fb) = (value[local(p - c)], value[local(p - c + IVec3::AXES[a])]);
+    let values: Vec<[f64; 8]> = par_map(cells, |&c| {
+        std::array::from_fn(|i| at(c + corner(i as i32)))
+    });
+    let ends = |(cell, i): (u32, u8)| {
+        let c = cells[cell as usize];
+        let (p, a) = cell_edge(c, i as i32);
+        let value = &values[cell as usize];
+        (
+            (p, a),
+            (value[local(p - c)], value[local(p - c + IVec3::AXES[a])]),
+        )
+    };
+    let index: Vec<u32> = (0..cells.len() as u32).collect();
+    let mut edges: Vec<KeyedEdge> = par_flat_map(&index, |&cell| {
+        (0..12u8).filter_map(move |i| {
+            let ((p, a), (fa, fb)) = ends((cell, i));
             let keep = inside(fa) != inside(fb) || (dips && fa.abs() + fb.abs() < grid.h);
-            keep.then_some((edge_key(grid, p, a), (p, a), (fa, fb)))
+            keep.then_some((edge_key(grid, p, a), (cell, i)))
         })
     });
     par_sort_unstable_by_key(&mut edges, |e| e.0);
     edges.dedup_by_key(|e| e.0);
     let (changes, same): (Vec<_>, Vec<_>) = edges
         .into_iter()
-        .map(|(_, e, ends)| (e, ends))
+        .map(|(_, e)| ends(e))
         .partition(|&(_, (fa, fb))| inside(fa) != inside(fb));
     // The edges the field may dip across with all four cells around them there.
-    let mut dipping: Vec<Dip> = same
-        .into_iter()
-        .filter(|&(e, _)| around(e).iter().all(|c| listed.contains(c)))
+    let all_around = par_map(&same, |&(e, _)| {
+        around(e).iter().all(|c| listed.contains(c))
+    });
+    let mut dipping: Vec<Dip> = (same.into_iter().zip(all_around))
+        .filter_map(|(e, all)| all.then_some(e))
         .map(|((p, a), ends)| {
             let along = DVec3::AXES[a] * grid.h;
             Dip::new(field, grid.point(p), along, ends, (p, a))
