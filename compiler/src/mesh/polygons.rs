@@ -49,20 +49,19 @@ pub fn fan(
     };
     // Sharp vertices settle on the surface, all cells' searches in lockstep (but those at a
     // corner outside their cell, on it already).
-    let mut settles: Vec<Settle> = match sharp {
-        false => Vec::new(),
-        true => starts
-            .iter()
-            .flatten()
-            .flat_map(|(c, rings)| {
-                let lo = grid.point(*c);
-                rings
-                    .iter()
-                    .filter(|(_, s)| s.corner.is_none())
-                    .map(move |(_, s)| Settle::new(field, (s.p, s.or), lo, grid.h))
-            })
-            .collect(),
-    };
+    let mut settles: Vec<Settle> = Vec::new();
+    if sharp {
+        // (Sized first: grown by doubling, the list was copied and its pages zeroed twice.)
+        let rings = starts.iter().flatten().map(|(_, rings)| rings.len()).sum();
+        settles.reserve_exact(rings);
+        settles.extend(starts.iter().flatten().flat_map(|(c, rings)| {
+            let lo = grid.point(*c);
+            rings
+                .iter()
+                .filter(|(_, s)| s.corner.is_none())
+                .map(move |(_, s)| Settle::new(field, (s.p, s.or), lo, grid.h))
+        }));
+    }
     evaluations += search::run(field, &mut settles);
     let mut settled = settles.into_iter().map(|s| s.p);
     let mut triangles = Vec::new();
