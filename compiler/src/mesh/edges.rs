@@ -77,35 +77,7 @@ pub fn crossings(
     at: &(impl Fn(IVec3) -> f64 + Sync),
     dips: bool,
 ) -> Crossings {
-    // Each edge with the field at its ends: those that change side, and with `dips` those the
-    // field may dip across, |d(a)| + |d(b)| < h (d is 1-Lipschitz) — the rest dropped before
-    // sorting (most edges of a fine grid).
-    let values: Vec<[f64; 8]> = par_map(cells, |&c| {
-        std::array::from_fn(|i| at(c + corner(i as i32)))
-    });
-    let ends = |(cell, i): (u32, u8)| {
-        let c = cells[cell as usize];
-        let (p, a) = cell_edge(c, i as i32);
-        let value = &values[cell as usize];
-        (
-            (p, a),
-            (value[local(p - c)], value[local(p - c + IVec3::AXES[a])]),
-        )
-    };
-    let index: Vec<u32> = (0..cells.len() as u32).collect();
-    let mut edges: Vec<KeyedEdge> = par_flat_map(&index, |&cell| {
-        (0..12u8).filter_map(move |i| {
-            let ((p, a), (fa, fb)) = ends((cell, i));
-            let keep = inside(fa) != inside(fb) || (dips && fa.abs() + fb.abs() < grid.h);
-            keep.then_some((edge_key(grid, p, a), (cell, i)))
-        })
-    });
-    par_sort_unstable_by_key(&mut edges, |e| e.0);
-    edges.dedup_by_key(|e| e.0);
-    let (changes, same): (Vec<_>, Vec<_>) = edges
-        .into_iter()
-        .map(|(_, e)| ends(e))
-        .partition(|&(_, (fa, fb))| inside(fa) != inside(fb));
+    let (changes, same) = cell_edges(grid, cells, at, dips);
     // The edges the field may dip across with all four cells around them there.
     let all_around = par_map(&same, |&(e, _)| {
         around(e).iter().all(|c| listed.contains(c))
@@ -171,6 +143,46 @@ pub fn crossings(
         dipped,
         evaluations,
     }
+}
+
+/// An edge (lowest end and axis) and the field at its ends.
+type Ended = ((IVec3, usize), (f64, f64));
+
+/// Each edge of `cells`, once, with the field at its ends (`at`): those that change side, and
+/// with `dips` apart those on one side that the field may dip across, |d(a)| + |d(b)| < h (d is
+/// 1-Lipschitz) — the rest dropped before sorting (most edges of a fine grid).
+fn cell_edges(
+    grid: &Grid,
+    cells: &[IVec3],
+    at: &(impl Fn(IVec3) -> f64 + Sync),
+    dips: bool,
+) -> (Vec<Ended>, Vec<Ended>) {
+    let values: Vec<[f64; 8]> = par_map(cells, |&c| {
+        std::array::from_fn(|i| at(c + corner(i as i32)))
+    });
+    let ends = |(cell, i): (u32, u8)| {
+        let c = cells[cell as usize];
+        let (p, a) = cell_edge(c, i as i32);
+        let value = &values[cell as usize];
+        (
+            (p, a),
+            (value[local(p - c)], value[local(p - c + IVec3::AXES[a])]),
+        )
+    };
+    let index: Vec<u32> = (0..cells.len() as u32).collect();
+    let mut edges: Vec<KeyedEdge> = par_flat_map(&index, |&cell| {
+        (0..12u8).filter_map(move |i| {
+            let ((p, a), (fa, fb)) = ends((cell, i));
+            let keep = inside(fa) != inside(fb) || (dips && fa.abs() + fb.abs() < grid.h);
+            keep.then_some((edge_key(grid, p, a), (cell, i)))
+        })
+    });
+    par_sort_unstable_by_key(&mut edges, |e| e.0);
+    edges.dedup_by_key(|e| e.0);
+    edges
+        .into_iter()
+        .map(|(_, e)| ends(e))
+        .partition(|&(_, (fa, fb))| inside(fa) != inside(fb))
 }
 
 /// The cosine of the angle between two crossings' normals on one face above which neither is
