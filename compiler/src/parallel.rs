@@ -55,3 +55,33 @@ fn threads() -> usize {
     static THREADS: std::sync::OnceLock<usize> = std::sync::OnceLock::new();
     *THREADS.get_or_init(|| std::thread::available_parallelism().map_or(1, |n| n.get()))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The maps keep their items' order, below and above the sizes that run in parallel.
+    #[test]
+    fn maps_keep_order() {
+        for n in [0, 5, 63, 64, 1000] {
+            let items: Vec<u32> = (0..n).collect();
+            assert_eq!(
+                par_map(&items, |&i| 2 * i),
+                items.iter().map(|&i| 2 * i).collect::<Vec<_>>()
+            );
+            let flat = par_flat_map(&items, |&i| (0..i % 3).map(move |k| (i, k)));
+            let want: Vec<_> = items
+                .iter()
+                .flat_map(|&i| (0..i % 3).map(move |k| (i, k)))
+                .collect();
+            assert_eq!(flat, want);
+            let mut chunks = items.clone();
+            let sums = par_chunks_mut(&mut chunks, 7, |c| c.iter().sum::<u32>());
+            let want: Vec<u32> = items.chunks(7).map(|c| c.iter().sum()).collect();
+            assert_eq!(sums, want);
+            let mut sorted: Vec<u32> = items.iter().rev().copied().collect();
+            par_sort_unstable_by_key(&mut sorted, |&i| i);
+            assert_eq!(sorted, items);
+        }
+    }
+}

@@ -227,3 +227,28 @@ impl Paths {
             .map(|&(s, e)| &self.vertices[s as usize..e as usize])
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Each face gets back the paths pushed before its `finish`, in order; a face never
+    /// finished has none.
+    #[test]
+    fn paths_come_back_by_face() {
+        let face = |x, axis| Face {
+            base: IVec3::new(x, 0, 0),
+            axis,
+        };
+        let mut paths = Paths::with_capacity(2);
+        paths.push([1, 2]);
+        paths.push([3, 9, 4]);
+        paths.finish(face(0, 0));
+        paths.push([5, 6]);
+        paths.finish(face(1, 2));
+        let of = |f| paths.of(f).map(<[u32]>::to_vec).collect::<Vec<_>>();
+        assert_eq!(of(face(0, 0)), vec![vec![1, 2], vec![3, 9, 4]]);
+        assert_eq!(of(face(1, 2)), vec![vec![5, 6]]);
+        assert!(of(face(2, 1)).is_empty());
+    }
+}

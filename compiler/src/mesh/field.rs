@@ -217,3 +217,26 @@ impl Face {
         [(c[0], u), (c[1], v), (c[3], u), (c[0], v)]
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// [`Grid::unkey`] undoes [`Grid::key`] at every corner of a small odd-sized grid, and a
+    /// cell's corners come back by [`local`] from [`corner`].
+    #[test]
+    fn keys_and_corners_come_back() {
+        let grid = Grid::over(DVec3::ZERO, DVec3::new(3.0, 2.0, 5.0), 7.3);
+        for z in 0..=grid.n.z {
+            for y in 0..=grid.n.y {
+                for x in 0..=grid.n.x {
+                    let p = IVec3::new(x, y, z);
+                    assert_eq!(grid.unkey(grid.key(p)), p);
+                }
+            }
+        }
+        for i in 0..8 {
+            assert_eq!(local(corner(i)), i as usize);
+        }
+    }
+}
