@@ -58,13 +58,14 @@ pub fn contour(field: &Field, grid: &Grid, cells: &[IVec3], sharp: bool) -> Cont
     // Where the surface crosses every edge of an active cell.
     let mut crossings = edges::crossings(field, grid, (cells, &listed), &at, sharp);
     // Only the faces with a crossing on an edge draw anything.
-    let drawing = par_map(&face_list, |f| {
-        (f.edges().iter())
-            .any(|&(p, a)| crossings.by_edge.contains_key(&edges::edge_key(grid, p, a)))
+    let on_face = par_map(&face_list, |&f| {
+        faces::crossings_on(f, |(p, a)| {
+            crossings.by_edge.get(&edges::edge_key(grid, p, a)).copied()
+        })
     });
-    let face_list: Vec<Face> = (face_list.into_iter().zip(drawing))
-        .filter_map(|(f, d)| d.then_some(f))
-        .collect();
+    let (face_list, on_face): (Vec<Face>, Vec<usize>) = (face_list.into_iter().zip(on_face))
+        .filter(|&(_, n)| n > 0)
+        .unzip();
     if sharp {
         evaluations += edges::sharpen(field, grid, &face_list, &mut crossings);
     }
@@ -78,11 +79,10 @@ pub fn contour(field: &Field, grid: &Grid, cells: &[IVec3], sharp: bool) -> Cont
     evaluations += spent;
     let crossing_at = |(p, a): (IVec3, usize)| by_edge.get(&edges::edge_key(grid, p, a)).copied();
 
-    // The segments on every face of an active cell.
-    // The ambiguous faces' centres, in one batch.
+    // The segments on every face drawn.
+    // The centres of the faces of more than two crossings, in one batch.
     let mut centres: Vec<(Face, f64)> = face_list.iter().map(|&f| (f, f64::NAN)).collect();
-    let is_ambiguous = par_map(&face_list, |&f| faces::ambiguous(f, crossing_at));
-    let ambiguous: Vec<usize> = (0..face_list.len()).filter(|&i| is_ambiguous[i]).collect();
+    let ambiguous: Vec<usize> = (0..face_list.len()).filter(|&i| on_face[i] > 2).collect();
     let points: Vec<DVec3> = ambiguous
         .iter()
         .map(|&i| faces::centre(grid, face_list[i]))

@@ -147,15 +147,15 @@ fn border(
     out
 }
 
-/// Whether the face has more than two crossings on its border (its inside corners on a
-/// diagonal, or an edge crossed twice) and so needs the field at its [`centre`] to pair them.
-pub fn ambiguous(face: Face, crossing: impl Fn((IVec3, usize)) -> Option<Crossed>) -> bool {
+/// The crossings on the face's border: none, and it draws nothing; more than two (its inside
+/// corners on a diagonal, or an edge crossed twice), and it needs the field at its [`centre`]
+/// to pair them.
+pub fn crossings_on(face: Face, crossing: impl Fn((IVec3, usize)) -> Option<Crossed>) -> usize {
     face.edges()
         .into_iter()
         .filter_map(&crossing)
         .map(|c| c.count())
-        .sum::<usize>()
-        > 2
+        .sum()
 }
 
 /// The centre of `face`.
