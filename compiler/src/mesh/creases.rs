@@ -13,7 +13,7 @@ pub const SAME_PLANE: f64 = 0.999;
 const GRAZE: f64 = 0.1;
 
 /// The cosine below which a sharp point's two planes meet at a crease (about 25°).
-const CREASE: f64 = 0.9;
+pub const CREASE: f64 = 0.9;
 
 /// `ring` (a cell's polygon) cut into smaller rings along chords between its crease points that
 /// lie on one crease — the faces' sharp points where two tangent lines met, `crease` giving

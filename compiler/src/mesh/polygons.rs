@@ -5,6 +5,7 @@ use super::bends::Planes;
 use super::corners::{self, Corner};
 use super::creases;
 use super::faces::{self, Paths};
+use super::facets::{self, Polygon};
 use super::field::{Face, Field, Grid};
 use super::qef;
 use super::search;
@@ -64,31 +65,33 @@ pub fn fan(
     }
     evaluations += search::run(field, &mut settles);
     let mut settled = settles.into_iter().map(|s| s.p);
-    let mut triangles = Vec::new();
     let mut broken = 0;
+    let mut polygons = Vec::new();
     for found in starts {
-        let Some((_, rings)) = found else {
+        let Some((cell, rings)) = found else {
             broken += 1;
             continue;
         };
-        let centres: Vec<DVec3> = rings
-            .iter()
-            .map(|(ring, start)| {
-                let centre = match (sharp, start.corner) {
-                    (_, Some(corner)) => corner.at,
-                    (true, None) => settled.next().unwrap_or(start.p),
-                    (false, None) => start.p,
-                };
-                away(centre, ring, positions, grid.h)
-            })
-            .collect();
-        for ((ring, _), centre) in rings.into_iter().zip(centres) {
-            let vertex = positions.len() as u32;
-            positions.push(centre);
-            for k in 0..ring.len() {
-                let (a, b) = (ring[k], ring[(k + 1) % ring.len()]);
-                triangles.push([vertex, b, a]);
-            }
+        for (ring, start) in rings {
+            let centre = match (sharp, start.corner) {
+                (_, Some(corner)) => corner.at,
+                (true, None) => settled.next().unwrap_or(start.p),
+                (false, None) => start.p,
+            };
+            let centre = away(centre, &ring, positions, grid.h);
+            polygons.push(Polygon { cell, ring, centre });
+        }
+    }
+    if sharp {
+        evaluations += facets::reveal(field, grid, &mut polygons, positions, (normals, planes));
+    }
+    let mut triangles = Vec::new();
+    for Polygon { ring, centre, .. } in polygons {
+        let vertex = positions.len() as u32;
+        positions.push(centre);
+        for k in 0..ring.len() {
+            let (a, b) = (ring[k], ring[(k + 1) % ring.len()]);
+            triangles.push([vertex, b, a]);
         }
     }
     separate(positions, faces::MIN_GAP * grid.h);
