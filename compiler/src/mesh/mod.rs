@@ -11,6 +11,7 @@ mod cells;
 mod contour;
 mod corners;
 mod creases;
+mod edge_search;
 mod edges;
 mod faces;
 mod facets;
