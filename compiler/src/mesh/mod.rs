@@ -2,7 +2,8 @@
 //! polygon per surface sheet in each, sharp corners and creases from the gradients, on all cores.
 //!
 //! The steps: `cells` (an octree pruned by |f/λ| > half-diagonal), `contour` (corners,
-//! crossings, `faces`' segments, polygons fanned around a `qef` vertex), then materials per
+//! crossings, `faces`' segments, polygons fanned around a `qef` vertex — or drawn as their
+//! faces where a cell holds several corners, `facets`), then materials per
 //! triangle; `measure` says how far the mesh is from the surface and whether it is closed and
 //! manifold, `formats` writes STL, OBJ, PLY and glTF.
 
