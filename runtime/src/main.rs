@@ -31,6 +31,24 @@ mod view;
 #[global_allocator]
 static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 
+/// Tells the allocator to keep the memory freed from here on for reuse rather than give it back
+/// to the system: a large mesh frees and allocates its tables step after step, and every page
+/// given back came back zeroed by the kernel — a fifth to a third of `sdfc mesh`'s profile
+/// (`clear_page`). The box less a ball at 215 cells to the measuring step: median 1.03 s, 0.94
+/// s with this (8 runs each, alternating), the peak memory about 3 % higher. For commands that
+/// end when their work does (`sdfc mesh`).
+pub fn keep_freed_memory() {
+    // mimalloc's `mi_option_purge_delay`: its place in `mi_option_e`, the same in mimalloc 2
+    // and 3 (the enum keeps retired options' places); −1: never purge.
+    const PURGE_DELAY: std::ffi::c_int = 15;
+    unsafe extern "C" {
+        fn mi_option_set(option: std::ffi::c_int, value: std::ffi::c_long);
+    }
+    // SAFETY: mimalloc is linked (the global allocator above); setting an option only stores a
+    // value its later purges read.
+    unsafe { mi_option_set(PURGE_DELAY, -1) };
+}
+
 fn main() {
     // Mesa's drivers complain on every start when this is unset; nothing else reads it here.
     if std::env::var_os("XDG_RUNTIME_DIR").is_none() {

@@ -19,6 +19,7 @@ use std::time::Instant;
 
 /// Runs `sdfc mesh`; returns the exit code.
 pub fn run(args: &MeshArgs) -> i32 {
+    crate::keep_freed_memory();
     exit_code(mesh_scene(args))
 }
 
