@@ -217,7 +217,7 @@ fn settle_pending(
         for (j, s) in list.iter_mut().enumerate() {
             if let Some(b) = s.pending.take() {
                 owners.push((i, j));
-                pending.push(b);
+                pending.push(*b);
             }
         }
     }

@@ -20,8 +20,10 @@ pub struct Segment {
     /// The crossing it ends at.
     pub to: u32,
     /// The search for its sharp point, where one runs in the next batches (its result, kept
-    /// [`MIN_GAP`] off the ends, becomes `sharp`).
-    pub pending: Option<Bisect>,
+    /// [`MIN_GAP`] off the ends, becomes `sharp`). Boxed: few segments have one, and a
+    /// search is about 250 bytes — in every segment it was most of a fine mesh's memory (the
+    /// box less a ball at 215 cells: 100 MB more at the peak).
+    pub pending: Option<Box<Bisect>>,
 }
 
 /// The segments the surface draws on `face`, oriented so that, seen from the normal's positive
@@ -94,7 +96,7 @@ pub fn segments(
                 Bends::Found(found) => {
                     segment.sharp = apart(x.position, found, y.position, grid.h);
                 }
-                Bends::Pending(search) => segment.pending = Some(*search),
+                Bends::Pending(search) => segment.pending = Some(search),
             }
         }
         out.push(segment);
