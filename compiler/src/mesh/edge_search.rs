@@ -42,8 +42,8 @@ const DIP_STEPS: usize = 32;
 /// dip of a crease passing 0.04 of a cell from an edge: the smaller end drew the search away.)
 pub struct Dip {
     /// The edge's start, extent, and the field at its ends.
-    pub a: DVec3,
-    pub along: DVec3,
+    a: DVec3,
+    along: DVec3,
     pub ends: (f64, f64),
     /// The grid edge.
     pub edge: (IVec3, usize),

@@ -71,48 +71,53 @@ pub fn crossings(
     dips: bool,
 ) -> Crossings {
     let (changes, same) = cell_edges(grid, cells, at, dips);
-    // The edges the field may dip across with all four cells around them there.
+
     let all_around = par_map(&same, |&(e, _)| {
         around(e).iter().all(|c| listed.contains(c))
     });
-    let mut dipping: Vec<Dip> = (same.into_iter().zip(all_around))
+    let dipping: Vec<Ended> = (same.into_iter().zip(all_around))
         .filter_map(|(e, all)| all.then_some(e))
-        .map(|((p, a), ends)| {
+        .collect();
+    // Where each dipping edge's field crosses to the other side, if it does.
+    let mut found = Vec::new();
+    let make_dip = |&((p, a), ends): &Ended| {
+        let along = DVec3::AXES[a] * grid.h;
+        Dip::new(field, grid.point(p), along, ends, (p, a))
+    };
+    let mut evaluations = search::run_batched(field, &dipping, make_dip, |dip: Dip| {
+        if let Some((t, fm)) = dip.found {
+            found.push((dip.edge, dip.ends, t, fm));
+        }
+    });
+    // One search per crossing: a changing edge's, then each dipped edge's two halves (start,
+    // field there, extent, field at its end; the edge's key).
+    let mut spans: Vec<(DVec3, f64, DVec3, f64, u64)> = changes
+        .iter()
+        .map(|&((p, a), (fa, fb))| {
             let along = DVec3::AXES[a] * grid.h;
-            Dip::new(field, grid.point(p), along, ends, (p, a))
+            (grid.point(p), fa, along, fb, edge_key(grid, p, a))
         })
         .collect();
-    let mut evaluations = search::run(field, &mut dipping);
-    // One search per crossing: a changing edge's, and a dipped edge's two halves.
-    let mut keys: Vec<u64> = Vec::with_capacity(changes.len());
-    let mut searches: Vec<Root> = Vec::with_capacity(changes.len());
-    for &((p, a), (fa, fb)) in &changes {
-        let along = DVec3::AXES[a] * grid.h;
-        searches.push(Root::new(field, grid.h, (grid.point(p), fa), along, fb));
-        keys.push(edge_key(grid, p, a));
+    for &((p, a), (fa, fb), t, fm) in &found {
+        let (start, along, key) = (grid.point(p), DVec3::AXES[a] * grid.h, edge_key(grid, p, a));
+        spans.push((start, fa, along * t, fm, key));
+        spans.push((start + along * t, fm, along * (1.0 - t), fb, key));
     }
-    let mut dipped = 0;
-    for dip in &dipping {
-        let Some((t, fm)) = dip.found else { continue };
-        let (p, a) = dip.edge;
-        let key = edge_key(grid, p, a);
-        let m = dip.a + dip.along * t;
-        let (fa, fb) = dip.ends;
-        searches.push(Root::new(field, grid.h, (dip.a, fa), dip.along * t, fm));
-        searches.push(Root::new(field, grid.h, (m, fm), dip.along * (1.0 - t), fb));
-        keys.extend([key, key]);
-        dipped += 1;
-    }
-    evaluations += search::run(field, &mut searches);
-    let mut positions = Vec::with_capacity(searches.len() * 2);
-    let mut normals = Vec::with_capacity(searches.len());
+    let dipped = found.len();
+    let mut positions = Vec::with_capacity(spans.len() * 2);
+    let mut normals = Vec::with_capacity(spans.len());
     let mut by_edge: HashMap<u64, Crossed> =
-        HashMap::with_capacity_and_hasher(searches.len(), Default::default());
-    for (key, search) in keys.into_iter().zip(searches) {
+        HashMap::with_capacity_and_hasher(spans.len(), Default::default());
+    let make_root = |&(start, fa, along, fb, _): &(DVec3, f64, DVec3, f64, u64)| {
+        Root::new(field, grid.h, (start, fa), along, fb)
+    };
+    let mut keys = spans.iter().map(|s| s.4);
+    evaluations += search::run_batched(field, &spans, make_root, |search: Root| {
         let Stage::Done(position, normal) = search.stage else {
             // (`run` ends every search.)
             unreachable!("a crossing's search ended unfinished");
         };
+        let key = keys.next().expect("a key for every search");
         let vertex = positions.len() as u32;
         positions.push(position);
         normals.push(normal);
@@ -128,7 +133,7 @@ pub fn crossings(
                 first: c,
                 second: None,
             });
-    }
+    });
     Crossings {
         positions,
         normals,

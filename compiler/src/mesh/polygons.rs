@@ -50,21 +50,25 @@ pub fn fan(
     };
     // Sharp vertices settle on the surface, all cells' searches in lockstep (but those at a
     // corner outside their cell, on it already).
-    let mut settles: Vec<Settle> = Vec::new();
+    // (Sized first: grown by doubling, the lists were copied and their pages zeroed twice.)
+    let mut starting: Vec<(DVec3, Option<DVec3>, DVec3)> = Vec::new();
     if sharp {
-        // (Sized first: grown by doubling, the list was copied and its pages zeroed twice.)
         let rings = starts.iter().flatten().map(|(_, rings)| rings.len()).sum();
-        settles.reserve_exact(rings);
-        settles.extend(starts.iter().flatten().flat_map(|(c, rings)| {
+        starting.reserve_exact(rings);
+        starting.extend(starts.iter().flatten().flat_map(|(c, rings)| {
             let lo = grid.point(*c);
             rings
                 .iter()
                 .filter(|(_, s)| s.corner.is_none())
-                .map(move |(_, s)| Settle::new(field, (s.p, s.or), lo, grid.h))
+                .map(move |(_, s)| (s.p, s.or, lo))
         }));
     }
-    evaluations += search::run(field, &mut settles);
-    let mut settled = settles.into_iter().map(|s| s.p);
+    let mut points = Vec::with_capacity(starting.len());
+    let make =
+        |&(p, or, lo): &(DVec3, Option<DVec3>, DVec3)| Settle::new(field, (p, or), lo, grid.h);
+    evaluations += search::run_batched(field, &starting, make, |s: Settle| points.push(s.p));
+    drop(starting);
+    let mut settled = points.into_iter();
     let mut broken = 0;
     let mut polygons = Vec::new();
     for found in starts {
