@@ -5,7 +5,7 @@
 use super::edges::Crossing;
 use super::field::{Face, Field, Grid};
 use super::trace::{
-    Bisect, Meet, Point, along_trace, at_meet, between, into_face, march, meet, opposite, simple,
+    Bracket, Meet, Point, along_trace, at_meet, between, into_face, march, meet, opposite, simple,
     to_edge,
 };
 pub use super::trace::{Planes, Sharp};
@@ -17,7 +17,7 @@ pub enum Bends {
     /// The bends, in order from `a` to `b`.
     Found(Vec<Sharp>),
     /// The one bend, once this search has run.
-    Pending(Box<Bisect>),
+    Pending(Box<Bracket>),
 }
 
 /// Where a face's trace bends more than once, the points across its chord at which it is
@@ -37,7 +37,7 @@ pub const DEPTH: usize = 3;
 
 /// The points where the surface's trace on `face` bends between the surface points `a` and
 /// `b`. Where their tangent lines meet inside the face, the search for that one bend is left
-/// to the batches (a [`Bisect`]: what it finds short of the meeting point is followed with
+/// to the batches (a [`Bracket`]: what it finds short of the meeting point is followed with
 /// [`either_side`]); elsewhere the trace is followed here on the CPU ([`pair`]: corners are
 /// few). On a face that `shares` with another segment (four crossings), only the lines'
 /// meeting point, found on the surface, is taken: a search across the face could reach the
@@ -51,7 +51,7 @@ pub fn bends(
 ) -> Bends {
     match meet(face, grid, a, b) {
         Some(Meet::Inside(p)) => {
-            let mut search = Bisect::new(field, grid, p, 0.5 * (a.0 + b.0), (a.0, b.0));
+            let mut search = Bracket::new(field, grid, p, 0.5 * (a.0 + b.0), (a.0, b.0));
             search.planes = Some((a.1, b.1));
             search.only_crease = shares;
             Bends::Pending(Box::new(search))

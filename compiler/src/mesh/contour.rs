@@ -11,7 +11,7 @@ use super::field::Face;
 use super::field::{Field, Grid, corner, inside, local};
 use super::polygons;
 use super::search;
-use super::trace::{self, Bisect};
+use super::trace::{self, Bracket};
 use crate::parallel::{par_flat_map, par_map, par_sort_unstable_by_key};
 use glam::{DVec3, IVec3};
 use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
@@ -212,7 +212,7 @@ fn settle_pending(
     drawn: &mut [(Vec<Segment>, usize)],
 ) -> usize {
     let mut owners = Vec::new();
-    let mut pending: Vec<Bisect> = Vec::new();
+    let mut pending: Vec<Bracket> = Vec::new();
     for (i, (list, _)) in drawn.iter_mut().enumerate() {
         for (j, s) in list.iter_mut().enumerate() {
             if let Some(b) = s.pending.take() {

@@ -6,7 +6,7 @@ use super::bends::{self, Bends, Sharp};
 use super::creases::SAME_PLANE;
 use super::edges::{Crossed, Crossing};
 use super::field::{Face, Field, Grid, inside};
-use super::trace::{self, Bisect};
+use super::trace::{self, Bracket};
 use glam::{DVec3, IVec3};
 use rustc_hash::FxHashMap as HashMap;
 
@@ -23,7 +23,7 @@ pub struct Segment {
     /// [`MIN_GAP`] off the ends, becomes `sharp`). Boxed: few segments have one, and a
     /// search is about 250 bytes — in every segment it was most of a fine mesh's memory (the
     /// box less a ball at 215 cells: 100 MB more at the peak).
-    pub pending: Option<Box<Bisect>>,
+    pub pending: Option<Box<Bracket>>,
 }
 
 /// The segments the surface draws on `face`, oriented so that, seen from the normal's positive
@@ -33,7 +33,7 @@ pub struct Segment {
 /// meet across the face, else to the one before (a face of more than two crossings decides by
 /// the field at its centre, `centre`, from [`centre`]'s point). With `sharp`, a segment whose
 /// crossings' tangent lines meet at an angle, inside the face and on the surface, gets that
-/// point (a [`Bisect`] left pending in the segment; on a face of two crossings, where they
+/// point (a [`Bracket`] left pending in the segment; on a face of two crossings, where they
 /// meet outside or off the surface, the trace's bends are searched: [`bends::bends`]).
 /// Returns the segments and the evaluations spent.
 pub fn segments(

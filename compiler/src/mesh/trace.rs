@@ -1,5 +1,5 @@
 //! Following the surface's trace on a face of the grid: where two tangent lines meet, the
-//! surface point between two points by bisection (batched, or one at a time on the CPU), a
+//! surface point between two points by regula falsi (batched, or one at a time on the CPU), a
 //! march along a line to the first surface point.
 
 use super::field::{Face, Field, Grid, inside};
@@ -25,6 +25,10 @@ pub type Planes = (DVec3, DVec3);
 
 /// How close to the surface (in cells) a face's sharp point must come to be kept.
 const ON_SURFACE: f64 = 1e-7;
+
+/// The steps a [`Bracket`] takes at most after its two ends (halving alone reaches 1e-7 of a
+/// cell in about 23).
+const BISECT_STEPS: usize = 48;
 
 /// A surface point and its normal.
 pub type Point = (DVec3, DVec3);
@@ -107,9 +111,10 @@ pub fn meet(face: Face, grid: &Grid, a: Point, b: Point) -> Option<Meet> {
 }
 
 /// The surface point on the segment from `p` to `q`, where the field changes side between
-/// them (or `p` itself, on the surface), by bisection, on the CPU.
+/// them (or `p` itself, on the surface), by Illinois regula falsi (halving where the secant's
+/// root falls outside the bracket), on the CPU.
 pub fn between(field: &Field, grid: &Grid, p: DVec3, q: DVec3, spent: &mut usize) -> Option<DVec3> {
-    let mut search = [Bisect::new(field, grid, p, q, (p, q))];
+    let mut search = [Bracket::new(field, grid, p, q, (p, q))];
     *spent += search::run(field, &mut search);
     let [search] = search;
     search.found
@@ -118,11 +123,17 @@ pub fn between(field: &Field, grid: &Grid, p: DVec3, q: DVec3, spent: &mut usize
 /// The search for the surface point on the segment from `p` to `q` (see [`between`]), for a
 /// segment of a face's trace from `ends.0` to `ends.1`.
 #[derive(Clone, Debug)]
-pub struct Bisect {
+pub struct Bracket {
     lo: DVec3,
     hi: DVec3,
     /// The field at `p` (NaN until told).
     fp: f64,
+    /// The field at `lo` and `hi`, Illinois-scaled, and which end the last step replaced (−1
+    /// `lo`, 1 `hi`, 0 none yet).
+    flo: f64,
+    fhi: f64,
+    last: i8,
+    steps: usize,
     /// Done below these: |f| and the bracket's length.
     tol_f: f64,
     tol_len: f64,
@@ -142,13 +153,17 @@ pub struct Bisect {
     pub only_crease: bool,
 }
 
-impl Bisect {
-    pub fn new(field: &Field, grid: &Grid, p: DVec3, q: DVec3, ends: (DVec3, DVec3)) -> Bisect {
+impl Bracket {
+    pub fn new(field: &Field, grid: &Grid, p: DVec3, q: DVec3, ends: (DVec3, DVec3)) -> Bracket {
         let res = field.resolution();
-        Bisect {
+        Bracket {
             lo: p,
             hi: q,
             fp: f64::NAN,
+            flo: f64::NAN,
+            fhi: f64::NAN,
+            last: 0,
+            steps: 0,
             tol_f: (ON_SURFACE * grid.h).max(res),
             tol_len: (1e-7 * grid.h).max(res),
             started: false,
@@ -161,21 +176,34 @@ impl Bisect {
         }
     }
 
-    /// Done where the bracket is short enough: its middle.
+    /// The point asked for next: the secant's root inside the bracket (Illinois regula falsi:
+    /// on a smooth field a few steps reach [`ON_SURFACE`], where halving took about 23), else
+    /// its middle.
+    fn next(&self) -> DVec3 {
+        let t = self.flo / (self.flo - self.fhi);
+        let t = if t.is_finite() && t > 0.0 && t < 1.0 {
+            t
+        } else {
+            0.5
+        };
+        self.lo + (self.hi - self.lo) * t
+    }
+
+    /// Done where the bracket is short enough (or the steps are spent): its middle.
     fn settle(&mut self) {
-        if (self.hi - self.lo).length() <= self.tol_len {
+        if (self.hi - self.lo).length() <= self.tol_len || self.steps >= BISECT_STEPS {
             self.found = Some(0.5 * (self.lo + self.hi));
             self.done = true;
         }
     }
 }
 
-impl Search for Bisect {
+impl Search for Bracket {
     fn ask(&self, points: &mut Vec<DVec3>) {
         match (self.done, self.started) {
             (true, _) => {}
             (false, false) => points.extend([self.lo, self.hi]),
-            (false, true) => points.push(0.5 * (self.lo + self.hi)),
+            (false, true) => points.push(self.next()),
         }
     }
 
@@ -183,7 +211,7 @@ impl Search for Bisect {
         if !self.started {
             self.started = true;
             let (fp, fq) = (values[0], values[1]);
-            self.fp = fp;
+            (self.fp, self.flo, self.fhi) = (fp, fp, fq);
             if fp.abs() <= self.tol_f {
                 (self.found, self.done) = (Some(self.lo), true);
             } else if inside(fp) == inside(fq) {
@@ -193,15 +221,24 @@ impl Search for Bisect {
             }
             return;
         }
-        let (f, mid) = (values[0], 0.5 * (self.lo + self.hi));
+        let (f, x) = (values[0], self.next());
+        self.steps += 1;
         if f.abs() <= self.tol_f {
-            (self.found, self.done) = (Some(mid), true);
+            (self.found, self.done) = (Some(x), true);
             return;
         }
         if inside(f) == inside(self.fp) {
-            self.lo = mid;
+            (self.lo, self.flo) = (x, f);
+            if self.last == -1 {
+                self.fhi *= 0.5;
+            }
+            self.last = -1;
         } else {
-            self.hi = mid;
+            (self.hi, self.fhi) = (x, f);
+            if self.last == 1 {
+                self.flo *= 0.5;
+            }
+            self.last = 1;
         }
         self.settle();
     }
