@@ -2,7 +2,7 @@
 //! ([`Root`]) and whether the field dips across it between ends on one side ([`Dip`]).
 
 use super::field::{Field, inside};
-use super::search::{self, Search};
+use super::search::{self, Illinois, Search};
 use glam::{DVec3, IVec3};
 
 /// The iterations of the search for a crossing along an edge (Illinois regula falsi; f64
@@ -131,15 +131,10 @@ pub struct Root {
     /// The edge's start and its extent.
     a: DVec3,
     along: DVec3,
-    /// The bracket: parameters along the edge and the field there (Illinois-scaled).
-    t0: f64,
-    f0: f64,
-    t1: f64,
-    f1: f64,
+    /// The bracket: parameters along the edge and the field there.
+    bracket: Illinois<f64>,
     /// The parameter evaluated next.
     t: f64,
-    /// Which end the last step replaced (−1 the low, 1 the high, 0 none yet).
-    last_side: i32,
     steps: usize,
     /// Stop once |f| or the bracket's length in scene units is below these.
     tol_f: f64,
@@ -164,12 +159,8 @@ impl Root {
         let mut root = Root {
             a,
             along,
-            t0: 0.0,
-            f0: fa,
-            t1: 1.0,
-            f1: fb,
+            bracket: Illinois::new((0.0, fa), (1.0, fb)),
             t: 0.5,
-            last_side: 0,
             steps: 0,
             tol_f: (1e-9 * h).max(res),
             tol_t: 1e-9f64.max(res / along.length()),
@@ -185,30 +176,19 @@ impl Root {
     fn step(&mut self, f: f64) {
         let t = self.t;
         self.steps += 1;
-        if f.abs() < self.tol_f || self.t1 - self.t0 < self.tol_t || self.steps == ROOT_STEPS {
+        let short = self.bracket.hi.0 - self.bracket.lo.0 < self.tol_t;
+        if f.abs() < self.tol_f || short || self.steps == ROOT_STEPS {
             let p = self.a + self.along * t.clamp(END_GAP, 1.0 - END_GAP);
             self.stage = Stage::Normal(p);
             return;
         }
-        if inside(f) == inside(self.f0) {
-            (self.t0, self.f0) = (t, f);
-            if self.last_side == -1 {
-                self.f1 *= 0.5;
-            }
-            self.last_side = -1;
-        } else {
-            (self.t1, self.f1) = (t, f);
-            if self.last_side == 1 {
-                self.f0 *= 0.5;
-            }
-            self.last_side = 1;
-        }
+        self.bracket.narrow(t, f);
         self.guess();
     }
 
     /// The next parameter: the secant's root inside the bracket, else its middle.
     fn guess(&mut self) {
-        let (t0, f0, t1, f1) = (self.t0, self.f0, self.t1, self.f1);
+        let ((t0, f0), (t1, f1)) = (self.bracket.lo, self.bracket.hi);
         let guess = (t0 * f1 - t1 * f0) / (f1 - f0);
         self.t = if guess.is_finite() && guess > t0 && guess < t1 {
             guess

@@ -2,7 +2,7 @@
 //! batch (the GPU evaluates them in one dispatch): a search says which points it needs next
 //! and is told their values, until it needs none.
 
-use super::field::Field;
+use super::field::{Field, inside};
 use crate::reference::eval;
 use glam::DVec3;
 
@@ -87,6 +87,45 @@ fn lockstep<S: Search>(searches: &mut [S], many: impl Fn(&[DVec3]) -> Vec<f64>) 
         }
     }
     evaluations
+}
+
+/// Illinois regula falsi's bracket on a side change: its two ends (parameters or points, `P`)
+/// with the field there, the value at an end left in place twice running halved, so that the
+/// secant's root moves on toward it. [`edge_search::Root`](super::edge_search::Root) and
+/// [`trace::Bracket`](super::trace::Bracket) place their next point from it, each by its own
+/// secant.
+#[derive(Clone, Copy, Debug)]
+pub struct Illinois<P> {
+    /// The low end (on the side the search started from) and the field there (scaled).
+    pub lo: (P, f64),
+    /// The high end and the field there (scaled).
+    pub hi: (P, f64),
+    /// Which end the last step replaced (−1 the low, 1 the high, 0 none yet).
+    last: i8,
+}
+
+impl<P: Copy> Illinois<P> {
+    /// The bracket from `lo` to `hi`, each with the field there.
+    pub fn new(lo: (P, f64), hi: (P, f64)) -> Illinois<P> {
+        Illinois { lo, hi, last: 0 }
+    }
+
+    /// Takes the field `f` at `x`, between the ends: `x` replaces the end on its side.
+    pub fn narrow(&mut self, x: P, f: f64) {
+        if inside(f) == inside(self.lo.1) {
+            self.lo = (x, f);
+            if self.last == -1 {
+                self.hi.1 *= 0.5;
+            }
+            self.last = -1;
+        } else {
+            self.hi = (x, f);
+            if self.last == 1 {
+                self.lo.1 *= 0.5;
+            }
+            self.last = 1;
+        }
+    }
 }
 
 /// The four points whose values [`unit_gradient`] takes, at distance `step` around `p`.

@@ -3,7 +3,7 @@
 //! march along a line to the first surface point.
 
 use super::field::{Face, Field, Grid, inside};
-use super::search::{self, Search};
+use super::search::{self, Illinois, Search};
 use glam::DVec3;
 
 /// A point where a face's trace bends, or one it passes through.
@@ -124,15 +124,8 @@ pub fn between(field: &Field, grid: &Grid, p: DVec3, q: DVec3, spent: &mut usize
 /// segment of a face's trace from `ends.0` to `ends.1`.
 #[derive(Clone, Debug)]
 pub struct Bracket {
-    lo: DVec3,
-    hi: DVec3,
-    /// The field at `p` (NaN until told).
-    fp: f64,
-    /// The field at `lo` and `hi`, Illinois-scaled, and which end the last step replaced (−1
-    /// `lo`, 1 `hi`, 0 none yet).
-    flo: f64,
-    fhi: f64,
-    last: i8,
+    /// The bracket from `p` to `q` (the field there NaN until told).
+    bracket: Illinois<DVec3>,
     steps: usize,
     /// Done below these: |f| and the bracket's length.
     tol_f: f64,
@@ -157,12 +150,7 @@ impl Bracket {
     pub fn new(field: &Field, grid: &Grid, p: DVec3, q: DVec3, ends: (DVec3, DVec3)) -> Bracket {
         let res = field.resolution();
         Bracket {
-            lo: p,
-            hi: q,
-            fp: f64::NAN,
-            flo: f64::NAN,
-            fhi: f64::NAN,
-            last: 0,
+            bracket: Illinois::new((p, f64::NAN), (q, f64::NAN)),
             steps: 0,
             tol_f: (ON_SURFACE * grid.h).max(res),
             tol_len: (1e-7 * grid.h).max(res),
@@ -180,19 +168,21 @@ impl Bracket {
     /// on a smooth field a few steps reach [`ON_SURFACE`], where halving took about 23), else
     /// its middle.
     fn next(&self) -> DVec3 {
-        let t = self.flo / (self.flo - self.fhi);
+        let ((lo, flo), (hi, fhi)) = (self.bracket.lo, self.bracket.hi);
+        let t = flo / (flo - fhi);
         let t = if t.is_finite() && t > 0.0 && t < 1.0 {
             t
         } else {
             0.5
         };
-        self.lo + (self.hi - self.lo) * t
+        lo + (hi - lo) * t
     }
 
     /// Done where the bracket is short enough (or the steps are spent): its middle.
     fn settle(&mut self) {
-        if (self.hi - self.lo).length() <= self.tol_len || self.steps >= BISECT_STEPS {
-            self.found = Some(0.5 * (self.lo + self.hi));
+        let (lo, hi) = (self.bracket.lo.0, self.bracket.hi.0);
+        if (hi - lo).length() <= self.tol_len || self.steps >= BISECT_STEPS {
+            self.found = Some(0.5 * (lo + hi));
             self.done = true;
         }
     }
@@ -202,7 +192,7 @@ impl Search for Bracket {
     fn ask(&self, points: &mut Vec<DVec3>) {
         match (self.done, self.started) {
             (true, _) => {}
-            (false, false) => points.extend([self.lo, self.hi]),
+            (false, false) => points.extend([self.bracket.lo.0, self.bracket.hi.0]),
             (false, true) => points.push(self.next()),
         }
     }
@@ -211,9 +201,9 @@ impl Search for Bracket {
         if !self.started {
             self.started = true;
             let (fp, fq) = (values[0], values[1]);
-            (self.fp, self.flo, self.fhi) = (fp, fp, fq);
+            (self.bracket.lo.1, self.bracket.hi.1) = (fp, fq);
             if fp.abs() <= self.tol_f {
-                (self.found, self.done) = (Some(self.lo), true);
+                (self.found, self.done) = (Some(self.bracket.lo.0), true);
             } else if inside(fp) == inside(fq) {
                 self.done = true;
             } else {
@@ -227,19 +217,7 @@ impl Search for Bracket {
             (self.found, self.done) = (Some(x), true);
             return;
         }
-        if inside(f) == inside(self.fp) {
-            (self.lo, self.flo) = (x, f);
-            if self.last == -1 {
-                self.fhi *= 0.5;
-            }
-            self.last = -1;
-        } else {
-            (self.hi, self.fhi) = (x, f);
-            if self.last == 1 {
-                self.flo *= 0.5;
-            }
-            self.last = 1;
-        }
+        self.bracket.narrow(x, f);
         self.settle();
     }
 }
