@@ -66,14 +66,8 @@ pub fn reveal(
         return 0;
     }
     // The gradient at the centres off every plane: the hidden face's plane.
-    let off = |f: &Flat| {
-        let c = polygons[f.index].centre;
-        f.planes
-            .iter()
-            .all(|&(n, p)| n.dot(c - p).abs() > OFF * grid.h)
-    };
     let mut points = Vec::new();
-    for f in flats.iter().filter(|f| off(f)) {
+    for f in flats.iter().filter(|f| f.off) {
         search::gradient_points(
             polygons[f.index].centre,
             field.gradient_step(grid.h),
@@ -87,7 +81,7 @@ pub fn reveal(
     for f in &flats {
         let polygon = &polygons[f.index];
         let k = f.planes.len();
-        if off(f) {
+        if f.off {
             let n = hidden.next().unwrap_or(DVec3::ZERO);
             if n == DVec3::ZERO || f.planes.iter().any(|&(m, _)| m.dot(n) > SAME_PLANE) {
                 continue;
@@ -159,6 +153,9 @@ struct Flat {
     at: Vec<usize>,
     /// The plane of the stretch after each crease point: its unit normal and a point on it.
     planes: Vec<(DVec3, DVec3)>,
+    /// Whether the polygon's centre lies off every one of them by more than [`OFF`] cells (a
+    /// face hidden inside the cell is sought).
+    off: bool,
 }
 
 /// `polygon` (the `index`-th) as a [`Flat`], if it is one: three to [`MOST_PLANES`] crease
@@ -212,10 +209,12 @@ fn flat(
         let before = stretches[(j + at.len() - 1) % at.len()].0;
         before.dot(stretches[j].0) < SAME_PLANE
     });
+    let off = (stretches.iter()).all(|&(n, p)| n.dot(polygon.centre - p).abs() > OFF * h);
     turns.then_some(Flat {
         index,
         at,
         planes: stretches,
+        off,
     })
 }
 

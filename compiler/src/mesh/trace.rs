@@ -28,7 +28,7 @@ const ON_SURFACE: f64 = 1e-7;
 
 /// The steps a [`Bracket`] takes at most after its two ends (halving alone reaches 1e-7 of a
 /// cell in about 23).
-const BISECT_STEPS: usize = 48;
+const BRACKET_STEPS: usize = 48;
 
 /// A surface point and its normal.
 pub type Point = (DVec3, DVec3);
@@ -181,7 +181,7 @@ impl Bracket {
     /// Done where the bracket is short enough (or the steps are spent): its middle.
     fn settle(&mut self) {
         let (lo, hi) = (self.bracket.lo.0, self.bracket.hi.0);
-        if (hi - lo).length() <= self.tol_len || self.steps >= BISECT_STEPS {
+        if (hi - lo).length() <= self.tol_len || self.steps >= BRACKET_STEPS {
             self.found = Some(0.5 * (lo + hi));
             self.done = true;
         }
